@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs every dependency from Debian 12 packages and builds Release into build/.
+# Run as root on a fresh machine; safe to run again (idempotent).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake pkg-config git
+  petsc-dev libopenmpi-dev openmpi-bin    # PETSc 3.18 with MPI, MUMPS and SuiteSparse (CHOLMOD)
+  libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libmetis-dev
+  libgmsh-dev gmsh
+  googletest libgtest-dev libbenchmark-dev
+  python3 python3-matplotlib python3-numpy  # plots of history.csv and of fields
+)
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$(nproc)"
+echo "built: build/bin/thermocontact"

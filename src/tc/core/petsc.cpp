@@ -1,0 +1,220 @@
+#include "tc/core/petsc.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "tc/core/error.hpp"
+
+namespace tc::core {
+
+void check_petsc(PetscErrorCode code, const char* call, const char* file, int line) {
+  if (code == 0) return;
+  const char* text = nullptr;
+  (void)PetscErrorMessage(code, &text, nullptr);
+  throw PetscError(code, fmt::format("PETSc call failed: {} ({}:{}): {} (error {})", call, file,
+                                     line, text ? text : "unknown error", static_cast<int>(code)));
+}
+
+PetscSession::PetscSession(int* argc, char*** argv) {
+  TC_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
+  // Errors come back as codes, turned into exceptions by TC_PETSC; no traceback spam.
+  TC_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+}
+
+PetscSession::~PetscSession() {
+  (void)PetscPopErrorHandler();
+  (void)PetscFinalize();
+}
+
+int PetscSession::rank() {
+  PetscMPIInt r = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &r);
+  return r;
+}
+
+int PetscSession::size() {
+  PetscMPIInt s = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &s);
+  return s;
+}
+
+// ---------------------------------------------------------------------------- Vector
+
+Vector::Vector(PetscInt n) {
+  TC_PETSC(VecCreateSeq(PETSC_COMM_SELF, n, v_.out()));
+  TC_PETSC(VecSet(v_.get(), 0.0));
+}
+
+Vector Vector::from(std::span<const double> values) {
+  Vector v(static_cast<PetscInt>(values.size()));
+  auto view = v.view();
+  std::copy(values.begin(), values.end(), view.span().begin());
+  return v;
+}
+
+PetscInt Vector::size() const {
+  PetscInt n = 0;
+  TC_PETSC(VecGetSize(get(), &n));
+  return n;
+}
+
+Vector Vector::clone() const {
+  Vector c;
+  TC_PETSC(VecDuplicate(get(), c.v_.out()));
+  TC_PETSC(VecCopy(get(), c.get()));
+  return c;
+}
+
+void Vector::zero() { TC_PETSC(VecSet(get(), 0.0)); }
+void Vector::fill(double value) { TC_PETSC(VecSet(get(), value)); }
+void Vector::copy_from(const Vector& other) { TC_PETSC(VecCopy(other.get(), get())); }
+void Vector::axpy(double a, const Vector& x) { TC_PETSC(VecAXPY(get(), a, x.get())); }
+void Vector::scale(double a) { TC_PETSC(VecScale(get(), a)); }
+
+double Vector::dot(const Vector& other) const {
+  PetscScalar d = 0;
+  TC_PETSC(VecDot(get(), other.get(), &d));
+  return d;
+}
+
+double Vector::norm() const {
+  PetscReal n = 0;
+  TC_PETSC(VecNorm(get(), NORM_2, &n));
+  return n;
+}
+
+double Vector::sum() const {
+  PetscScalar s = 0;
+  TC_PETSC(VecSum(get(), &s));
+  return s;
+}
+
+std::vector<double> Vector::to_std() const {
+  const PetscScalar* a = nullptr;
+  TC_PETSC(VecGetArrayRead(get(), &a));
+  std::vector<double> out(a, a + size());
+  TC_PETSC(VecRestoreArrayRead(get(), &a));
+  return out;
+}
+
+bool Vector::all_finite() const {
+  const PetscScalar* a = nullptr;
+  const PetscInt n = size();
+  TC_PETSC(VecGetArrayRead(get(), &a));
+  bool ok = true;
+  for (PetscInt i = 0; i < n && ok; ++i) ok = std::isfinite(a[i]);
+  TC_PETSC(VecRestoreArrayRead(get(), &a));
+  return ok;
+}
+
+Vector::View::View(::Vec v) : v_(v) {
+  TC_PETSC(VecGetArray(v_, &data_));
+  TC_PETSC(VecGetLocalSize(v_, &n_));
+}
+
+Vector::View::~View() { (void)VecRestoreArray(v_, &data_); }
+
+// ---------------------------------------------------------------------- SparseMatrix
+
+SparseMatrix::SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscInt> nnz_per_row) {
+  TC_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, rows, cols, 0, nnz_per_row.data(), m_.out()));
+  // Exact preallocation is a promise: a missing entry is a bug, not a slow path.
+  TC_PETSC(MatSetOption(get(), MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+}
+
+PetscInt SparseMatrix::rows() const {
+  PetscInt m = 0, n = 0;
+  TC_PETSC(MatGetSize(get(), &m, &n));
+  return m;
+}
+
+PetscInt SparseMatrix::cols() const {
+  PetscInt m = 0, n = 0;
+  TC_PETSC(MatGetSize(get(), &m, &n));
+  return n;
+}
+
+void SparseMatrix::add_values(std::span<const PetscInt> rows, std::span<const PetscInt> cols,
+                              const double* row_major_block) {
+  TC_PETSC(MatSetValues(get(), static_cast<PetscInt>(rows.size()), rows.data(),
+                        static_cast<PetscInt>(cols.size()), cols.data(), row_major_block,
+                        ADD_VALUES));
+}
+
+void SparseMatrix::assemble() {
+  TC_PETSC(MatAssemblyBegin(get(), MAT_FINAL_ASSEMBLY));
+  TC_PETSC(MatAssemblyEnd(get(), MAT_FINAL_ASSEMBLY));
+}
+
+SparseMatrix SparseMatrix::copy() const {
+  SparseMatrix c;
+  TC_PETSC(MatDuplicate(get(), MAT_COPY_VALUES, c.m_.out()));
+  return c;
+}
+
+void SparseMatrix::mult(const Vector& x, Vector& y) const {
+  TC_PETSC(MatMult(get(), x.get(), y.get()));
+}
+void SparseMatrix::mult_add(const Vector& x, Vector& y) const {
+  TC_PETSC(MatMultAdd(get(), x.get(), y.get(), y.get()));
+}
+void SparseMatrix::mult_transpose(const Vector& x, Vector& y) const {
+  TC_PETSC(MatMultTranspose(get(), x.get(), y.get()));
+}
+void SparseMatrix::mult_transpose_add(const Vector& x, Vector& y) const {
+  TC_PETSC(MatMultTransposeAdd(get(), x.get(), y.get(), y.get()));
+}
+void SparseMatrix::axpy(double a, const SparseMatrix& x) {
+  TC_PETSC(MatAXPY(get(), a, x.get(), SAME_NONZERO_PATTERN));
+}
+void SparseMatrix::scale(double a) { TC_PETSC(MatScale(get(), a)); }
+
+void SparseMatrix::zero_rows_columns(std::span<const PetscInt> rows, double diag) {
+  TC_PETSC(MatZeroRowsColumns(get(), static_cast<PetscInt>(rows.size()), rows.data(), diag,
+                              nullptr, nullptr));
+}
+
+double SparseMatrix::quadratic_form(const Vector& x, Vector& work) const {
+  mult(x, work);
+  return x.dot(work);
+}
+
+// -------------------------------------------------------------------- CholeskySolver
+
+std::vector<std::string> available_cholesky_packages() {
+  std::vector<std::string> out;
+  for (const char* p : {MATSOLVERCHOLMOD, MATSOLVERMUMPS, MATSOLVERPETSC}) {
+    PetscBool found = PETSC_FALSE;
+    TC_PETSC(MatSolverTypeGet(p, MATSEQAIJ, MAT_FACTOR_CHOLESKY, &found, nullptr, nullptr));
+    if (found) out.emplace_back(p);
+  }
+  return out;
+}
+
+CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package) {
+  package_ = package;
+  char opt[64] = {};
+  PetscBool set = PETSC_FALSE;
+  TC_PETSC(PetscOptionsGetString(nullptr, nullptr, "-tc_factor_package", opt, sizeof opt, &set));
+  if (set) package_ = opt;
+  if (package_.empty()) package_ = available_cholesky_packages().front();
+
+  TC_PETSC(MatSetOption(a.get(), MAT_SYMMETRIC, PETSC_TRUE));
+  TC_PETSC(MatSetOption(a.get(), MAT_SPD, PETSC_TRUE));
+  TC_PETSC(KSPCreate(PETSC_COMM_SELF, ksp_.out()));
+  TC_PETSC(KSPSetOperators(ksp_.get(), a.get(), a.get()));
+  TC_PETSC(KSPSetType(ksp_.get(), KSPPREONLY));
+  PC pc = nullptr;
+  TC_PETSC(KSPGetPC(ksp_.get(), &pc));
+  TC_PETSC(PCSetType(pc, PCCHOLESKY));
+  TC_PETSC(PCFactorSetMatSolverType(pc, package_.c_str()));
+  TC_PETSC(KSPSetErrorIfNotConverged(ksp_.get(), PETSC_TRUE));
+  TC_PETSC(KSPSetUp(ksp_.get()));  // the factorisation happens here, once
+}
+
+void CholeskySolver::solve(const Vector& b, Vector& x) const {
+  TC_PETSC(KSPSolve(ksp_.get(), b.get(), x.get()));
+}
+
+}  // namespace tc::core

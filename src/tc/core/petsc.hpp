@@ -1,0 +1,151 @@
+#pragma once
+// PETSc behind RAII: the session (the one place that initialises PETSc and MPI), owning
+// handles for Vec/Mat/KSP, and TC_PETSC, which turns every failed call into a PetscError
+// naming the call. MPI and PETSc headers stay inside core and the layers that assemble.
+#include <petscksp.h>
+
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tc::core {
+
+/// Throws PetscError naming `call` (with PETSc's message) when `code` is non-zero.
+void check_petsc(PetscErrorCode code, const char* call, const char* file, int line);
+
+#define TC_PETSC(call) ::tc::core::check_petsc((call), #call, __FILE__, __LINE__)
+
+/// Initialises PETSc (and MPI) on construction, finalises on destruction. Create exactly one,
+/// in main() or the test runner, before any other PETSc object. Collective on MPI_COMM_WORLD.
+class PetscSession {
+ public:
+  PetscSession(int* argc, char*** argv);
+  ~PetscSession();
+  PetscSession(const PetscSession&) = delete;
+  PetscSession& operator=(const PetscSession&) = delete;
+
+  [[nodiscard]] static int rank();
+  [[nodiscard]] static int size();
+};
+
+/// Owning handle of a PETSc object (Vec, Mat, KSP, ...): move-only, destroyed once.
+template <class H, PetscErrorCode (*Destroy)(H*)>
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(H h) : h_(h) {}
+  ~Handle() { reset(); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& o) noexcept : h_(std::exchange(o.h_, nullptr)) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      h_ = std::exchange(o.h_, nullptr);
+    }
+    return *this;
+  }
+  void reset() {
+    if (h_) (void)Destroy(&h_);  // a destructor must not throw; PETSc nulls h_
+    h_ = nullptr;
+  }
+  [[nodiscard]] H get() const { return h_; }
+  [[nodiscard]] H* out() {
+    reset();
+    return &h_;
+  }
+  explicit operator bool() const { return h_ != nullptr; }
+
+ private:
+  H h_ = nullptr;
+};
+
+/// A sequential (per-rank) dense vector of doubles.
+class Vector {
+ public:
+  Vector() = default;
+  explicit Vector(PetscInt n);  // zero-initialised, on PETSC_COMM_SELF
+  [[nodiscard]] static Vector from(std::span<const double> values);
+
+  [[nodiscard]] ::Vec get() const { return v_.get(); }
+  [[nodiscard]] PetscInt size() const;
+  [[nodiscard]] Vector clone() const;  // same layout and values
+  void zero();
+  void fill(double value);
+  void copy_from(const Vector& other);
+  void axpy(double a, const Vector& x);  // this += a x
+  void scale(double a);
+  [[nodiscard]] double dot(const Vector& other) const;
+  [[nodiscard]] double norm() const;  // 2-norm
+  [[nodiscard]] double sum() const;
+  [[nodiscard]] std::vector<double> to_std() const;
+  [[nodiscard]] bool all_finite() const;
+
+  /// Read/write access to the local entries for the lifetime of the view.
+  class View {
+   public:
+    explicit View(::Vec v);
+    ~View();
+    View(const View&) = delete;
+    View& operator=(const View&) = delete;
+    double& operator[](PetscInt i) { return data_[i]; }
+    [[nodiscard]] std::span<double> span() { return {data_, static_cast<size_t>(n_)}; }
+
+   private:
+    ::Vec v_;
+    double* data_ = nullptr;
+    PetscInt n_ = 0;
+  };
+  [[nodiscard]] View view() { return View(get()); }
+
+ private:
+  Handle<::Vec, VecDestroy> v_;
+};
+
+/// A sequential sparse matrix (AIJ) with exact preallocation given per row.
+class SparseMatrix {
+ public:
+  SparseMatrix() = default;
+  SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscInt> nnz_per_row);
+
+  [[nodiscard]] ::Mat get() const { return m_.get(); }
+  [[nodiscard]] PetscInt rows() const;
+  [[nodiscard]] PetscInt cols() const;
+  void add_values(std::span<const PetscInt> rows, std::span<const PetscInt> cols,
+                  const double* row_major_block);
+  void assemble();
+  [[nodiscard]] SparseMatrix copy() const;
+  void mult(const Vector& x, Vector& y) const;            // y = A x
+  void mult_add(const Vector& x, Vector& y) const;        // y += A x
+  void mult_transpose(const Vector& x, Vector& y) const;  // y = Aᵀ x
+  void mult_transpose_add(const Vector& x, Vector& y) const;
+  void axpy(double a, const SparseMatrix& x);  // this += a x, same nonzero pattern
+  void scale(double a);
+  /// Zeroes the listed rows and columns and puts `diag` on their diagonal.
+  void zero_rows_columns(std::span<const PetscInt> rows, double diag);
+  [[nodiscard]] double quadratic_form(const Vector& x, Vector& work) const;  // xᵀ A x
+
+ private:
+  Handle<::Mat, MatDestroy> m_;
+};
+
+/// A direct Cholesky factorisation of an SPD SparseMatrix, done once, solved many times.
+/// The package is "mumps" or "cholmod" (PETSc's MatSolverType); it may be overridden with the
+/// PETSc option -tc_factor_package.
+class CholeskySolver {
+ public:
+  CholeskySolver() = default;
+  explicit CholeskySolver(const SparseMatrix& a, const std::string& package = "");
+  void solve(const Vector& b, Vector& x) const;
+  [[nodiscard]] const std::string& package() const { return package_; }
+
+ private:
+  Handle<::KSP, KSPDestroy> ksp_;
+  std::string package_;
+};
+
+/// The factorisation packages this PETSc build offers for Cholesky on sequential AIJ.
+[[nodiscard]] std::vector<std::string> available_cholesky_packages();
+
+}  // namespace tc::core

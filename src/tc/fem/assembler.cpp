@@ -1,0 +1,1 @@
+#include "tc/fem/assembler.hpp"

@@ -1,0 +1,54 @@
+#pragma once
+// Global assembly of element kernels into PETSc matrices with exact preallocation from the
+// node graph, and of load integrals into nodal vectors.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tc/core/petsc.hpp"
+#include "tc/fem/element.hpp"
+#include "tc/fem/material.hpp"
+
+namespace tc::fem {
+
+/// Node adjacency (CSR, each row sorted, including the node itself) of a mesh.
+struct NodeGraph {
+  std::vector<int> offsets;  // n_nodes + 1
+  std::vector<int> columns;
+  [[nodiscard]] int degree(int node) const { return offsets[node + 1] - offsets[node]; }
+};
+[[nodiscard]] NodeGraph node_graph(const mesh::Mesh& m);
+
+/// An element kernel: the dense element matrix of cell c, (row_block·n) × (col_block·n).
+using CellKernel = std::function<Eigen::MatrixXd(int cell, CellType, const Coords&)>;
+
+/// Assembles Σ_cells kernel into a (row_block·N) × (col_block·N) matrix; dof of node a,
+/// component k is row_block·a + k. Preallocation is exact (from the node graph).
+[[nodiscard]] core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_block,
+                                          int col_block, const CellKernel& kernel);
+
+/// The constant matrices of one body (ch. 4): M_u, K_u, K_uθ, M_θ, K_θ.
+struct BodyMatrices {
+  core::SparseMatrix mass_u, stiffness_u, coupling_u_theta, mass_theta, stiffness_theta;
+};
+[[nodiscard]] BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat);
+
+/// ∫ f N_a dx per node (length n_nodes); f = 1 when empty.
+[[nodiscard]] std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f = {});
+/// ∫ f N_a dS over the facets of a boundary, per node of the mesh (length n_nodes).
+[[nodiscard]] std::vector<double> boundary_integrals(const mesh::Mesh& m,
+                                                     const std::string& boundary,
+                                                     const Func& f = {});
+
+/// Errors of a discrete field against an exact one, by quadrature on each cell:
+/// ‖u_h − u‖_L2 and |u_h − u|_H1 (seminorm). `components` is 1 (temperature) or dim
+/// (interleaved displacement); exact(x, k) and exact_grad(x, k) give component k.
+struct ErrorNorms {
+  double l2 = 0, h1 = 0;
+};
+[[nodiscard]] ErrorNorms error_norms(
+    const mesh::Mesh& m, std::span<const double> field, int components,
+    const std::function<double(const mesh::Point&, int)>& exact,
+    const std::function<Eigen::Vector3d(const mesh::Point&, int)>& exact_grad);
+
+}  // namespace tc::fem

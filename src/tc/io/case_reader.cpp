@@ -1,0 +1,1 @@
+#include "tc/io/case_reader.hpp"

@@ -1,0 +1,78 @@
+#pragma once
+// The mesh of one body: nodes, cells of possibly mixed type, and named boundaries made of
+// facets. No physics here. Node ordering of cells and facets follows VTK (= Gmsh for these
+// linear types): Quad4 and the faces of Hex8 counter-clockwise seen from outside.
+#include <array>
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace tc::mesh {
+
+enum class CellType { Tri3, Quad4, Tet4, Hex8 };
+enum class FacetType { Line2, Tri3, Quad4 };
+
+[[nodiscard]] int n_nodes(CellType t);
+[[nodiscard]] int n_nodes(FacetType t);
+[[nodiscard]] int dimension(CellType t);  // 2 for Tri3/Quad4, 3 for Tet4/Hex8
+[[nodiscard]] const char* name(CellType t);
+[[nodiscard]] const char* name(FacetType t);
+
+using Point = std::array<double, 3>;  // z = 0 in 2D
+
+/// A boundary facet (edge in 2D, face in 3D), oriented with its normal pointing out of `cell`.
+struct Facet {
+  FacetType type = FacetType::Line2;
+  std::array<int, 4> nodes{-1, -1, -1, -1};  // first n_nodes(type) are used
+  int cell = -1;                             // the cell it bounds
+  [[nodiscard]] std::span<const int> node_span() const {
+    return {nodes.data(), static_cast<size_t>(n_nodes(type))};
+  }
+};
+
+class Mesh {
+ public:
+  Mesh() = default;
+  explicit Mesh(int dim) : dim_(dim) {}
+
+  [[nodiscard]] int dim() const { return dim_; }
+  [[nodiscard]] int n_nodes() const { return static_cast<int>(points_.size()); }
+  [[nodiscard]] int n_cells() const { return static_cast<int>(types_.size()); }
+  [[nodiscard]] const Point& point(int i) const { return points_[i]; }
+  [[nodiscard]] const std::vector<Point>& points() const { return points_; }
+  [[nodiscard]] CellType cell_type(int c) const { return types_[c]; }
+  [[nodiscard]] std::span<const int> cell(int c) const {
+    return {cell_nodes_.data() + offsets_[c], static_cast<size_t>(offsets_[c + 1] - offsets_[c])};
+  }
+
+  int add_point(const Point& p);
+  int add_cell(CellType t, std::span<const int> nodes);
+  void add_facet(const std::string& boundary, const Facet& f);
+
+  [[nodiscard]] bool has_boundary(const std::string& name) const {
+    return boundaries_.count(name) != 0;
+  }
+  [[nodiscard]] const std::vector<Facet>& boundary(const std::string& name) const;
+  [[nodiscard]] std::vector<std::string> boundary_names() const;
+  /// Sorted, unique nodes of a boundary.
+  [[nodiscard]] std::vector<int> boundary_nodes(const std::string& name) const;
+  /// Translates every point (used by tests and by body placement).
+  void transform(const std::array<std::array<double, 3>, 3>& rotation, const Point& shift);
+
+ private:
+  int dim_ = 3;
+  std::vector<Point> points_;
+  std::vector<CellType> types_;
+  std::vector<int> offsets_{0};
+  std::vector<int> cell_nodes_;
+  std::map<std::string, std::vector<Facet>> boundaries_;
+};
+
+/// Signed measure (area in 2D, volume in 3D) of cell c; negative means inverted.
+[[nodiscard]] double cell_measure(const Mesh& m, int c);
+
+/// Throws MeshError naming the first bad cells (inverted or zero measure, at most 10 listed).
+void check_cells(const Mesh& m, const std::string& source);
+
+}  // namespace tc::mesh

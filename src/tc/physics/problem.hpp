@@ -1,0 +1,90 @@
+#pragma once
+// The description of a run, as the case file states it (case-format.md), after validation:
+// plain data, filled by io::read_case and consumed by physics::Simulation.
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tc/core/table.hpp"
+#include "tc/fem/material.hpp"
+#include "tc/mesh/mesh.hpp"
+
+namespace tc::physics {
+
+using core::TimeTable;
+
+enum class Scheme { Dynamic, Quasistatic };
+
+struct TimeSettings {
+  Scheme scheme = Scheme::Dynamic;
+  double step = 0;  // τ [s]
+  double end = 0;   // T [s]
+  [[nodiscard]] int n_steps() const;  // round(end / step)
+};
+
+struct PhysicsSettings {
+  double reference_temperature = 293.15;  // θ₀ [K], > 0
+  bool thermal_expansion = true;          // K_uθ of (2.5)
+  bool thermoelastic_heating = true;      // K_θu of (2.8)
+};
+
+struct Body {
+  std::string name;
+  std::string material_name;
+  fem::Material material;
+  mesh::Mesh mesh;
+  double initial_temperature = 0;           // θ at t = 0 [K]
+  std::array<double, 3> initial_velocity{};  // u̇ at t = 0
+  std::array<TimeTable, 3> body_force{};     // f of (2.1) [N/m³]
+  TimeTable heat_source{0.0};                // r of (2.8) [W/m³]
+  int subdomains = 1;
+};
+
+/// One [[boundary]] entry: per component a displacement or a traction (or neither = free).
+struct BoundaryCondition {
+  int body = 0;  // index into Problem::bodies
+  std::string where;
+  std::array<std::optional<TimeTable>, 3> displacement;
+  std::array<std::optional<TimeTable>, 3> traction;  // p_N [Pa]
+  std::optional<TimeTable> temperature;              // θ_D [K]
+  std::optional<TimeTable> heat_flux;                // q_N [W/m²] into the body
+};
+
+struct ContactSettings {
+  int slave_body = 0, master_body = 1;
+  std::string slave_where, master_where;
+  double friction = 0;
+  double conductance_slave = 0, conductance_master = 0;  // γ_C^s, γ_C^m
+  bool heat_conduction = true;
+  bool frictional_heating = true;
+};
+
+struct SolverSettings {
+  double coupling_tolerance = 1e-6;
+  int max_coupling_iterations = 20;
+  double qp_tolerance = 1e-8;
+  int max_qp_iterations = 2000;
+  std::string factorization;  // "" = automatic; "mumps" | "cholmod" | "petsc"
+};
+
+struct OutputSettings {
+  std::filesystem::path directory = "out";
+  int every = 1;
+};
+
+struct Problem {
+  std::filesystem::path case_file;
+  std::string title;
+  int dimension = 3;
+  TimeSettings time;
+  PhysicsSettings physics;
+  std::vector<Body> bodies;
+  std::vector<BoundaryCondition> boundaries;
+  std::optional<ContactSettings> contact;
+  SolverSettings solver;
+  OutputSettings output;
+};
+
+}  // namespace tc::physics

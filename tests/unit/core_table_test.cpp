@@ -1,0 +1,57 @@
+#include <gtest/gtest.h>
+
+#include "tc/core/error.hpp"
+#include "tc/core/petsc.hpp"
+#include "tc/core/table.hpp"
+
+using tc::core::TimeTable;
+
+TEST(TimeTable, ConstantAndPiecewiseLinear) {
+  const TimeTable c(2.5);
+  EXPECT_EQ(c(-1.0), 2.5);
+  EXPECT_EQ(c(1e9), 2.5);
+  const TimeTable t({0.0, 0.2, 1.0}, {0.0, 0.0, 0.05});
+  EXPECT_DOUBLE_EQ(t(0.1), 0.0);
+  EXPECT_DOUBLE_EQ(t(0.6), 0.025);  // halfway between 0.2 and 1.0
+  EXPECT_DOUBLE_EQ(t(5.0), 0.05);   // constant beyond the end
+  EXPECT_DOUBLE_EQ(t(-5.0), 0.0);   // and before the start
+}
+
+TEST(Petsc, ErrorsBecomeExceptionsNamingTheCall) {
+  tc::core::Vector v(3);
+  tc::core::Vector w(4);
+  try {
+    v.axpy(1.0, w);  // incompatible sizes
+    FAIL() << "expected a PetscError";
+  } catch (const tc::PetscError& e) {
+    EXPECT_NE(std::string(e.what()).find("VecAXPY"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Petsc, CholeskySolvesAnSpdSystem) {
+  // 1D Laplacian with Dirichlet ends: tridiag(-1, 2, -1), solution of A x = A·1 is 1.
+  const PetscInt n = 50;
+  std::vector<PetscInt> nnz(n, 3);
+  tc::core::SparseMatrix a(n, n, nnz);
+  for (PetscInt i = 0; i < n; ++i) {
+    const double d = 2.0;
+    a.add_values(std::span(&i, 1), std::span(&i, 1), &d);
+    if (i + 1 < n) {
+      const PetscInt j = i + 1;
+      const double o = -1.0;
+      a.add_values(std::span(&i, 1), std::span(&j, 1), &o);
+      a.add_values(std::span(&j, 1), std::span(&i, 1), &o);
+    }
+  }
+  a.assemble();
+  for (const auto& package : tc::core::available_cholesky_packages()) {
+    tc::core::CholeskySolver solver(a, package);
+    tc::core::Vector one(n), b(n), x(n);
+    one.fill(1.0);
+    a.mult(one, b);
+    solver.solve(b, x);
+    x.axpy(-1.0, one);
+    // cond(A) ~ 1e3 for n = 50, so a backward-stable solve is accurate to ~1e-13.
+    EXPECT_LT(x.norm(), 1e-11) << package;
+  }
+}
