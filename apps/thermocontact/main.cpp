@@ -1,1 +1,135 @@
-int main() { return 0; }
+// thermocontact: the command line (case-format.md). Exit codes: 0 done; 1 stopped by a
+// numerical failure or a signal (the steps done stay written); 2 invalid input.
+#include <fmt/format.h>
+#include <gmsh.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+
+#include "tc/core/error.hpp"
+#include "tc/core/petsc.hpp"
+#include "tc/io/case_reader.hpp"
+#include "tc/io/output.hpp"
+#include "tc/physics/simulation.hpp"
+
+namespace {
+
+std::atomic<int> g_stop{0};
+extern "C" void on_signal(int sig) {
+  g_stop.store(sig);
+}
+
+int report_input_error(const tc::InputError& e) {
+  for (const auto& issue : e.issues()) fmt::print(stderr, "error: {}\n", issue.str());
+  fmt::print(stderr, "{} error{} in the case file; nothing was run.\n", e.issues().size(),
+             e.issues().size() == 1 ? "" : "s");
+  return 2;
+}
+
+/// What this version cannot run yet, though the case file is valid.
+void check_runnable(const tc::physics::Problem& p) {
+  if (p.contact)
+    throw tc::InputError({{p.case_file.string(), 1, "contact",
+                           "found a [contact] table, but contact is not implemented in this "
+                           "version; expected a case without [contact]"}});
+}
+
+int run(const std::string& case_file, const std::string& output, std::vector<std::string> extra,
+        const char* program) {
+  std::vector<char*> args{const_cast<char*>(program)};
+  for (auto& a : extra) args.push_back(a.data());
+  int argc = static_cast<int>(args.size());
+  char** argv = args.data();
+  tc::core::PetscSession session(&argc, &argv);
+  try {
+    auto problem = tc::io::read_case(case_file);
+    check_runnable(problem);
+    if (!output.empty()) problem.output.directory = output;
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    tc::physics::Simulation sim(problem);
+    tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
+    tc::io::ProgressLine progress(isatty(STDERR_FILENO) != 0);
+    tc::io::Observers observers({&writer, &progress});
+    const auto status = sim.run(observers, &g_stop);
+    if (tc::core::PetscSession::rank() == 0) {
+      if (status.completed)
+        fmt::print("done: {} steps; output in {}\n", status.steps_done,
+                   problem.output.directory.string());
+      else
+        fmt::print(stderr, "stopped: {}\noutput of the {} completed step(s) is in {}\n",
+                   status.message, status.steps_done, problem.output.directory.string());
+    }
+    return status.exit_code;
+  } catch (const tc::InputError& e) {
+    return report_input_error(e);
+  } catch (const tc::MeshError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const tc::Error& e) {
+    fmt::print(stderr, "stopped: {}\n", e.what());
+    return 1;
+  }
+}
+
+int check(const std::string& case_file) {
+  try {
+    const auto problem = tc::io::read_case(case_file);
+    int nodes = 0, cells = 0;
+    for (const auto& b : problem.bodies) nodes += b.mesh.n_nodes(), cells += b.mesh.n_cells();
+    fmt::print("{}: valid ({}D, {} bod{}, {} nodes, {} cells, {} steps)\n", case_file,
+               problem.dimension, problem.bodies.size(), problem.bodies.size() == 1 ? "y" : "ies",
+               nodes, cells, problem.time.n_steps());
+    return 0;
+  } catch (const tc::InputError& e) {
+    return report_input_error(e);
+  }
+}
+
+int info(const char* program) {
+  int argc = 1;
+  char* args[] = {const_cast<char*>(program), nullptr};
+  char** argv = args;
+  tc::core::PetscSession session(&argc, &argv);
+  char version[256];
+  TC_PETSC(PetscGetVersion(version, sizeof version));
+  fmt::print("thermocontact {}\n", THERMOCONTACT_VERSION);
+  fmt::print("PETSc: {}\n", version);
+  fmt::print("MPI ranks: {}\n", tc::core::PetscSession::size());
+  std::string packages;
+  for (const auto& p : tc::core::available_cholesky_packages())
+    packages += (packages.empty() ? "" : ", ") + p;
+  fmt::print("Cholesky factorizations: {}\n", packages);
+  fmt::print("Gmsh: {}\n", GMSH_API_VERSION);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"thermocontact: dynamic thermo-mechanical contact with Coulomb friction"};
+  app.require_subcommand(1);
+  std::string case_file, output;
+  auto* run_cmd = app.add_subcommand("run", "run a case");
+  run_cmd->add_option("case", case_file, "case file (TOML)")->required();
+  run_cmd->add_option("--output,-o", output, "output directory (overrides [output].directory)");
+  run_cmd->allow_extras();  // PETSc options, e.g. -tc_factor_package mumps
+  auto* check_cmd = app.add_subcommand("check", "validate a case file only");
+  check_cmd->add_option("case", case_file, "case file (TOML)")->required();
+  app.add_subcommand("info", "version, PETSc/MPI configuration, factorizations");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    if (run_cmd->parsed()) return run(case_file, output, run_cmd->remaining(), argv[0]);
+    if (check_cmd->parsed()) return check(case_file);
+    return info(argv[0]);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}

@@ -1,8 +1,10 @@
 #include "tc/core/petsc.hpp"
 
+#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "tc/core/error.hpp"
 
@@ -16,7 +18,19 @@ void check_petsc(PetscErrorCode code, const char* call, const char* file, int li
                                      line, text ? text : "unknown error", static_cast<int>(code)));
 }
 
+namespace {
+/// One BLAS thread per MPI rank unless the user says otherwise: the factorisations are
+/// sequential per rank, and threaded BLAS made each triangular solve 4.6× slower and the
+/// factorisation no faster on the 2-core machine (bench/RESULTS.md).
+void limit_blas_threads() {
+  if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS")) return;
+  using SetThreads = void (*)(int);
+  if (auto* f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+}
+}  // namespace
+
 PetscSession::PetscSession(int* argc, char*** argv) {
+  limit_blas_threads();
   TC_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
   // Errors come back as codes, turned into exceptions by TC_PETSC; no traceback spam.
   TC_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
@@ -66,11 +80,24 @@ Vector Vector::clone() const {
   return c;
 }
 
-void Vector::zero() { TC_PETSC(VecSet(get(), 0.0)); }
-void Vector::fill(double value) { TC_PETSC(VecSet(get(), value)); }
-void Vector::copy_from(const Vector& other) { TC_PETSC(VecCopy(other.get(), get())); }
-void Vector::axpy(double a, const Vector& x) { TC_PETSC(VecAXPY(get(), a, x.get())); }
-void Vector::scale(double a) { TC_PETSC(VecScale(get(), a)); }
+void Vector::zero() {
+  TC_PETSC(VecSet(get(), 0.0));
+}
+void Vector::fill(double value) {
+  TC_PETSC(VecSet(get(), value));
+}
+void Vector::copy_from(const Vector& other) {
+  TC_PETSC(VecCopy(other.get(), get()));
+}
+void Vector::axpy(double a, const Vector& x) {
+  TC_PETSC(VecAXPY(get(), a, x.get()));
+}
+void Vector::scale(double a) {
+  TC_PETSC(VecScale(get(), a));
+}
+void Vector::shift(double a) {
+  TC_PETSC(VecShift(get(), a));
+}
 
 double Vector::dot(const Vector& other) const {
   PetscScalar d = 0;
@@ -113,7 +140,9 @@ Vector::View::View(::Vec v) : v_(v) {
   TC_PETSC(VecGetLocalSize(v_, &n_));
 }
 
-Vector::View::~View() { (void)VecRestoreArray(v_, &data_); }
+Vector::View::~View() {
+  (void)VecRestoreArray(v_, &data_);
+}
 
 // ---------------------------------------------------------------------- SparseMatrix
 
@@ -153,6 +182,13 @@ SparseMatrix SparseMatrix::copy() const {
   return c;
 }
 
+SparseMatrix SparseMatrix::share() const {
+  TC_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(get())));
+  SparseMatrix s;
+  *s.m_.out() = get();
+  return s;
+}
+
 void SparseMatrix::mult(const Vector& x, Vector& y) const {
   TC_PETSC(MatMult(get(), x.get(), y.get()));
 }
@@ -168,11 +204,13 @@ void SparseMatrix::mult_transpose_add(const Vector& x, Vector& y) const {
 void SparseMatrix::axpy(double a, const SparseMatrix& x) {
   TC_PETSC(MatAXPY(get(), a, x.get(), SAME_NONZERO_PATTERN));
 }
-void SparseMatrix::scale(double a) { TC_PETSC(MatScale(get(), a)); }
+void SparseMatrix::scale(double a) {
+  TC_PETSC(MatScale(get(), a));
+}
 
 void SparseMatrix::zero_rows_columns(std::span<const PetscInt> rows, double diag) {
-  TC_PETSC(MatZeroRowsColumns(get(), static_cast<PetscInt>(rows.size()), rows.data(), diag,
-                              nullptr, nullptr));
+  TC_PETSC(MatZeroRowsColumns(get(), static_cast<PetscInt>(rows.size()), rows.data(), diag, nullptr,
+                              nullptr));
 }
 
 double SparseMatrix::quadratic_form(const Vector& x, Vector& work) const {

@@ -76,6 +76,7 @@ class Vector {
   void copy_from(const Vector& other);
   void axpy(double a, const Vector& x);  // this += a x
   void scale(double a);
+  void shift(double a);  // every entry += a
   [[nodiscard]] double dot(const Vector& other) const;
   [[nodiscard]] double norm() const;  // 2-norm
   [[nodiscard]] double sum() const;
@@ -116,6 +117,8 @@ class SparseMatrix {
                   const double* row_major_block);
   void assemble();
   [[nodiscard]] SparseMatrix copy() const;
+  /// Another owner of the same PETSc matrix (reference counted), not a copy.
+  [[nodiscard]] SparseMatrix share() const;
   void mult(const Vector& x, Vector& y) const;            // y = A x
   void mult_add(const Vector& x, Vector& y) const;        // y += A x
   void mult_transpose(const Vector& x, Vector& y) const;  // y = Aᵀ x

@@ -1,1 +1,495 @@
 #include "tc/io/case_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "tc/io/case_schema.hpp"
+#include "tc/mesh/box.hpp"
+#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/physics/checks.hpp"
+
+namespace tc::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+using detail::Need;
+using detail::non_negative;
+using detail::positive;
+using detail::Range;
+using detail::TableReader;
+using physics::Problem;
+
+const Range kTemperature{[](double x) { return x > 0; }, "a temperature > 0 K"};
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  if (names.empty()) return "(none)";
+  std::string out;
+  for (const auto& n : names) out += fmt::format("{}\"{}\"", out.empty() ? "" : ", ", n);
+  return out;
+}
+
+/// Reads one case file section by section into a Problem, collecting every issue; throws them
+/// all at the end. Meshes are built on the way so boundary names can be checked.
+class CaseReader {
+ public:
+  CaseReader(fs::path file, const toml::table& root)
+      : file_(std::move(file)), issues_(file_.string()), root_(root) {}
+
+  Problem read();
+
+ private:
+  void read_dimension(const TableReader& root);
+  void read_time(const TableReader& root);
+  void read_physics(const TableReader& root);
+  void read_materials(const TableReader& root);
+  void read_bodies(const TableReader& root);
+  void read_body(const toml::table& t, size_t index);
+  void read_body_loads(const TableReader& b, physics::Body& body);
+  void read_mesh(const TableReader& b, physics::Body& body);
+  void read_box(const TableReader& box, physics::Body& body);
+  void read_mesh_file(const TableReader& mesh, physics::Body& body);
+  void read_boundaries(const TableReader& root);
+  void read_boundary(const toml::table& t, size_t index);
+  void read_contact(const TableReader& root);
+  void read_conductance(const TableReader& contact, physics::ContactSettings& c);
+  void read_solver(const TableReader& root);
+  void read_output(const TableReader& root);
+  void check_quasistatic_bodies_held();
+
+  /// The array of tables at `key` ([[key]]), or an issue.
+  const toml::array* tables(const TableReader& root, std::string_view key, Need need);
+  /// Index of the body named at member k, or an issue listing the bodies.
+  std::optional<int> body_index(const TableReader& t, std::string_view k);
+  /// Issue when body b's mesh (if built) has no boundary named at member k.
+  void check_boundary_name(const TableReader& t, std::string_view k, int b,
+                           const std::string& where);
+  [[nodiscard]] fs::path resolve(const std::string& path) const {
+    const fs::path p(path);
+    return p.is_absolute() ? p : file_.parent_path() / p;
+  }
+
+  fs::path file_;
+  detail::Issues issues_;
+  const toml::table& root_;
+  Problem p_;
+  int dim_ = 0;  // 0 while unknown (missing or invalid): lengths are then checked loosely
+  std::map<std::string, std::optional<fem::Material>> materials_;  // nullopt: bad constants
+  std::vector<bool> mesh_built_;                                   // per body
+};
+
+Problem CaseReader::read() {
+  p_.case_file = file_;
+  const TableReader root(root_, "", issues_,
+                         {"title", "dimension", "time", "physics", "materials", "bodies",
+                          "boundary", "contact", "solver", "output"});
+  if (const auto t = root.string("title", Need::Optional)) p_.title = *t;
+  read_dimension(root);
+  read_time(root);
+  read_physics(root);
+  read_materials(root);
+  read_bodies(root);
+  read_boundaries(root);
+  read_contact(root);
+  read_solver(root);
+  read_output(root);
+  if (issues_.empty()) check_quasistatic_bodies_held();
+  if (!issues_.empty()) issues_.raise();
+  return std::move(p_);
+}
+
+void CaseReader::read_dimension(const TableReader& root) {
+  const auto* n = root.get("dimension", Need::Required, "2 (plane strain) or 3");
+  if (!n) return;
+  const auto* i = n->as_integer();
+  if (!i || (i->get() != 2 && i->get() != 3)) {
+    root.issue("dimension",
+               fmt::format("found {}, expected 2 or 3 (2: plane strain)", detail::describe(*n)));
+    return;
+  }
+  dim_ = static_cast<int>(i->get());
+  p_.dimension = dim_;
+}
+
+void CaseReader::read_time(const TableReader& root) {
+  const auto t = root.sub_table("time", Need::Required, {"scheme", "step", "end"});
+  if (!t) return;
+  if (const auto s = t->choice("scheme", Need::Optional, {"dynamic", "quasistatic"}))
+    p_.time.scheme = *s == "dynamic" ? physics::Scheme::Dynamic : physics::Scheme::Quasistatic;
+  const auto step = t->number("step", Need::Required, positive("a time step"));
+  const auto end = t->number("end", Need::Required, positive("an end time"));
+  if (!step || !end) return;
+  p_.time.step = *step;
+  p_.time.end = *end;
+  const double n = *end / *step;
+  if (n < 1 - 1e-9)
+    t->issue("end", fmt::format("found end = {} < step = {}, expected end ≥ step (at least one "
+                                "step)",
+                                *end, *step));
+  else if (std::abs(n - std::round(n)) > 1e-9 * n)
+    t->issue("end", fmt::format("found end/step = {:.10g}, which is not a whole number of steps; "
+                                "expected end to be a multiple of step",
+                                n));
+}
+
+void CaseReader::read_physics(const TableReader& root) {
+  const auto t =
+      root.sub_table("physics", Need::Optional,
+                     {"reference_temperature", "thermal_expansion", "thermoelastic_heating"});
+  if (!t) return;
+  if (const auto v = t->number("reference_temperature", Need::Optional, kTemperature))
+    p_.physics.reference_temperature = *v;
+  if (const auto v = t->boolean("thermal_expansion")) p_.physics.thermal_expansion = *v;
+  if (const auto v = t->boolean("thermoelastic_heating")) p_.physics.thermoelastic_heating = *v;
+}
+
+void CaseReader::read_materials(const TableReader& root) {
+  const auto* n = root.get("materials", Need::Required, "[materials.NAME] tables");
+  if (!n) return;
+  const auto* all = n->as_table();
+  if (!all || all->empty()) {
+    root.issue("materials", fmt::format("found {}, expected one or more [materials.NAME] tables",
+                                        all ? "no material" : detail::describe(*n)));
+    return;
+  }
+  for (const auto& [key, value] : *all) {
+    const std::string name(key.str());
+    const auto path = detail::join("materials", name);
+    const auto* t = value.as_table();
+    if (!t) {
+      issues_.add(
+          detail::line_of(value), path,
+          fmt::format("found {}, expected a table of material constants", detail::describe(value)));
+      continue;
+    }
+    const TableReader m(*t, path, issues_,
+                        {"density", "young_modulus", "poisson_ratio", "thermal_expansion",
+                         "specific_heat", "thermal_conductivity"});
+    const auto rho = m.number("density", Need::Required, positive("a density"));
+    const auto e = m.number("young_modulus", Need::Required, positive("a modulus"));
+    const auto nu = m.number("poisson_ratio", Need::Required,
+                             {[](double x) { return x >= 0 && x < 0.5; }, "a number in [0, 0.5)"});
+    const auto alpha = m.number("thermal_expansion", Need::Required, non_negative("a number"));
+    const auto cp = m.number("specific_heat", Need::Required, positive("a number"));
+    const auto kappa = m.number("thermal_conductivity", Need::Required, positive("a number"));
+    if (rho && e && nu && alpha && cp && kappa)
+      materials_[name] = fem::Material{*rho, *e, *nu, *alpha, *cp, *kappa};
+    else
+      materials_[name] = std::nullopt;  // the name exists; its constants were reported
+  }
+}
+
+const toml::array* CaseReader::tables(const TableReader& root, std::string_view key, Need need) {
+  const auto* n = root.get(key, need, fmt::format("one or more [[{}]] tables", key));
+  if (!n) return nullptr;
+  const auto* a = n->as_array();
+  if (!a || (need == Need::Required && a->empty()) || !a->is_array_of_tables()) {
+    root.issue(key, fmt::format("found {}, expected one or more [[{}]] tables",
+                                detail::describe(*n), key));
+    return nullptr;
+  }
+  return a;
+}
+
+void CaseReader::read_bodies(const TableReader& root) {
+  const auto* a = tables(root, "bodies", Need::Required);
+  if (!a) return;
+  std::set<std::string> names;
+  for (size_t i = 0; i < a->size(); ++i) {
+    read_body(*a->get(i)->as_table(), i);
+    const auto& name = p_.bodies.back().name;
+    if (!name.empty() && !names.insert(name).second)
+      issues_.add(detail::line_of(*a->get(i)->as_table()->get("name")),
+                  detail::join(detail::at("bodies", i), "name"),
+                  fmt::format("found \"{}\" again, expected a unique body name", name));
+  }
+}
+
+void CaseReader::read_body(const toml::table& t, size_t index) {
+  const TableReader b(t, detail::at("bodies", index), issues_,
+                      {"name", "material", "mesh", "initial_temperature", "initial_velocity",
+                       "body_force", "heat_source", "subdomains"});
+  physics::Body body;
+  mesh_built_.push_back(false);
+  if (const auto name = b.string("name", Need::Required)) {
+    if (name->empty()) b.issue("name", "found \"\", expected a non-empty name");
+    body.name = *name;
+  }
+  if (const auto mat = b.string("material", Need::Required)) {
+    body.material_name = *mat;
+    if (const auto it = materials_.find(*mat); it != materials_.end()) {
+      if (it->second) body.material = *it->second;
+    } else {
+      std::vector<std::string> known;
+      for (const auto& [k, v] : materials_) known.push_back(k);
+      b.issue("material", fmt::format("found \"{}\", expected a material defined under "
+                                      "[materials]: {}",
+                                      *mat, quoted_list(known)));
+    }
+  }
+  read_mesh(b, body);
+  read_body_loads(b, body);
+  if (const auto s = b.integer("subdomains", Need::Optional, 1)) body.subdomains = *s;
+  p_.bodies.push_back(std::move(body));
+}
+
+void CaseReader::read_body_loads(const TableReader& b, physics::Body& body) {
+  body.initial_temperature = p_.physics.reference_temperature;
+  if (const auto v = b.number("initial_temperature", Need::Optional, kTemperature))
+    body.initial_temperature = *v;
+  if (const auto* n = b.get("initial_velocity", Need::Optional, ""))
+    if (const auto v = detail::read_vector(*n, b.key("initial_velocity"), issues_, dim_))
+      body.initial_velocity = *v;
+  if (const auto* n = b.get("body_force", Need::Optional, ""))
+    if (const auto f = detail::read_components(*n, b.key("body_force"), issues_, dim_, false))
+      for (int k = 0; k < 3; ++k)
+        if ((*f)[k]) body.body_force[k] = *(*f)[k];
+  if (const auto* n = b.get("heat_source", Need::Optional, ""))
+    if (const auto r = detail::read_time_table(*n, b.key("heat_source"), issues_))
+      body.heat_source = *r;
+}
+
+void CaseReader::read_mesh(const TableReader& b, physics::Body& body) {
+  const auto mesh = b.sub_table("mesh", Need::Required, {"box", "file"});
+  if (!mesh) return;
+  if (mesh->has("box") == mesh->has("file")) {
+    issues_.add(mesh->line(), mesh->path(),
+                fmt::format("found {}, expected exactly one of box = {{ min, max, cells }} or "
+                            "file = \"NAME.msh\"",
+                            mesh->has("box") ? "both box and file" : "neither box nor file"));
+    return;
+  }
+  if (mesh->has("file")) return read_mesh_file(*mesh, body);
+  if (const auto box = mesh->sub_table("box", Need::Required, {"min", "max", "cells"}))
+    read_box(*box, body);
+}
+
+void CaseReader::read_box(const TableReader& box, physics::Body& body) {
+  const auto* lo_node = box.get("min", Need::Required, "an array of numbers");
+  const auto* hi_node = box.get("max", Need::Required, "an array of numbers");
+  const auto* cells_node = box.get("cells", Need::Required, "an array of integers ≥ 1");
+  const auto lo =
+      lo_node ? detail::read_vector(*lo_node, box.key("min"), issues_, dim_) : std::nullopt;
+  const auto hi =
+      hi_node ? detail::read_vector(*hi_node, box.key("max"), issues_, dim_) : std::nullopt;
+  const auto cells =
+      cells_node ? detail::read_counts(*cells_node, box.key("cells"), issues_, dim_) : std::nullopt;
+  if (!lo || !hi || !cells || dim_ == 0) return;
+  bool good = true;
+  for (int k = 0; k < dim_; ++k)
+    if (!((*hi)[k] > (*lo)[k])) {
+      box.issue("max", fmt::format("found max[{}] = {} ≤ min[{}] = {}, expected max > min on "
+                                   "every axis",
+                                   k, (*hi)[k], k, (*lo)[k]));
+      good = false;
+    }
+  if (!good) return;
+  try {
+    body.mesh = mesh::make_box(dim_, *lo, *hi, *cells);
+    mesh_built_.back() = true;
+  } catch (const MeshError& e) {
+    issues_.add(box.line(), box.path(), fmt::format("cannot build the box: {}", e.what()));
+  }
+}
+
+void CaseReader::read_mesh_file(const TableReader& mesh, physics::Body& body) {
+  const auto name = mesh.string("file", Need::Required);
+  if (!name || dim_ == 0) return;
+  const auto path = resolve(*name);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    mesh.issue("file", fmt::format("found \"{}\" ({}), which does not exist; expected a Gmsh 4 "
+                                   "file, relative to the case file",
+                                   *name, path.string()));
+    return;
+  }
+  try {
+    body.mesh = mesh::read_gmsh(path, dim_);
+    mesh_built_.back() = true;
+  } catch (const MeshError& e) {
+    mesh.issue("file", fmt::format("found a mesh that cannot be used: {}", e.what()));
+  }
+}
+
+std::optional<int> CaseReader::body_index(const TableReader& t, std::string_view k) {
+  const auto name = t.string(k, Need::Required);
+  if (!name) return std::nullopt;
+  std::vector<std::string> known;
+  for (size_t i = 0; i < p_.bodies.size(); ++i) {
+    if (p_.bodies[i].name == *name) return static_cast<int>(i);
+    known.push_back(p_.bodies[i].name);
+  }
+  t.issue(k,
+          fmt::format("found \"{}\", expected the name of a body: {}", *name, quoted_list(known)));
+  return std::nullopt;
+}
+
+void CaseReader::check_boundary_name(const TableReader& t, std::string_view k, int b,
+                                     const std::string& where) {
+  const auto& body = p_.bodies[b];
+  if (!mesh_built_[b] || body.mesh.has_boundary(where)) return;
+  t.issue(k, fmt::format("found \"{}\", expected a boundary of body \"{}\": {}", where, body.name,
+                         quoted_list(body.mesh.boundary_names())));
+}
+
+void CaseReader::read_boundaries(const TableReader& root) {
+  const auto* a = tables(root, "boundary", Need::Optional);
+  if (!a) return;
+  for (size_t i = 0; i < a->size(); ++i) read_boundary(*a->get(i)->as_table(), i);
+}
+
+void CaseReader::read_boundary(const toml::table& t, size_t index) {
+  const TableReader b(t, detail::at("boundary", index), issues_,
+                      {"body", "where", "displacement", "traction", "temperature", "heat_flux"});
+  physics::BoundaryCondition bc;
+  const auto body = body_index(b, "body");
+  if (const auto where = b.string("where", Need::Required)) {
+    bc.where = *where;
+    if (body) check_boundary_name(b, "where", *body, *where);
+  }
+  bc.body = body.value_or(0);
+  if (const auto* n = b.get("displacement", Need::Optional, ""))
+    if (const auto d = detail::read_components(*n, b.key("displacement"), issues_, dim_, true))
+      bc.displacement = *d;
+  // "free" is accepted in a traction too (no traction on that component), so one entry can
+  // mix displaced and loaded components: displacement = [0.0, "free"], traction = ["free", p].
+  if (const auto* n = b.get("traction", Need::Optional, ""))
+    if (const auto p = detail::read_components(*n, b.key("traction"), issues_, dim_, true))
+      bc.traction = *p;
+  for (int k = 0; k < 3; ++k)
+    if (bc.displacement[k] && bc.traction[k])
+      issues_.add(b.line("traction"), detail::at(b.key("traction"), k),
+                  fmt::format("found both a displacement and a traction on component {}, "
+                              "expected one of them (\"free\" displacement with a traction)",
+                              k));
+  if (const auto* n = b.get("temperature", Need::Optional, ""))
+    bc.temperature = detail::read_time_table(*n, b.key("temperature"), issues_, kTemperature);
+  if (const auto* n = b.get("heat_flux", Need::Optional, ""))
+    bc.heat_flux = detail::read_time_table(*n, b.key("heat_flux"), issues_);
+  if (b.has("temperature") && b.has("heat_flux"))
+    b.issue("heat_flux",
+            "found both temperature and heat_flux, expected one of them per "
+            "[[boundary]] (add another [[boundary]] for the other)");
+  if (!b.has("displacement") && !b.has("traction") && !b.has("temperature") && !b.has("heat_flux"))
+    issues_.add(b.line(), b.path(),
+                "prescribes nothing; expected at least one of displacement, traction, "
+                "temperature, heat_flux");
+  p_.boundaries.push_back(std::move(bc));
+}
+
+void CaseReader::read_contact(const TableReader& root) {
+  const auto t = root.sub_table(
+      "contact", Need::Optional,
+      {"slave", "master", "friction", "conductance", "heat_conduction", "frictional_heating"});
+  if (!t) return;
+  physics::ContactSettings c;
+  auto side = [&](std::string_view key, int& body, std::string& where) -> bool {
+    const auto s = t->sub_table(key, Need::Required, {"body", "where"});
+    if (!s) return false;
+    const auto b = body_index(*s, "body");
+    const auto w = s->string("where", Need::Required);
+    if (b && w) check_boundary_name(*s, "where", *b, *w);
+    body = b.value_or(-1);
+    where = w.value_or("");
+    return b && w;
+  };
+  const bool slave_ok = side("slave", c.slave_body, c.slave_where);
+  const bool master_ok = side("master", c.master_body, c.master_where);
+  if (slave_ok && master_ok && c.slave_body == c.master_body)
+    issues_.add(t->line("master"), "contact.master.body",
+                fmt::format("found the slave's body \"{}\", expected a different body",
+                            p_.bodies[c.master_body].name));
+  if (const auto f = t->number("friction", Need::Optional, non_negative("a coefficient")))
+    c.friction = *f;
+  if (const auto v = t->boolean("heat_conduction")) c.heat_conduction = *v;
+  if (const auto v = t->boolean("frictional_heating")) c.frictional_heating = *v;
+  read_conductance(*t, c);
+  p_.contact = c;
+}
+
+void CaseReader::read_conductance(const TableReader& contact, physics::ContactSettings& c) {
+  if (const auto g = contact.sub_table("conductance", Need::Optional, {"slave", "master"})) {
+    const auto gs = g->number("slave", Need::Required, non_negative("a conductance"));
+    const auto gm = g->number("master", Need::Required, non_negative("a conductance"));
+    if (!gs || !gm) return;
+    c.conductance_slave = *gs;
+    c.conductance_master = *gm;
+  } else if (contact.has("conductance")) {
+    return;  // not a table: reported
+  }
+  const bool needed = c.heat_conduction || (c.frictional_heating && c.friction > 0);
+  if (needed && c.conductance_slave + c.conductance_master == 0)
+    contact.issue("conductance",
+                  fmt::format("found {}, expected {{ slave = γ_C^s, master = γ_C^m }} with at "
+                              "least one > 0: with both zero β_C and δ_C of (2.13) are "
+                              "undefined (or set heat_conduction = false{})",
+                              contact.has("conductance") ? "both conductances 0" : "none",
+                              c.friction > 0 ? " and frictional_heating = false" : ""));
+}
+
+void CaseReader::read_solver(const TableReader& root) {
+  const auto s = root.sub_table("solver", Need::Optional,
+                                {"coupling_tolerance", "max_coupling_iterations", "qp_tolerance",
+                                 "max_qp_iterations", "factorization"});
+  if (!s) return;
+  const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
+  auto& settings = p_.solver;
+  if (const auto v = s->number("coupling_tolerance", Need::Optional, unit))
+    settings.coupling_tolerance = *v;
+  if (const auto v = s->integer("max_coupling_iterations", Need::Optional, 1))
+    settings.max_coupling_iterations = *v;
+  if (const auto v = s->number("qp_tolerance", Need::Optional, unit)) settings.qp_tolerance = *v;
+  if (const auto v = s->integer("max_qp_iterations", Need::Optional, 1))
+    settings.max_qp_iterations = *v;
+  if (const auto v =
+          s->choice("factorization", Need::Optional, {"auto", "mumps", "cholmod", "petsc"}))
+    settings.factorization = *v == "auto" ? "" : *v;
+}
+
+void CaseReader::read_output(const TableReader& root) {
+  p_.output.directory = resolve("out");
+  const auto o = root.sub_table("output", Need::Optional, {"directory", "every"});
+  if (!o) return;
+  if (const auto d = o->string("directory", Need::Optional)) {
+    if (d->empty())
+      o->issue("directory", "found \"\", expected a folder name");
+    else
+      p_.output.directory = resolve(*d);
+  }
+  if (const auto e = o->integer("every", Need::Optional, 1)) p_.output.every = *e;
+}
+
+/// A quasistatic body must be held against every rigid motion: K_u is singular otherwise.
+void CaseReader::check_quasistatic_bodies_held() {
+  if (p_.time.scheme != physics::Scheme::Quasistatic) return;
+  const auto& bodies = *root_.get("bodies")->as_array();
+  for (size_t b = 0; b < p_.bodies.size(); ++b)
+    if (const int n = physics::free_rigid_modes(p_, static_cast<int>(b)); n > 0)
+      issues_.add(detail::line_of(*bodies.get(b)), detail::at("bodies", b),
+                  fmt::format("found body \"{}\" with {} rigid-body motion(s) left free by its "
+                              "displacement boundaries, expected a quasistatic body held by "
+                              "[[boundary]] displacements (or scheme = \"dynamic\")",
+                              p_.bodies[b].name, n));
+}
+
+}  // namespace
+
+physics::Problem read_case(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec))
+    throw InputError({{file.string(), 1, "(file)",
+                       "cannot read the case file: it does not exist or is not a file"}});
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError({{file.string(), static_cast<int>(e.source().begin.line), "(syntax)",
+                       fmt::format("not valid TOML: {}", e.description())}});
+  }
+  return CaseReader(file, root).read();
+}
+
+}  // namespace tc::io

@@ -6,6 +6,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tc::mesh {
@@ -21,7 +22,9 @@ enum class FacetType { Line2, Tri3, Quad4 };
 
 using Point = std::array<double, 3>;  // z = 0 in 2D
 
-/// A boundary facet (edge in 2D, face in 3D), oriented with its normal pointing out of `cell`.
+/// A boundary facet (edge in 2D, face in 3D), oriented with its normal pointing out of `cell`:
+/// Tri3/Quad4 counter-clockwise seen from outside; Line2 with n = (t_y, −t_x), t = x1 − x0
+/// (the edge runs counter-clockwise around its cell).
 struct Facet {
   FacetType type = FacetType::Line2;
   std::array<int, 4> nodes{-1, -1, -1, -1};  // first n_nodes(type) are used
@@ -74,5 +77,10 @@ class Mesh {
 
 /// Throws MeshError naming the first bad cells (inverted or zero measure, at most 10 listed).
 void check_cells(const Mesh& m, const std::string& source);
+
+/// Pairs (i, j), i < j, sorted, of distinct nodes at the same place: every coordinate within
+/// 1e-12 times the bounding-box diagonal. Not an error in itself (separately meshed parts glued
+/// by hand have them); the caller decides whether to warn. O(n log n).
+[[nodiscard]] std::vector<std::pair<int, int>> find_duplicate_nodes(const Mesh& m);
 
 }  // namespace tc::mesh

@@ -1,0 +1,319 @@
+#include "tc/io/case_schema.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tc::io::detail {
+
+int edit_distance(std::string_view a, std::string_view b) {
+  std::vector<int> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = static_cast<int>(j);
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = static_cast<int>(i);
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+int line_of(const toml::node& n) {
+  return static_cast<int>(n.source().begin.line);
+}
+
+namespace {
+
+std::string describe_float(double v) {
+  auto s = fmt::format("{}", v);
+  // Say 2.0, not 2, so "expected an integer" reads right.
+  if (std::isfinite(v) && s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+}  // namespace
+
+std::string describe(const toml::node& n) {
+  if (const auto* s = n.as_string()) return fmt::format("\"{}\"", s->get());
+  if (const auto* i = n.as_integer()) return fmt::format("{}", i->get());
+  if (const auto* f = n.as_floating_point()) return describe_float(f->get());
+  if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
+  if (const auto* a = n.as_array())
+    return a->size() == 1 ? "an array of 1 entry"
+                          : fmt::format("an array of {} entries", a->size());
+  if (n.is_table()) return "a table";
+  return "a date or time";
+}
+
+void Issues::add(int line, std::string key, std::string message) {
+  issues_.push_back({file_, std::max(line, 1), std::move(key), std::move(message)});
+}
+
+void Issues::raise() {
+  std::stable_sort(issues_.begin(), issues_.end(),
+                   [](const InputIssue& a, const InputIssue& b) { return a.line < b.line; });
+  throw InputError(std::move(issues_));
+}
+
+Range positive(const std::string& what) {
+  return {[](double x) { return x > 0; }, what + " > 0"};
+}
+
+Range non_negative(const std::string& what) {
+  return {[](double x) { return x >= 0; }, what + " ≥ 0"};
+}
+
+std::string join(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
+}
+
+std::string at(const std::string& path, size_t index) {
+  return fmt::format("{}[{}]", path, index);
+}
+
+// ---------------------------------------------------------------------------------------
+// TableReader
+
+TableReader::TableReader(const toml::table& t, std::string path, Issues& issues,
+                         std::initializer_list<std::string_view> keys)
+    : t_(&t), path_(std::move(path)), issues_(&issues) {
+  for (const auto& [k, v] : t) {
+    const std::string_view name = k.str();
+    if (std::find(keys.begin(), keys.end(), name) != keys.end()) continue;
+    std::string_view best;
+    int best_distance = 3;  // suggest only within edit distance 2
+    for (const auto known : keys)
+      if (const int d = edit_distance(name, known); d < best_distance) {
+        best_distance = d;
+        best = known;
+      }
+    const auto hint = best.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", best);
+    issues.add(
+        line_of(v), join(path_, name),
+        fmt::format("found an unknown key{}, expected one of: {}", hint, fmt::join(keys, ", ")));
+  }
+}
+
+int TableReader::line(std::string_view k) const {
+  const auto* n = t_->get(k);
+  return n ? line_of(*n) : line();
+}
+
+void TableReader::issue(std::string_view k, std::string message) const {
+  issues_->add(line(k), key(k), std::move(message));
+}
+
+const toml::node* TableReader::get(std::string_view k, Need need, std::string_view expected) const {
+  const auto* n = t_->get(k);
+  if (!n && need == Need::Required) issue(k, fmt::format("missing; expected {}", expected));
+  return n;
+}
+
+std::optional<double> TableReader::number(std::string_view k, Need need, const Range& range) const {
+  const auto* n = get(k, need, range.expected);
+  return n ? read_number(*n, key(k), *issues_, range) : std::nullopt;
+}
+
+std::optional<int> TableReader::integer(std::string_view k, Need need, int min) const {
+  const auto expected = fmt::format("an integer ≥ {}", min);
+  const auto* n = get(k, need, expected);
+  if (!n) return std::nullopt;
+  const auto* i = n->as_integer();
+  if (!i || i->get() < min || i->get() > 1'000'000'000) {
+    issue(k, fmt::format("found {}, expected {}", describe(*n), expected));
+    return std::nullopt;
+  }
+  return static_cast<int>(i->get());
+}
+
+std::optional<std::string> TableReader::string(std::string_view k, Need need) const {
+  const auto* n = get(k, need, "a string");
+  if (!n) return std::nullopt;
+  if (const auto* s = n->as_string()) return s->get();
+  issue(k, fmt::format("found {}, expected a string", describe(*n)));
+  return std::nullopt;
+}
+
+std::optional<bool> TableReader::boolean(std::string_view k) const {
+  const auto* n = get(k, Need::Optional, "true or false");
+  if (!n) return std::nullopt;
+  if (const auto* b = n->as_boolean()) return b->get();
+  issue(k, fmt::format("found {}, expected true or false", describe(*n)));
+  return std::nullopt;
+}
+
+std::optional<std::string> TableReader::choice(
+    std::string_view k, Need need, std::initializer_list<std::string_view> choices) const {
+  std::vector<std::string> quoted;
+  for (const auto c : choices) quoted.push_back(fmt::format("\"{}\"", c));
+  const auto expected = fmt::format("one of {}", fmt::join(quoted, ", "));
+  const auto* n = get(k, need, expected);
+  if (!n) return std::nullopt;
+  const auto* s = n->as_string();
+  if (s && std::find(choices.begin(), choices.end(), s->get()) != choices.end()) return s->get();
+  issue(k, fmt::format("found {}, expected {}", describe(*n), expected));
+  return std::nullopt;
+}
+
+std::optional<TableReader> TableReader::sub_table(
+    std::string_view k, Need need, std::initializer_list<std::string_view> keys) const {
+  const auto* n = get(k, need, "a table");
+  if (!n) return std::nullopt;
+  if (const auto* t = n->as_table()) return TableReader(*t, key(k), *issues_, keys);
+  issue(k, fmt::format("found {}, expected a table", describe(*n)));
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------------------------------
+// Values
+
+std::optional<double> read_number(const toml::node& n, const std::string& key, Issues& issues,
+                                  const Range& range) {
+  if (!n.is_number()) {
+    const auto expected = range.ok ? fmt::format("a number ({})", range.expected) : range.expected;
+    issues.add(line_of(n), key, fmt::format("found {}, expected {}", describe(n), expected));
+    return std::nullopt;
+  }
+  const double v = *n.value<double>();
+  if (!std::isfinite(v) || (range.ok && !range.ok(v))) {
+    issues.add(line_of(n), key, fmt::format("found {}, expected {}", describe(n), range.expected));
+    return std::nullopt;
+  }
+  return v;
+}
+
+namespace {
+
+/// The non-empty array of numbers at member k of a time table.
+std::optional<std::vector<double>> read_list(const TableReader& t, std::string_view k,
+                                             const Range& range) {
+  const auto* n = t.get(k, Need::Required, "a non-empty array of numbers");
+  if (!n) return std::nullopt;
+  const auto* a = n->as_array();
+  if (!a || a->empty()) {
+    t.issue(k, fmt::format("found {}, expected a non-empty array of numbers", describe(*n)));
+    return std::nullopt;
+  }
+  std::vector<double> out;
+  bool good = true;
+  for (size_t i = 0; i < a->size(); ++i) {
+    const auto v = read_number(*a->get(i), at(t.key(k), i), t.issues(), range);
+    good = good && v.has_value();
+    out.push_back(v.value_or(0.0));
+  }
+  return good ? std::optional(std::move(out)) : std::nullopt;
+}
+
+bool strictly_increasing(const TableReader& t, const std::vector<double>& times) {
+  for (size_t i = 1; i < times.size(); ++i)
+    if (!(times[i] > times[i - 1])) {
+      t.issue("t", fmt::format("found t[{}] = {} after t[{}] = {}, expected strictly increasing "
+                               "times",
+                               i, times[i], i - 1, times[i - 1]));
+      return false;
+    }
+  return true;
+}
+
+/// The array at n with `size` entries (0: 2 or 3, the dimension being unknown), or an issue
+/// "expected an array of <size> <what> (dimension = <size>)<detail>".
+const toml::array* sized_array(const toml::node& n, const std::string& key, Issues& issues,
+                               int size, std::string_view what, std::string_view detail = "") {
+  const auto* a = n.as_array();
+  const int count = a ? static_cast<int>(a->size()) : -1;
+  if (a && (size == 0 ? (count == 2 || count == 3) : count == size)) return a;
+  const auto expected = size == 0 ? fmt::format("2 or 3 {}", what)
+                                  : fmt::format("{} {} (dimension = {})", size, what, size);
+  issues.add(line_of(n), key,
+             fmt::format("found {}, expected an array of {}{}", describe(n), expected, detail));
+  return nullptr;
+}
+
+}  // namespace
+
+std::optional<core::TimeTable> read_time_table(const toml::node& n, const std::string& key,
+                                               Issues& issues, const Range& range) {
+  if (n.is_number()) {
+    const auto v = read_number(n, key, issues, range);
+    return v ? std::optional<core::TimeTable>(*v) : std::nullopt;
+  }
+  const auto* table = n.as_table();
+  if (!table) {
+    issues.add(line_of(n), key,
+               fmt::format("found {}, expected {} or a table {{ t = [...], value = [...] }}",
+                           describe(n), range.expected));
+    return std::nullopt;
+  }
+  const TableReader t(*table, key, issues, {"t", "value"});
+  const auto times = read_list(t, "t", {});
+  const auto values = read_list(t, "value", range);
+  if (!times || !values) return std::nullopt;
+  bool good = strictly_increasing(t, *times);
+  if (times->size() != values->size()) {
+    t.issue("value", fmt::format("found {} values for {} times, expected as many values as times",
+                                 values->size(), times->size()));
+    good = false;
+  }
+  if (!good) return std::nullopt;
+  return core::TimeTable(*times, *values);
+}
+
+std::optional<std::array<double, 3>> read_vector(const toml::node& n, const std::string& key,
+                                                 Issues& issues, int size) {
+  const auto* a = sized_array(n, key, issues, size, "numbers");
+  if (!a) return std::nullopt;
+  std::array<double, 3> out{};
+  bool good = true;
+  for (size_t k = 0; k < a->size(); ++k) {
+    const auto v = read_number(*a->get(k), at(key, k), issues);
+    good = good && v.has_value();
+    out[k] = v.value_or(0.0);
+  }
+  return good ? std::optional(out) : std::nullopt;
+}
+
+std::optional<std::array<int, 3>> read_counts(const toml::node& n, const std::string& key,
+                                              Issues& issues, int size) {
+  const auto* a = sized_array(n, key, issues, size, "integers ≥ 1");
+  if (!a) return std::nullopt;
+  std::array<int, 3> out{1, 1, 1};
+  bool good = true;
+  for (size_t k = 0; k < a->size(); ++k) {
+    const auto& e = *a->get(k);
+    const auto* i = e.as_integer();
+    if (!i || i->get() < 1 || i->get() > 1'000'000'000) {
+      issues.add(line_of(e), at(key, k),
+                 fmt::format("found {}, expected an integer ≥ 1", describe(e)));
+      good = false;
+      continue;
+    }
+    out[k] = static_cast<int>(i->get());
+  }
+  return good ? std::optional(out) : std::nullopt;
+}
+
+std::optional<Components> read_components(const toml::node& n, const std::string& key,
+                                          Issues& issues, int size, bool free_allowed) {
+  const auto* a = sized_array(
+      n, key, issues, size, "components",
+      free_allowed ? ", each a number, a table or \"free\"" : ", each a number or a table");
+  if (!a) return std::nullopt;
+  Components out;
+  for (size_t k = 0; k < a->size(); ++k) {
+    const auto& e = *a->get(k);
+    const auto ek = at(key, k);
+    if (const auto* s = e.as_string()) {
+      if (!free_allowed || s->get() != "free")
+        issues.add(line_of(e), ek,
+                   fmt::format("found {}, expected a number or a table{}", describe(e),
+                               free_allowed ? " or \"free\"" : ""));
+      continue;
+    }
+    out[k] = read_time_table(e, ek, issues);
+  }
+  // Bad entries are reported and left empty: the caller still checks the others.
+  return out;
+}
+
+}  // namespace tc::io::detail

@@ -1,0 +1,224 @@
+#include "tc/io/output.hpp"
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "tc/core/error.hpp"
+#include "tc/core/petsc.hpp"
+#include "tc/fem/element.hpp"
+
+namespace tc::io {
+
+namespace {
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";  // JSON has no NaN/Inf
+  return fmt::format("{:.17g}", v);
+}
+
+Field vector_field(const std::string& name, const core::Vector& v, int dim) {
+  const auto values = v.to_std();
+  const size_t n = values.size() / dim;
+  Field f{name, 3, std::vector<double>(3 * n, 0.0)};
+  for (size_t a = 0; a < n; ++a)
+    for (int k = 0; k < dim; ++k) f.values[3 * a + k] = values[dim * a + k];
+  return f;
+}
+
+}  // namespace
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20)
+          out += fmt::format("\\u{:04x}", static_cast<int>(c));
+        else
+          out += c;
+    }
+  }
+  return out + "\"";
+}
+
+void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data,
+                 std::vector<Field>& cell_data) {
+  const auto& sys = sim.system(body);
+  const auto& st = sim.state(body);
+  const auto& m = sys.body().mesh;
+  const auto& mat = sys.body().material;
+  const int dim = sys.dim();
+  const double theta0 = sim.problem().physics.reference_temperature;
+  point_data = {vector_field("displacement", st.u, dim), vector_field("velocity", st.v, dim),
+                Field{"temperature", 1, st.theta.to_std()}};
+
+  const auto u = st.u.to_std();
+  const auto& theta = point_data.back().values;
+  const double beta = sim.problem().physics.thermal_expansion ? mat.thermal_stress_modulus() : 0.0;
+  Field vm{"von_mises_stress", 1, {}}, flux{"heat_flux", 3, {}}, sub{"subdomain", 1, {}};
+  for (int c = 0; c < m.n_cells(); ++c) {
+    const auto nodes = m.cell(c);
+    const auto x = fem::cell_coords(m, c);
+    Eigen::VectorXd ue(dim * nodes.size()), te(nodes.size()), dte(nodes.size());
+    for (size_t a = 0; a < nodes.size(); ++a) {
+      for (int k = 0; k < dim; ++k) ue[dim * a + k] = u[dim * nodes[a] + k];
+      te[a] = theta[nodes[a]];
+      dte[a] = te[a] - theta0;
+    }
+    const auto type = m.cell_type(c);
+    vm.values.push_back(
+        fem::von_mises(fem::cell_stress(type, x, ue, dte, mat.lame_lambda(), mat.lame_mu(), beta)));
+    const auto q = fem::cell_heat_flux(type, x, te, mat.thermal_conductivity);
+    flux.values.insert(flux.values.end(), {q[0], q[1], q[2]});
+    sub.values.push_back(0.0);
+  }
+  cell_data = {std::move(vm), std::move(flux), std::move(sub)};
+}
+
+OutputWriter::OutputWriter(std::filesystem::path directory, int every)
+    : dir_(std::move(directory)), every_(every), root_(core::PetscSession::rank() == 0) {}
+
+OutputWriter::~OutputWriter() {
+  if (history_) std::fclose(history_);
+}
+
+void OutputWriter::start(const physics::Simulation& sim) {
+  if (!root_) return;
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (ec)
+    throw Error(fmt::format("cannot create output directory {}: {}", dir_.string(), ec.message()));
+  pvd_ = std::make_unique<PvdCollection>(dir_ / "result.pvd");
+  history_ = std::fopen((dir_ / "history.csv").c_str(), "w");
+  if (!history_) throw Error("cannot write " + (dir_ / "history.csv").string());
+  std::string header;
+  for (const auto& c : sim.history_columns()) header += (header.empty() ? "" : ",") + c;
+  std::fprintf(history_, "%s\n", header.c_str());
+  write_summary(sim, "running", "");
+}
+
+void OutputWriter::step(const physics::Simulation& sim) {
+  if (!root_) return;
+  const double t0 = now_seconds();
+  std::string line;
+  for (const double v : sim.history_row())
+    line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
+  std::fprintf(history_, "%s\n", line.c_str());
+  std::fflush(history_);  // a run killed later still leaves every completed row
+  if (sim.step() % every_ == 0) write_fields(sim);
+  output_seconds_ += now_seconds() - t0;
+}
+
+void OutputWriter::write_fields(const physics::Simulation& sim) {
+  for (int b = 0; b < sim.n_bodies(); ++b) {
+    std::vector<Field> point_data, cell_data;
+    body_fields(sim, b, point_data, cell_data);
+    const auto name = fmt::format("{}_{:06d}.vtu", sim.system(b).body().name, sim.step());
+    write_vtu(dir_ / name, sim.system(b).body().mesh, point_data, cell_data);
+    pvd_->add(sim.time(), b, name);
+  }
+}
+
+void OutputWriter::finish(const physics::Simulation& sim, const physics::RunStatus& status) {
+  if (!root_) return;
+  if (history_) std::fflush(history_);
+  // The last state is always written, even when `every` skipped it.
+  if (sim.step() % every_ != 0) write_fields(sim);
+  write_summary(sim, status.completed ? "completed" : "stopped", status.message);
+}
+
+void OutputWriter::write_summary(const physics::Simulation& sim, const std::string& status,
+                                 const std::string& message) const {
+  const auto& p = sim.problem();
+  const auto& t = sim.timers();
+  std::string phases;
+  for (const char* ph :
+       {"assembly", "mortar", "factorization", "heat_solve", "qp", "mechanical_solve"})
+    phases += fmt::format("    {}: {},\n", json_string(ph), json_number(t[ph]));
+  phases += fmt::format("    \"output\": {}\n", json_number(output_seconds_));
+  std::string last;
+  const auto& cols = sim.history_columns();
+  const auto& row = sim.history_row();
+  for (size_t i = 0; i < cols.size(); ++i)
+    last += fmt::format("    {}: {}{}\n", json_string(cols[i]), json_number(row[i]),
+                        i + 1 < cols.size() ? "," : "");
+  int subdomains = 0;
+  for (const auto& b : p.bodies) subdomains += b.subdomains;
+  const auto tmp = dir_ / "summary.json.tmp";
+  {
+    auto out = fmt::output_file(tmp.string());
+    out.print("{{\n");
+    out.print("  \"status\": {},\n", json_string(status));
+    out.print("  \"steps_done\": {},\n", sim.step());
+    out.print("  \"steps_total\": {},\n", p.time.n_steps());
+    out.print("  \"message\": {},\n", json_string(message));
+    out.print("  \"title\": {},\n", json_string(p.title));
+    out.print("  \"case\": {},\n", json_string(p.case_file.string()));
+    out.print("  \"wall_seconds\": {{\n{}  }},\n", phases);
+    out.print("  \"coupling_iterations\": {},\n", sim.total_coupling_iterations());
+    out.print("  \"qp_iterations\": 0,\n  \"operator_applications\": 0,\n");
+    out.print("  \"dofs\": {},\n", sim.n_dofs());
+    out.print("  \"multipliers\": 0,\n");
+    out.print("  \"ranks\": {},\n", core::PetscSession::size());
+    out.print("  \"subdomains\": {},\n", subdomains);
+    out.print("  \"factorization\": {},\n", json_string(sim.factorization()));
+    out.print("  \"dual_operator\": \"none\",\n");
+    out.print("  \"last\": {{\n{}  }}\n", last);
+    out.print("}}\n");
+  }
+  std::filesystem::rename(tmp, dir_ / "summary.json");
+}
+
+ProgressLine::ProgressLine(bool terminal)
+    : terminal_(terminal), root_(core::PetscSession::rank() == 0), start_(now_seconds()) {}
+
+void ProgressLine::step(const physics::Simulation& sim) {
+  if (!root_) return;
+  const int n = sim.problem().time.n_steps();
+  const int k = sim.step();
+  if (k == 0) {
+    start_ = now_seconds();
+    return;
+  }
+  const double elapsed = now_seconds() - start_;
+  const double eta = elapsed / k * (n - k);
+  const auto text =
+      fmt::format("step {}/{}  t = {:.4g} s  coupling {}  qp {}  elapsed {:.1f} s  ETA {:.1f} s", k,
+                  n, sim.time(), static_cast<int>(sim.history("coupling_iterations")),
+                  static_cast<int>(sim.history("qp_iterations")), elapsed, eta);
+  if (terminal_) {
+    fmt::print(stderr, "\r{:<100}", text);
+    std::fflush(stderr);
+  } else if (k == n || k % std::max(1, n / 20) == 0) {
+    fmt::print("{}\n", text);
+    std::fflush(stdout);
+  }
+}
+
+void ProgressLine::finish(const physics::Simulation&, const physics::RunStatus&) {
+  if (root_ && terminal_) fmt::print(stderr, "\n");
+}
+
+}  // namespace tc::io

@@ -1,0 +1,420 @@
+// read_gmsh: libgmsh is used only to parse the file; everything it returns is copied into
+// plain vectors (RawMesh) while the gmsh session is open, and the Mesh is built afterwards
+// without gmsh, so that no gmsh state outlives the call whatever happens.
+//
+// Orientation decisions:
+// - 2D: a surface whose normal is −z is meshed by gmsh with clockwise cells. That is a
+//   property of the geometry, not a defect, so such cells are reversed to counter-clockwise.
+// - 3D: gmsh's Tet4/Hex8 node orderings are VTK's (positive Jacobian for a valid cell) and
+//   gmsh's mesher always writes positively oriented cells, so there is no convention to
+//   translate: a negative-volume cell in a file is a broken mesh and check_cells rejects it.
+// - Boundary facets take the node order of the matching local face of their (positively
+//   oriented) cell, whose normal points outward by construction. This is exact and needs no
+//   geometric tolerance, unlike a comparison with the cell centroid, which can fail for
+//   strongly distorted cells. The unit tests check the normals geometrically.
+#include "tc/mesh/gmsh_reader.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+#include "tc/core/error.hpp"
+
+namespace tc::mesh {
+namespace {
+
+// ---- Raw data copied out of gmsh --------------------------------------------------------
+
+struct RawBlock {
+  int type = 0;                    // gmsh element type
+  std::vector<std::size_t> nodes;  // gmsh node tags, n_nodes(type) per element
+};
+
+struct RawGroup {
+  std::string name;
+  std::vector<RawBlock> blocks;
+};
+
+struct RawMesh {
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords;  // 3 per node tag
+  std::vector<RawBlock> cells;
+  std::vector<RawGroup> groups;                     // named groups of dimension dim − 1
+  std::unordered_map<int, std::string> type_names;  // gmsh's name of every type seen
+};
+
+/// One gmsh session: libgmsh is a global singleton, so read_gmsh must not be called while the
+/// caller holds a gmsh session of its own (this one would finalize it).
+class GmshSession {
+ public:
+  GmshSession() {
+    // No configuration files: the user's ~/.gmshrc must not change how a mesh is read.
+    gmsh::initialize(0, nullptr, false);
+    gmsh::option::setNumber("General.Terminal", 0);
+  }
+  ~GmshSession() {
+    try {
+      gmsh::finalize();
+    } catch (...) {  // a destructor must not throw; nothing useful to do
+    }
+  }
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+};
+
+std::string type_name(int type) {
+  std::string name;
+  int dim = 0, order = 0, n = 0, n_primary = 0;
+  std::vector<double> local;
+  gmsh::model::mesh::getElementProperties(type, name, dim, order, n, local, n_primary);
+  return name;
+}
+
+RawBlock to_block(int type, std::vector<std::size_t>&& nodes, RawMesh& raw) {
+  if (!raw.type_names.count(type)) raw.type_names[type] = type_name(type);
+  return {type, std::move(nodes)};
+}
+
+RawMesh read_raw(const std::filesystem::path& file, int dim) {
+  RawMesh raw;
+  gmsh::open(file.string());
+  std::vector<double> parametric;
+  gmsh::model::mesh::getNodes(raw.node_tags, raw.coords, parametric, -1, -1, false, false);
+
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> tags, nodes;
+  gmsh::model::mesh::getElements(types, tags, nodes, dim, -1);
+  for (std::size_t b = 0; b < types.size(); ++b)
+    raw.cells.push_back(to_block(types[b], std::move(nodes[b]), raw));
+
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, dim - 1);
+  for (const auto& [gdim, gtag] : groups) {
+    RawGroup group;
+    gmsh::model::getPhysicalName(gdim, gtag, group.name);
+    if (group.name.empty()) continue;  // unnamed groups cannot be referred to by a case file
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(gdim, gtag, entities);
+    for (const int e : entities) {
+      gmsh::model::mesh::getElements(types, tags, nodes, gdim, e);
+      for (std::size_t b = 0; b < types.size(); ++b)
+        group.blocks.push_back(to_block(types[b], std::move(nodes[b]), raw));
+    }
+    raw.groups.push_back(std::move(group));
+  }
+  return raw;
+}
+
+/// Runs read_raw in its own gmsh session and turns whatever gmsh throws into a MeshError.
+RawMesh read_raw_safely(const std::filesystem::path& file, int dim) {
+  const std::string where = "mesh file '" + file.string() + "'";
+  try {
+    const GmshSession session;
+    return read_raw(file, dim);
+  } catch (const tc::Error&) {
+    throw;
+  } catch (const std::string& s) {
+    throw MeshError("cannot read " + where + ": " + s);
+  } catch (const char* s) {
+    throw MeshError("cannot read " + where + ": " + s);
+  } catch (const std::exception& e) {
+    throw MeshError("cannot read " + where + ": " + e.what());
+  } catch (...) {
+    throw MeshError("cannot read " + where + ": unknown gmsh error");
+  }
+}
+
+// ---- Element types -------------------------------------------------------------------------
+
+// gmsh element type numbers (gmsh reference manual, "MSH file format").
+constexpr int kLine2 = 1, kTri3 = 2, kQuad4 = 3, kTet4 = 4, kHex8 = 5;
+
+bool to_cell_type(int gmsh_type, int dim, CellType& t) {
+  if (dim == 2 && gmsh_type == kTri3)
+    t = CellType::Tri3;
+  else if (dim == 2 && gmsh_type == kQuad4)
+    t = CellType::Quad4;
+  else if (dim == 3 && gmsh_type == kTet4)
+    t = CellType::Tet4;
+  else if (dim == 3 && gmsh_type == kHex8)
+    t = CellType::Hex8;
+  else
+    return false;
+  return true;
+}
+
+bool to_facet_type(int gmsh_type, int dim, FacetType& t) {
+  if (dim == 2 && gmsh_type == kLine2)
+    t = FacetType::Line2;
+  else if (dim == 3 && gmsh_type == kTri3)
+    t = FacetType::Tri3;
+  else if (dim == 3 && gmsh_type == kQuad4)
+    t = FacetType::Quad4;
+  else
+    return false;
+  return true;
+}
+
+std::string describe_type(const RawMesh& raw, int type) {
+  const auto it = raw.type_names.find(type);
+  return "gmsh type " + std::to_string(type) +
+         (it != raw.type_names.end() ? " (" + it->second + ")" : "");
+}
+
+/// Local faces of each cell type, numbered so that the normal of the face (counter-clockwise
+/// seen from outside; for Line2 the tangent turned clockwise, n = (t_y, −t_x)) points out of a
+/// positively oriented cell.
+struct LocalFace {
+  FacetType type;
+  std::array<int, 4> v;
+};
+
+std::span<const LocalFace> local_faces(CellType t) {
+  using F = FacetType;
+  static constexpr LocalFace tri[] = {
+      {F::Line2, {0, 1, -1, -1}}, {F::Line2, {1, 2, -1, -1}}, {F::Line2, {2, 0, -1, -1}}};
+  static constexpr LocalFace quad[] = {{F::Line2, {0, 1, -1, -1}},
+                                       {F::Line2, {1, 2, -1, -1}},
+                                       {F::Line2, {2, 3, -1, -1}},
+                                       {F::Line2, {3, 0, -1, -1}}};
+  static constexpr LocalFace tet[] = {{F::Tri3, {0, 2, 1, -1}},
+                                      {F::Tri3, {0, 1, 3, -1}},
+                                      {F::Tri3, {0, 3, 2, -1}},
+                                      {F::Tri3, {1, 2, 3, -1}}};
+  static constexpr LocalFace hex[] = {{F::Quad4, {0, 3, 2, 1}}, {F::Quad4, {4, 5, 6, 7}},
+                                      {F::Quad4, {0, 1, 5, 4}}, {F::Quad4, {1, 2, 6, 5}},
+                                      {F::Quad4, {2, 3, 7, 6}}, {F::Quad4, {0, 4, 7, 3}}};
+  switch (t) {
+    case CellType::Tri3:
+      return tri;
+    case CellType::Quad4:
+      return quad;
+    case CellType::Tet4:
+      return tet;
+    case CellType::Hex8:
+      return hex;
+  }
+  return {};
+}
+
+// ---- Nodes and cells -----------------------------------------------------------------------
+
+using TagMap = std::unordered_map<std::size_t, int>;  // gmsh node tag → index
+
+/// Adds to m only the nodes used by cells, numbered 0..n-1 in increasing gmsh tag.
+TagMap add_used_nodes(const RawMesh& raw, Mesh& m, const std::string& where) {
+  std::vector<std::size_t> used;
+  for (const auto& b : raw.cells) used.insert(used.end(), b.nodes.begin(), b.nodes.end());
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+
+  TagMap all;
+  all.reserve(raw.node_tags.size());
+  for (std::size_t i = 0; i < raw.node_tags.size(); ++i)
+    all.emplace(raw.node_tags[i], static_cast<int>(i));
+
+  TagMap compact;
+  compact.reserve(used.size());
+  for (const std::size_t tag : used) {
+    const auto it = all.find(tag);
+    if (it == all.end())
+      throw MeshError(where + ": a cell uses node " + std::to_string(tag) + ", which has no " +
+                      "coordinates");
+    const double* x = &raw.coords[3 * static_cast<std::size_t>(it->second)];
+    compact.emplace(tag, m.add_point({x[0], x[1], x[2]}));
+  }
+  return compact;
+}
+
+/// The 2D solver works in the plane z = 0; a mesh elsewhere would give zero or wrong areas.
+void check_plane(const Mesh& m, const std::string& where) {
+  double extent = 0, z_max = 0;
+  for (const auto& p : m.points()) {
+    extent = std::max({extent, std::abs(p[0]), std::abs(p[1])});
+    z_max = std::max(z_max, std::abs(p[2]));
+  }
+  if (z_max > 1e-12 * extent) {
+    std::ostringstream msg;
+    msg << where << ": a 2D mesh must lie in the plane z = 0 (found |z| = " << z_max << ")";
+    throw MeshError(msg.str());
+  }
+}
+
+/// Twice the signed area of a 2D polygon (shoelace).
+double twice_area(const Mesh& m, std::span<const int> v) {
+  double a = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Point& p = m.point(v[i]);
+    const Point& q = m.point(v[(i + 1) % v.size()]);
+    a += p[0] * q[1] - q[0] * p[1];
+  }
+  return a;
+}
+
+void add_cells(const RawMesh& raw, const TagMap& ids, Mesh& m, const std::string& where) {
+  const int dim = m.dim();
+  for (const auto& b : raw.cells) {
+    CellType t{};
+    if (!to_cell_type(b.type, dim, t))
+      throw MeshError(where + ": unsupported element " + describe_type(raw, b.type) + " in a " +
+                      std::to_string(dim) + "D mesh; supported: " +
+                      (dim == 2 ? "Tri3 (2), Quad4 (3)" : "Tet4 (4), Hex8 (5)") +
+                      " (first-order elements only)");
+    const std::size_t n = static_cast<std::size_t>(n_nodes(t));
+    for (std::size_t e = 0; e + n <= b.nodes.size(); e += n) {
+      std::array<int, 8> v{};
+      for (std::size_t a = 0; a < n; ++a) v[a] = ids.at(b.nodes[e + a]);
+      const std::span<int> nodes(v.data(), n);
+      // Clockwise 2D cells come from surfaces with normal −z (see the top of this file):
+      // reversing keeps node 0 and turns the cell counter-clockwise.
+      if (dim == 2 && twice_area(m, nodes) < 0) std::reverse(nodes.begin() + 1, nodes.end());
+      m.add_cell(t, nodes);
+    }
+  }
+}
+
+// ---- Boundaries ----------------------------------------------------------------------------
+
+using Key = std::array<int, 4>;  // sorted node ids, padded with −1
+
+struct KeyHash {
+  std::size_t operator()(const Key& k) const {
+    std::size_t h = 0;
+    for (const int i : k) h = h * 1000003u ^ std::hash<int>{}(i);
+    return h;
+  }
+};
+
+Key key_of(std::span<const int> nodes) {
+  // Insertion sort of at most 4 ids (std::sort here trips a false -Warray-bounds in GCC 12).
+  Key k{-1, -1, -1, -1};
+  for (std::size_t a = 0; a < nodes.size(); ++a) {
+    std::size_t b = a;
+    for (; b > 0 && k[b - 1] > nodes[a]; --b) k[b] = k[b - 1];
+    k[b] = nodes[a];
+  }
+  return k;
+}
+
+struct PendingFacet {
+  std::string boundary;
+  Facet facet;
+  std::vector<std::size_t> tags;  // gmsh node tags, for messages
+  int n_cells = 0;                // how many cells have this facet as a face
+};
+
+std::string tag_list(const std::vector<std::size_t>& tags) {
+  std::ostringstream s;
+  for (std::size_t i = 0; i < tags.size(); ++i) s << (i ? " " : "") << tags[i];
+  return s.str();
+}
+
+/// The facets of every named group, not yet attached to cells. A facet with a node that no
+/// cell uses cannot bound a cell: it gets node id −1 and is reported later.
+std::vector<PendingFacet> collect_facets(const RawMesh& raw, const TagMap& ids, int dim,
+                                         const std::string& where) {
+  std::vector<PendingFacet> out;
+  for (const auto& g : raw.groups) {
+    for (const auto& b : g.blocks) {
+      FacetType t{};
+      if (!to_facet_type(b.type, dim, t))
+        throw MeshError(where + ": boundary '" + g.name + "' has unsupported element " +
+                        describe_type(raw, b.type) +
+                        "; supported: " + (dim == 2 ? "Line2 (1)" : "Tri3 (2), Quad4 (3)"));
+      const std::size_t n = static_cast<std::size_t>(n_nodes(t));
+      for (std::size_t e = 0; e + n <= b.nodes.size(); e += n) {
+        PendingFacet p{g.name, Facet{}, {b.nodes.begin() + e, b.nodes.begin() + e + n}, 0};
+        p.facet.type = t;
+        for (std::size_t a = 0; a < n; ++a) {
+          const auto it = ids.find(b.nodes[e + a]);
+          p.facet.nodes[a] = it == ids.end() ? -1 : it->second;
+        }
+        out.push_back(std::move(p));
+      }
+    }
+  }
+  return out;
+}
+
+/// Finds the cell of every facet through a map keyed on sorted node ids, and copies the
+/// outward node order of the matching local face.
+void attach_to_cells(std::vector<PendingFacet>& facets, const Mesh& m) {
+  std::unordered_map<Key, std::vector<int>, KeyHash> by_key;
+  for (std::size_t i = 0; i < facets.size(); ++i) {
+    const auto& f = facets[i].facet;
+    const auto s = f.node_span();
+    if (std::find(s.begin(), s.end(), -1) == s.end())
+      by_key[key_of(s)].push_back(static_cast<int>(i));
+  }
+  for (int c = 0; c < m.n_cells(); ++c) {
+    const auto cell = m.cell(c);
+    for (const auto& lf : local_faces(m.cell_type(c))) {
+      std::array<int, 4> face{-1, -1, -1, -1};
+      const int n = n_nodes(lf.type);
+      for (int a = 0; a < n; ++a) face[a] = cell[lf.v[a]];
+      const auto it = by_key.find(key_of({face.data(), static_cast<std::size_t>(n)}));
+      if (it == by_key.end()) continue;
+      for (const int i : it->second) {
+        auto& p = facets[i];
+        if (++p.n_cells > 1) continue;
+        p.facet.cell = c;
+        p.facet.nodes = face;
+      }
+    }
+  }
+}
+
+/// A facet must bound exactly one cell: none means it is not part of this body's mesh, two
+/// means it is interior and has no outward normal.
+void check_attached(const std::vector<PendingFacet>& facets, const std::string& where) {
+  std::ostringstream msg;
+  int n_bad = 0;
+  for (const auto& p : facets) {
+    if (p.n_cells == 1) continue;
+    if (++n_bad > 10) continue;
+    msg << "\n  boundary '" << p.boundary << "', facet with gmsh nodes " << tag_list(p.tags)
+        << (p.n_cells == 0 ? ": bounds no cell" : ": is interior (shared by two cells)");
+  }
+  if (n_bad > 0)
+    throw MeshError(
+        where + ": " + std::to_string(n_bad) +
+        " boundary facets do not bound exactly one cell (first ones listed):" + msg.str());
+}
+
+void add_boundaries(const RawMesh& raw, const TagMap& ids, Mesh& m, const std::string& where) {
+  auto facets = collect_facets(raw, ids, m.dim(), where);
+  attach_to_cells(facets, m);
+  check_attached(facets, where);
+  for (const auto& p : facets) m.add_facet(p.boundary, p.facet);
+}
+
+}  // namespace
+
+Mesh read_gmsh(const std::filesystem::path& file, int dim) {
+  const std::string where = "mesh file '" + file.string() + "'";
+  if (dim != 2 && dim != 3)
+    throw MeshError(where + ": dimension must be 2 or 3, not " + std::to_string(dim));
+  // gmsh 4.8 does not fail on a missing file (it logs and returns an empty model).
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw MeshError("cannot read " + where + ": no such file");
+
+  const RawMesh raw = read_raw_safely(file, dim);
+  if (raw.cells.empty())
+    throw MeshError(where + ": no cells of dimension " + std::to_string(dim) +
+                    " (when a file has physical groups, gmsh saves only the elements in them: "
+                    "add a physical group for the body or set Mesh.SaveAll = 1)");
+
+  Mesh m(dim);
+  const TagMap ids = add_used_nodes(raw, m, where);
+  if (dim == 2) check_plane(m, where);
+  add_cells(raw, ids, m, where);
+  check_cells(m, file.string());  // before boundaries: their orientation relies on the cells'
+  add_boundaries(raw, ids, m, where);
+  return m;
+}
+
+}  // namespace tc::mesh

@@ -1,0 +1,11 @@
+#pragma once
+// Checks of a problem that need its meshes and boundary data (beyond the case file's syntax).
+#include "tc/physics/problem.hpp"
+
+namespace tc::physics {
+
+/// Number of rigid-body motions (2D: 3, 3D: 6) of body `b` that its displacement boundary
+/// conditions leave free. A quasistatic run needs 0: K_u is singular otherwise.
+[[nodiscard]] int free_rigid_modes(const Problem& p, int b);
+
+}  // namespace tc::physics

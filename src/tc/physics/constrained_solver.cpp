@@ -1,0 +1,45 @@
+#include "tc/physics/constrained_solver.hpp"
+
+namespace tc::physics {
+
+namespace {
+double mean_diagonal(const core::SparseMatrix& a) {
+  core::Vector d(a.rows());
+  TC_PETSC(MatGetDiagonal(a.get(), d.get()));
+  const double mean = d.sum() / static_cast<double>(a.rows());
+  return mean > 0 ? mean : 1.0;
+}
+}  // namespace
+
+ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
+                                     const std::string& package)
+    : a_(a.share()), dofs_(std::move(dofs)), diag_(mean_diagonal(a)), reduced_(a.copy()) {
+  reduced_.zero_rows_columns(dofs_, diag_);
+  factor_ = core::CholeskySolver(reduced_, package);
+  lift_ = core::Vector(a.rows());
+  rhs_ = core::Vector(a.rows());
+}
+
+void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
+  if (dofs_.empty()) {
+    factor_.solve(b, x);
+    return;
+  }
+  lift_.zero();
+  {
+    auto xv = x.view();
+    auto lv = lift_.view();
+    for (const PetscInt d : dofs_) lv[d] = xv[d];
+  }
+  a_.mult(lift_, rhs_);  // rhs = b − A·lift on the free rows
+  rhs_.scale(-1.0);
+  rhs_.axpy(1.0, b);
+  {
+    auto rv = rhs_.view();
+    auto lv = lift_.view();
+    for (const PetscInt d : dofs_) rv[d] = diag_ * lv[d];
+  }
+  factor_.solve(rhs_, x);
+}
+
+}  // namespace tc::physics

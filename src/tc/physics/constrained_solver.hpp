@@ -1,0 +1,31 @@
+#pragma once
+// Solves A x = b with x prescribed on a fixed set of dofs (Dirichlet data, 2.2 and 2.9) by
+// symmetric elimination: the reduced matrix (rows and columns of the constrained dofs
+// replaced by a scaled identity) is factorised once; each solve lifts the prescribed values
+// to the right-hand side. The constrained set must not change over the run; their values may.
+#include <vector>
+
+#include "tc/core/petsc.hpp"
+
+namespace tc::physics {
+
+class ConstrainedSolver {
+ public:
+  ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
+                    const std::string& package);
+
+  /// On entry x holds the prescribed values at the constrained dofs (other entries are
+  /// ignored); on exit x solves the equations of the free dofs.
+  void solve(const core::Vector& b, core::Vector& x) const;
+  [[nodiscard]] const std::string& package() const { return factor_.package(); }
+
+ private:
+  core::SparseMatrix a_;  // the full matrix (shared), for the lifting
+  std::vector<PetscInt> dofs_;
+  double diag_ = 1.0;  // of the constrained rows: the mean diagonal keeps the scale uniform
+  core::SparseMatrix reduced_;
+  core::CholeskySolver factor_;
+  mutable core::Vector lift_, rhs_;
+};
+
+}  // namespace tc::physics

@@ -1,0 +1,443 @@
+#include "tc/physics/simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "tc/core/error.hpp"
+
+namespace tc::physics {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// a·X + b·Y as a new matrix (same nonzero pattern: both come from the same node graph).
+core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
+                           const core::SparseMatrix& y) {
+  core::SparseMatrix out = x.copy();
+  out.scale(a);
+  out.axpy(b, y);
+  return out;
+}
+
+void require_finite(const core::Vector& v, const char* what, int step, int iteration) {
+  if (!v.all_finite())
+    throw NumericalError(fmt::format("{} is not finite (NaN or Inf)", what), step, iteration,
+                         std::nan(""));
+}
+
+}  // namespace
+
+/// Factorised operators and work vectors of one body.
+struct Simulation::Solvers {
+  core::SparseMatrix a_u;      // 4/τ² M_u + K_u (5.3), or K_u (quasistatic)
+  core::SparseMatrix a_theta;  // M_θ/τ + K_θ (5.6)
+  std::unique_ptr<ConstrainedSolver> mech, heat;
+  core::Vector f_u, f_theta, rhs_u_base, rhs_theta_base, rhs_u, rhs_theta;
+  core::Vector u_new, theta_new, u_prev, theta_prev, velocity, dtheta, work_u, work_theta;
+};
+
+Simulation::Simulation(const Problem& problem) : problem_(problem) {
+  const double tau = problem_.time.step;
+  const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
+  for (int b = 0; b < static_cast<int>(problem_.bodies.size()); ++b) {
+    {
+      auto t = timers_.scope("assembly");
+      systems_.push_back(std::make_unique<BodySystem>(problem_, b));
+    }
+    const auto& sys = *systems_.back();
+    const auto& m = sys.matrices();
+    auto s = std::make_unique<Solvers>();
+    {
+      auto t = timers_.scope("factorization");
+      s->a_u =
+          dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u) : m.stiffness_u.copy();
+      s->a_theta = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+      s->mech = std::make_unique<ConstrainedSolver>(s->a_u, sys.u_dirichlet_dofs(),
+                                                    problem_.solver.factorization);
+      s->heat = std::make_unique<ConstrainedSolver>(s->a_theta, sys.theta_dirichlet_dofs(),
+                                                    problem_.solver.factorization);
+    }
+    factorization_ = s->mech->package();
+    for (auto* v :
+         {&s->f_u, &s->rhs_u_base, &s->rhs_u, &s->u_new, &s->u_prev, &s->velocity, &s->work_u})
+      *v = core::Vector(sys.n_u());
+    for (auto* v : {&s->f_theta, &s->rhs_theta_base, &s->rhs_theta, &s->theta_new, &s->theta_prev,
+                    &s->dtheta, &s->work_theta})
+      *v = core::Vector(sys.n_theta());
+    solvers_.push_back(std::move(s));
+  }
+  initialise();
+}
+
+Simulation::~Simulation() = default;
+
+PetscInt Simulation::n_dofs() const {
+  PetscInt n = 0;
+  for (const auto& s : systems_) n += s->n_u() + s->n_theta();
+  return n;
+}
+
+void Simulation::initialise() {
+  const double theta0 = problem_.physics.reference_temperature;
+  for (int b = 0; b < n_bodies(); ++b) {
+    const auto& sys = *systems_[b];
+    auto& s = *solvers_[b];
+    BodyState st{core::Vector(sys.n_u()), core::Vector(sys.n_u()), core::Vector(sys.n_u()),
+                 core::Vector(sys.n_theta())};
+    sys.prescribe_u(0.0, st.u);
+    {
+      auto v = st.v.view();
+      for (PetscInt i = 0; i < sys.n_u(); ++i) v[i] = sys.body().initial_velocity[i % sys.dim()];
+    }
+    sys.prescribe_u_rate(0.0, st.v);  // supports move as their tables say, not with the body
+    st.theta.fill(sys.body().initial_temperature);
+    sys.prescribe_theta(0.0, st.theta);
+
+    if (problem_.time.scheme == Scheme::Dynamic) {
+      // Consistent initial acceleration (2.1 at t = 0): M ü⁰ = f(0) − K u⁰ − K_uθ(θ⁰ − θ₀),
+      // with ü = 0 on the supports. M is factorised for this one solve and dropped.
+      auto t = timers_.scope("factorization");
+      const auto& m = sys.matrices();
+      sys.mechanical_load(0.0, s.rhs_u);
+      m.stiffness_u.mult(st.u, s.work_u);
+      s.rhs_u.axpy(-1.0, s.work_u);
+      if (problem_.physics.thermal_expansion) {
+        s.dtheta.copy_from(st.theta);
+        s.dtheta.shift(-theta0);
+        m.coupling_u_theta.mult(s.dtheta, s.work_u);
+        s.rhs_u.axpy(-1.0, s.work_u);
+      }
+      ConstrainedSolver mass(m.mass_u, sys.u_dirichlet_dofs(), problem_.solver.factorization);
+      st.a.zero();
+      mass.solve(s.rhs_u, st.a);
+    }
+    states_.push_back(std::move(st));
+    forces_.emplace_back(sys.n_u());
+  }
+
+  columns_ = {"step",
+              "time",
+              "coupling_iterations",
+              "qp_iterations",
+              "operator_applications",
+              "kinetic_energy",
+              "strain_energy",
+              "thermal_energy",
+              "external_work",
+              "contact_normal_force",
+              "contact_tangential_force",
+              "frictional_dissipation",
+              "heat_generated",
+              "heat_to_slave",
+              "heat_to_master",
+              "heat_conducted",
+              "max_temperature",
+              "min_temperature",
+              "active_nodes",
+              "slip_nodes",
+              "wall_seconds"};
+  const char* axes = "xyz";
+  for (const auto& sys : systems_)
+    for (const auto& g : sys->reaction_groups())
+      for (int k = 0; k < problem_.dimension; ++k) columns_.push_back(g.label + "_" + axes[k]);
+
+  for (int b = 0; b < n_bodies(); ++b) support_forces(b, forces_[b]);
+  fill_row(0, 0.0);
+}
+
+void Simulation::support_forces(int b, core::Vector& r) const {
+  // F = f_ext + R with R = M ü + K u + K_uθ(θ − θ₀) − f_ext on the constrained dofs: the
+  // force the supports exert on the body. F is what does external work.
+  const auto& sys = *systems_[b];
+  const auto& m = sys.matrices();
+  const auto& st = states_[b];
+  auto& s = *solvers_[b];
+  core::Vector& f = s.f_u;
+  sys.mechanical_load(time(), f);
+  m.stiffness_u.mult(st.u, r);
+  if (problem_.time.scheme == Scheme::Dynamic) m.mass_u.mult_add(st.a, r);
+  if (problem_.physics.thermal_expansion) {
+    s.dtheta.copy_from(st.theta);
+    s.dtheta.shift(-problem_.physics.reference_temperature);
+    m.coupling_u_theta.mult_add(s.dtheta, r);
+  }
+  auto rv = r.view();
+  auto fv = f.view();
+  std::vector<char> constrained(sys.n_u(), 0);
+  for (const PetscInt d : sys.u_dirichlet_dofs()) constrained[d] = 1;
+  for (PetscInt i = 0; i < sys.n_u(); ++i) rv[i] = constrained[i] ? rv[i] : fv[i];
+}
+
+int Simulation::couple_body(int b) {
+  const double tau = problem_.time.step;
+  const double t = (step_ + 1) * tau;
+  const double theta0 = problem_.physics.reference_temperature;
+  const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
+  const auto& sys = *systems_[b];
+  const auto& m = sys.matrices();
+  auto& st = states_[b];
+  auto& s = *solvers_[b];
+  const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
+  const bool expansion = problem_.physics.thermal_expansion && coupled_material;
+  const bool heating = problem_.physics.thermoelastic_heating && coupled_material;
+
+  // Right-hand sides that do not change within the fixed point.
+  sys.mechanical_load(t, s.f_u);
+  s.rhs_u_base.copy_from(s.f_u);
+  if (dynamic) {  // f_u^{k+1} of (5.3): + M(4/τ² u + 4/τ u̇ + ü)
+    s.work_u.copy_from(st.a);
+    s.work_u.axpy(4.0 / tau, st.v);
+    s.work_u.axpy(4.0 / (tau * tau), st.u);
+    m.mass_u.mult_add(s.work_u, s.rhs_u_base);
+  }
+  sys.thermal_load(t, s.f_theta);
+  s.rhs_theta_base.copy_from(s.f_theta);  // f_θ^{k+1} of (5.6): + M_θ θ/τ
+  s.work_theta.copy_from(st.theta);
+  s.work_theta.scale(1.0 / tau);
+  m.mass_theta.mult_add(s.work_theta, s.rhs_theta_base);
+
+  // Predictor: Newmark with ü^{k+1} = ü^k (the thesis starts from u^k; this is closer).
+  s.u_new.copy_from(st.u);
+  s.u_new.axpy(tau, st.v);
+  if (dynamic) s.u_new.axpy(0.5 * tau * tau, st.a);
+  s.theta_new.copy_from(st.theta);
+
+  const int step = step_ + 1;
+  int iteration = 0;
+  auto heat_step = [&] {  // (6.1) with the velocity of the current displacement iterate
+    auto scope = timers_.scope("heat_solve");
+    s.rhs_theta.copy_from(s.rhs_theta_base);
+    if (heating) {  // −K_θu u̇ = θ₀ K_uθᵀ u̇ (docs/choices.md)
+      s.velocity.copy_from(s.u_new);
+      s.velocity.axpy(-1.0, st.u);
+      if (dynamic) {
+        s.velocity.scale(2.0 / tau);  // (5.2) with γ = 1/2
+        s.velocity.axpy(-1.0, st.v);
+      } else {
+        s.velocity.scale(1.0 / tau);
+      }
+      s.work_theta.zero();
+      m.coupling_u_theta.mult_transpose(s.velocity, s.work_theta);
+      s.rhs_theta.axpy(theta0, s.work_theta);
+    }
+    sys.prescribe_theta(t, s.theta_new);
+    s.heat->solve(s.rhs_theta, s.theta_new);
+    require_finite(s.theta_new, "temperature", step, iteration);
+  };
+  auto mech_step = [&] {  // (6.3) with θ^{k+1,p+1}
+    auto scope = timers_.scope("mechanical_solve");
+    s.rhs_u.copy_from(s.rhs_u_base);
+    if (expansion) {
+      s.dtheta.copy_from(s.theta_new);
+      s.dtheta.shift(-theta0);
+      m.coupling_u_theta.mult(s.dtheta, s.work_u);
+      s.rhs_u.axpy(-1.0, s.work_u);
+    }
+    sys.prescribe_u(t, s.u_new);
+    s.mech->solve(s.rhs_u, s.u_new);
+    require_finite(s.u_new, "displacement", step, iteration);
+  };
+
+  if (!(expansion && heating)) {
+    // One-way coupling: one pass in the right order is the exact solution of the step.
+    iteration = 1;
+    if (expansion) {
+      heat_step();
+      mech_step();
+    } else {
+      mech_step();
+      heat_step();
+    }
+  } else {
+    const double tol = problem_.solver.coupling_tolerance;
+    double change = 0;
+    for (iteration = 1; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
+      s.u_prev.copy_from(s.u_new);
+      s.theta_prev.copy_from(s.theta_new);
+      heat_step();
+      mech_step();
+      s.u_prev.axpy(-1.0, s.u_new);
+      s.theta_prev.axpy(-1.0, s.theta_new);
+      const double du = s.u_prev.norm(), un = s.u_new.norm();
+      const double dth = s.theta_prev.norm(), thn = s.theta_new.norm();
+      change = std::max(un > 0 ? du / un : du, thn > 0 ? dth / thn : dth);
+      if (du <= tol * un && dth <= tol * thn) break;
+    }
+    if (iteration > problem_.solver.max_coupling_iterations)
+      throw NumericalError(
+          fmt::format("the staggered fixed point (6.3) of body '{}' did not converge to {:.1e}",
+                      sys.body().name, tol),
+          step, iteration - 1, change);
+  }
+
+  // Newmark / backward-difference updates of u̇ and ü.
+  s.work_u.copy_from(s.u_new);
+  s.work_u.axpy(-1.0, st.u);  // Δu
+  if (dynamic) {
+    st.a.scale(-1.0);  // ü^{k+1} = 4/τ² Δu − 4/τ u̇^k − ü^k
+    st.a.axpy(-4.0 / tau, st.v);
+    st.a.axpy(4.0 / (tau * tau), s.work_u);
+    st.v.scale(-1.0);  // u̇^{k+1} = 2/τ Δu − u̇^k
+    st.v.axpy(2.0 / tau, s.work_u);
+  } else {
+    st.v.copy_from(s.work_u);
+    st.v.scale(1.0 / tau);
+  }
+  st.u.copy_from(s.u_new);
+  st.theta.copy_from(s.theta_new);
+  return iteration;
+}
+
+void Simulation::advance() {
+  const auto t0 = Clock::now();
+  std::vector<core::Vector> old_u;
+  for (const auto& st : states_) old_u.push_back(st.u.clone());
+  int coupling = 0;
+  for (int b = 0; b < n_bodies(); ++b) coupling = std::max(coupling, couple_body(b));
+  ++step_;
+  finish_step_bookkeeping(old_u, coupling, seconds_since(t0));
+}
+
+void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling,
+                                         double wall) {
+  // External work by the trapezoidal rule, ½(F^k + F^{k+1})·(u^{k+1} − u^k): with Newmark's
+  // average acceleration this makes the discrete energy balance exact for linear elasticity.
+  for (int b = 0; b < n_bodies(); ++b) {
+    auto& s = *solvers_[b];
+    s.work_u.copy_from(states_[b].u);
+    s.work_u.axpy(-1.0, old_u[b]);
+    const double before = forces_[b].dot(s.work_u);
+    support_forces(b, forces_[b]);
+    external_work_ += 0.5 * (before + forces_[b].dot(s.work_u));
+  }
+  total_coupling_ += coupling;
+  last_coupling_ = coupling;
+  fill_row(coupling, wall);
+}
+
+double Simulation::kinetic_energy() const {
+  if (problem_.time.scheme != Scheme::Dynamic) return 0.0;
+  double e = 0;
+  for (int b = 0; b < n_bodies(); ++b)
+    e += 0.5 * systems_[b]->matrices().mass_u.quadratic_form(states_[b].v, solvers_[b]->work_u);
+  return e;
+}
+
+double Simulation::strain_energy() const {
+  double e = 0;
+  for (int b = 0; b < n_bodies(); ++b)
+    e +=
+        0.5 * systems_[b]->matrices().stiffness_u.quadratic_form(states_[b].u, solvers_[b]->work_u);
+  return e;
+}
+
+double Simulation::thermal_energy() const {
+  const double theta0 = problem_.physics.reference_temperature;
+  double e = 0;
+  for (int b = 0; b < n_bodies(); ++b) {
+    const auto& vol = systems_[b]->node_volumes();
+    const auto theta = states_[b].theta.to_std();
+    const double c = systems_[b]->body().material.heat_capacity();
+    for (size_t a = 0; a < vol.size(); ++a) e += c * vol[a] * (theta[a] - theta0);
+  }
+  return e;
+}
+
+double Simulation::thermal_free_energy() const {
+  const double theta0 = problem_.physics.reference_temperature;
+  double e = 0;
+  for (int b = 0; b < n_bodies(); ++b) {
+    auto& s = *solvers_[b];
+    s.dtheta.copy_from(states_[b].theta);
+    s.dtheta.shift(-theta0);
+    e += systems_[b]->matrices().mass_theta.quadratic_form(s.dtheta, s.work_theta) / (2.0 * theta0);
+  }
+  return e;
+}
+
+void Simulation::fill_row(int coupling, double wall) {
+  double tmax = -INFINITY, tmin = INFINITY;
+  for (const auto& st : states_) {
+    PetscReal v = 0;
+    TC_PETSC(VecMax(st.theta.get(), nullptr, &v));
+    tmax = std::max(tmax, static_cast<double>(v));
+    TC_PETSC(VecMin(st.theta.get(), nullptr, &v));
+    tmin = std::min(tmin, static_cast<double>(v));
+  }
+  row_ = {static_cast<double>(step_),
+          time(),
+          static_cast<double>(coupling),
+          0.0,  // qp_iterations: no contact yet
+          0.0,  // operator_applications
+          kinetic_energy(),
+          strain_energy(),
+          thermal_energy(),
+          external_work_,
+          0.0,  // contact_normal_force
+          0.0,  // contact_tangential_force
+          0.0,  // frictional_dissipation
+          0.0,  // heat_generated
+          0.0,  // heat_to_slave
+          0.0,  // heat_to_master
+          0.0,  // heat_conducted
+          tmax,
+          tmin,
+          0.0,  // active_nodes
+          0.0,  // slip_nodes
+          wall};
+  for (int b = 0; b < n_bodies(); ++b) {
+    const auto f = forces_[b].to_std();
+    for (const auto& g : systems_[b]->reaction_groups())
+      for (int k = 0; k < problem_.dimension; ++k) {
+        double sum = 0;
+        for (const PetscInt d : g.dofs[k]) sum += f[d];
+        row_.push_back(sum);
+      }
+  }
+}
+
+double Simulation::history(const std::string& column) const {
+  const auto it = std::find(columns_.begin(), columns_.end(), column);
+  if (it == columns_.end()) throw Error("no history column named '" + column + "'");
+  return row_[it - columns_.begin()];
+}
+
+RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {
+  RunStatus status;
+  observer.start(*this);
+  observer.step(*this);
+  const int n = problem_.time.n_steps();
+  try {
+    while (step_ < n) {
+      if (stop && stop->load() != 0) {
+        status.message = fmt::format("interrupted by signal {} after step {} (t = {:g} s)",
+                                     stop->load(), step_, time());
+        status.exit_code = 1;
+        break;
+      }
+      advance();
+      observer.step(*this);
+    }
+  } catch (const NumericalError& e) {
+    status.message = e.what();
+    status.exit_code = 1;
+  } catch (const PetscError& e) {
+    status.message = fmt::format("{} (step {})", e.what(), step_ + 1);
+    status.exit_code = 1;
+  }
+  status.completed = status.exit_code == 0;
+  status.steps_done = step_;
+  if (status.completed) status.message = fmt::format("completed {} steps", step_);
+  observer.finish(*this, status);
+  return status;
+}
+
+}  // namespace tc::physics

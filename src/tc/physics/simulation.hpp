@@ -1,0 +1,101 @@
+#pragma once
+// The time loop of chapters 5–6 without contact: Newmark average acceleration for u
+// (5.1–5.3) or the quasistatic scheme, backward Euler for θ (5.5–5.6), and the staggered
+// fixed point of 6.3 between the heat step and the mechanical step. Constant matrices are
+// factorised once at construction, never inside the loop.
+//
+// Contract of run(): the observer sees start() once, then step() for t = 0 and for every
+// completed step in order, then finish() exactly once, also when the run stops early.
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tc/core/timer.hpp"
+#include "tc/physics/body_system.hpp"
+#include "tc/physics/constrained_solver.hpp"
+
+namespace tc::physics {
+
+/// Displacement, velocity, acceleration and temperature of one body at the current time.
+struct BodyState {
+  core::Vector u, v, a, theta;
+};
+
+struct RunStatus {
+  bool completed = false;
+  int steps_done = 0;
+  std::string message;
+  int exit_code = 0;  // 0 done, 1 numerical failure or interrupted (case-format.md)
+};
+
+class Simulation;
+
+/// Receives the run's progress: output writers, progress lines, tests.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void start(const Simulation&) {}
+  virtual void step(const Simulation&) {}
+  virtual void finish(const Simulation&, const RunStatus&) {}
+};
+
+class Simulation {
+ public:
+  /// Assembles and factorises (collective on no communicator: each rank holds every body).
+  explicit Simulation(const Problem& problem);
+  ~Simulation();
+
+  /// Runs all steps, or until `stop` becomes non-zero (checked between steps).
+  RunStatus run(Observer& observer, const std::atomic<int>* stop = nullptr);
+  /// Advances one step (public for tests); throws NumericalError on failure.
+  void advance();
+
+  [[nodiscard]] const Problem& problem() const { return problem_; }
+  [[nodiscard]] int n_bodies() const { return static_cast<int>(systems_.size()); }
+  [[nodiscard]] const BodySystem& system(int b) const { return *systems_[b]; }
+  [[nodiscard]] const BodyState& state(int b) const { return states_[b]; }
+  [[nodiscard]] int step() const { return step_; }
+  [[nodiscard]] double time() const { return step_ * problem_.time.step; }
+  [[nodiscard]] const core::PhaseTimers& timers() const { return timers_; }
+  [[nodiscard]] const std::string& factorization() const { return factorization_; }
+  [[nodiscard]] PetscInt n_dofs() const;
+
+  /// history.csv: names of the columns and the row of the current step.
+  [[nodiscard]] const std::vector<std::string>& history_columns() const { return columns_; }
+  [[nodiscard]] const std::vector<double>& history_row() const { return row_; }
+  [[nodiscard]] double history(const std::string& column) const;
+  [[nodiscard]] long total_coupling_iterations() const { return total_coupling_; }
+
+  /// Discrete energies of the current state (J, or J/m in 2D).
+  [[nodiscard]] double kinetic_energy() const;
+  [[nodiscard]] double strain_energy() const;
+  /// Σ ∫ ρ c_p (θ − θ₀) dx.
+  [[nodiscard]] double thermal_energy() const;
+  /// (1/2θ₀)(θ−θ₀)ᵀ M_θ (θ−θ₀): the thermal part of the thermo-elastic Lyapunov function.
+  [[nodiscard]] double thermal_free_energy() const;
+
+ private:
+  struct Solvers;
+  void initialise();
+  int couple_body(int b);  // the staggered loop of 6.3 for one body; returns iterations
+  void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
+  void support_forces(int b, core::Vector& r) const;  // reactions at constrained dofs
+  void fill_row(int coupling, double wall);
+
+  const Problem& problem_;
+  std::vector<std::unique_ptr<BodySystem>> systems_;
+  std::vector<std::unique_ptr<Solvers>> solvers_;
+  std::vector<BodyState> states_;
+  std::vector<core::Vector> forces_;  // f_ext + reactions at the current step, per body
+  int step_ = 0;
+  double external_work_ = 0;
+  long total_coupling_ = 0;
+  int last_coupling_ = 0;
+  core::PhaseTimers timers_;
+  std::string factorization_;
+  std::vector<std::string> columns_;
+  std::vector<double> row_;
+};
+
+}  // namespace tc::physics

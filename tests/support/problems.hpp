@@ -1,0 +1,70 @@
+#pragma once
+// Problems built in code for the physics tests (no case file), and small dense helpers.
+#include <Eigen/Dense>
+#include <optional>
+
+#include "tc/core/petsc.hpp"
+#include "tc/mesh/box.hpp"
+#include "tc/physics/problem.hpp"
+
+namespace tc::test {
+
+/// Steel-like constants (SI).
+inline fem::Material steel() {
+  fem::Material m;
+  m.density = 7850;
+  m.young_modulus = 2.0e11;
+  m.poisson_ratio = 0.3;
+  m.thermal_expansion = 1.2e-5;
+  m.specific_heat = 450;
+  m.thermal_conductivity = 50;
+  return m;
+}
+
+/// One box body [0, size] with `cells`, the given material and scheme.
+inline physics::Problem box_problem(int dim, const mesh::Point& size,
+                                    const std::array<int, 3>& cells, const fem::Material& mat,
+                                    physics::Scheme scheme, double step, int n_steps) {
+  physics::Problem p;
+  p.dimension = dim;
+  p.time.scheme = scheme;
+  p.time.step = step;
+  p.time.end = step * n_steps;
+  p.physics.reference_temperature = 293.15;
+  physics::Body b;
+  b.name = "block";
+  b.material = mat;
+  b.mesh = mesh::make_box(dim, {0, 0, 0}, size, cells);
+  b.initial_temperature = p.physics.reference_temperature;
+  p.bodies.push_back(std::move(b));
+  return p;
+}
+
+/// A [[boundary]] entry holding the listed components at zero.
+inline physics::BoundaryCondition hold(const std::string& where, std::initializer_list<int> comps) {
+  physics::BoundaryCondition bc;
+  bc.where = where;
+  for (const int k : comps) bc.displacement[k] = core::TimeTable(0.0);
+  return bc;
+}
+
+/// Dense copy of a (small) PETSc matrix.
+inline Eigen::MatrixXd to_dense(const core::SparseMatrix& a) {
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(a.rows(), a.cols());
+  for (PetscInt i = 0; i < a.rows(); ++i) {
+    PetscInt n = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    TC_PETSC(MatGetRow(a.get(), i, &n, &cols, &vals));
+    for (PetscInt j = 0; j < n; ++j) d(i, cols[j]) = vals[j];
+    TC_PETSC(MatRestoreRow(a.get(), i, &n, &cols, &vals));
+  }
+  return d;
+}
+
+inline Eigen::VectorXd to_eigen(const core::Vector& v) {
+  const auto s = v.to_std();
+  return Eigen::Map<const Eigen::VectorXd>(s.data(), static_cast<Eigen::Index>(s.size()));
+}
+
+}  // namespace tc::test

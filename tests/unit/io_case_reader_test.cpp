@@ -1,0 +1,203 @@
+// read_case on the valid cases of tests/cases/valid: every value of the file lands in the
+// Problem, tables evaluate to the right values at given times, defaults fill the rest.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "tc/core/error.hpp"
+#include "tc/io/case_reader.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tc::io::read_case;
+using tc::physics::Problem;
+
+fs::path valid_case(const std::string& name) {
+  return fs::path(TC_SOURCE_DIR) / "tests/cases/valid" / name;
+}
+
+TEST(CaseReader, TwoBlocks3dFillsEverySection) {
+  const auto file = valid_case("two-blocks-3d.toml");
+  const Problem p = read_case(file);
+  EXPECT_EQ(p.case_file, file);
+  EXPECT_EQ(p.title, "two blocks: frictional heating");
+  EXPECT_EQ(p.dimension, 3);
+  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::Dynamic);
+  EXPECT_DOUBLE_EQ(p.time.step, 0.01);
+  EXPECT_DOUBLE_EQ(p.time.end, 1.0);
+  EXPECT_EQ(p.time.n_steps(), 100);
+  EXPECT_DOUBLE_EQ(p.physics.reference_temperature, 293.15);
+  EXPECT_TRUE(p.physics.thermal_expansion);
+  EXPECT_TRUE(p.physics.thermoelastic_heating);
+
+  ASSERT_EQ(p.bodies.size(), 2u);
+  const auto& master = p.bodies[0];
+  EXPECT_EQ(master.name, "master");
+  EXPECT_EQ(master.material_name, "iron");
+  EXPECT_DOUBLE_EQ(master.material.density, 7874.0);
+  EXPECT_DOUBLE_EQ(master.material.young_modulus, 2.11e11);
+  EXPECT_DOUBLE_EQ(master.material.poisson_ratio, 0.29);
+  EXPECT_DOUBLE_EQ(master.material.thermal_expansion, 1.15e-5);
+  EXPECT_DOUBLE_EQ(master.material.specific_heat, 450.0);
+  EXPECT_DOUBLE_EQ(master.material.thermal_conductivity, 70.0);
+  EXPECT_EQ(master.mesh.dim(), 3);
+  EXPECT_EQ(master.mesh.n_cells(), 2 * 6 * 2);
+  EXPECT_EQ(master.mesh.n_nodes(), 3 * 7 * 3);
+  EXPECT_TRUE(master.mesh.has_boundary("zmax"));
+  EXPECT_DOUBLE_EQ(master.initial_temperature, 293.15);
+  EXPECT_DOUBLE_EQ(master.body_force[2](0.5), -77243.9);
+  EXPECT_DOUBLE_EQ(master.body_force[0](0.5), 0.0);
+  EXPECT_EQ(master.subdomains, 1);
+  const auto& slave = p.bodies[1];
+  EXPECT_EQ(slave.name, "slave");
+  EXPECT_DOUBLE_EQ(slave.initial_temperature, 300.0);
+  EXPECT_EQ(slave.subdomains, 2);
+  EXPECT_EQ(slave.mesh.n_cells(), 8);
+
+  ASSERT_EQ(p.boundaries.size(), 3u);
+  const auto& clamp = p.boundaries[0];
+  EXPECT_EQ(clamp.body, 0);
+  EXPECT_EQ(clamp.where, "zmin");
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(clamp.displacement[k]);
+    EXPECT_EQ((*clamp.displacement[k])(0.3), 0.0);
+    EXPECT_FALSE(clamp.traction[k]);
+  }
+  ASSERT_TRUE(clamp.temperature);
+  EXPECT_DOUBLE_EQ((*clamp.temperature)(0.0), 293.15);
+  EXPECT_FALSE(clamp.heat_flux);
+
+  const auto& driven = p.boundaries[1];
+  EXPECT_EQ(driven.body, 1);
+  EXPECT_EQ(driven.where, "zmax");
+  ASSERT_TRUE(driven.displacement[1] && driven.displacement[2]);
+  EXPECT_DOUBLE_EQ((*driven.displacement[1])(0.1), 0.0);
+  EXPECT_DOUBLE_EQ((*driven.displacement[1])(0.6), 0.025);
+  EXPECT_DOUBLE_EQ((*driven.displacement[1])(2.0), 0.05);  // constant beyond the end
+  EXPECT_DOUBLE_EQ((*driven.displacement[2])(0.1), -1.5e-4);
+  EXPECT_DOUBLE_EQ((*driven.displacement[2])(0.5), -3.0e-4);
+  ASSERT_TRUE(driven.heat_flux);
+  EXPECT_DOUBLE_EQ((*driven.heat_flux)(0.7), 2.0e4);
+  EXPECT_FALSE(driven.temperature);
+
+  const auto& pushed = p.boundaries[2];
+  for (int k = 0; k < 3; ++k) EXPECT_FALSE(pushed.displacement[k]);
+  ASSERT_TRUE(pushed.traction[2]);
+  EXPECT_DOUBLE_EQ((*pushed.traction[2])(0.0), -1.0e6);
+
+  ASSERT_TRUE(p.contact);
+  EXPECT_EQ(p.contact->slave_body, 1);
+  EXPECT_EQ(p.contact->master_body, 0);
+  EXPECT_EQ(p.contact->slave_where, "zmin");
+  EXPECT_EQ(p.contact->master_where, "zmax");
+  EXPECT_DOUBLE_EQ(p.contact->friction, 0.9);
+  EXPECT_DOUBLE_EQ(p.contact->conductance_slave, 2.5e-3);
+  EXPECT_DOUBLE_EQ(p.contact->conductance_master, 2.5e-3);
+  EXPECT_TRUE(p.contact->heat_conduction);
+  EXPECT_TRUE(p.contact->frictional_heating);
+
+  EXPECT_DOUBLE_EQ(p.solver.coupling_tolerance, 1e-6);
+  EXPECT_EQ(p.solver.max_coupling_iterations, 20);
+  EXPECT_DOUBLE_EQ(p.solver.qp_tolerance, 1e-8);
+  EXPECT_EQ(p.solver.max_qp_iterations, 2000);
+  EXPECT_EQ(p.solver.factorization, "");
+  EXPECT_EQ(p.output.directory, file.parent_path() / "out-two-blocks");
+  EXPECT_EQ(p.output.every, 5);
+}
+
+TEST(CaseReader, PlaneStrainKeepsTwoComponentsAndDefaults) {
+  const auto file = valid_case("plane-strain-2d.toml");
+  const Problem p = read_case(file);
+  EXPECT_EQ(p.dimension, 2);
+  EXPECT_EQ(p.title, "");
+  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::Dynamic);
+  EXPECT_EQ(p.time.n_steps(), 10);
+  EXPECT_DOUBLE_EQ(p.physics.reference_temperature, 293.15);
+  ASSERT_EQ(p.bodies.size(), 1u);
+  const auto& b = p.bodies[0];
+  EXPECT_EQ(b.mesh.dim(), 2);
+  EXPECT_EQ(b.mesh.n_cells(), 8);
+  EXPECT_EQ(b.mesh.boundary_names(), (std::vector<std::string>{"xmax", "xmin", "ymax", "ymin"}));
+  EXPECT_DOUBLE_EQ(b.initial_temperature, 293.15);  // default: θ₀
+  EXPECT_EQ(b.initial_velocity, (std::array<double, 3>{0.5, 0.0, 0.0}));
+  for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(b.body_force[k](1.0), 0.0);
+  EXPECT_DOUBLE_EQ(b.heat_source(0.0025), 5.0e5);
+  EXPECT_DOUBLE_EQ(b.heat_source(1.0), 1.0e6);
+  EXPECT_EQ(b.subdomains, 1);
+
+  ASSERT_EQ(p.boundaries.size(), 2u);
+  const auto& top = p.boundaries[1];
+  EXPECT_FALSE(top.displacement[0]);  // "free"
+  ASSERT_TRUE(top.displacement[1]);
+  EXPECT_DOUBLE_EQ((*top.displacement[1])(0.005), 5.0e-6);
+  ASSERT_TRUE(top.traction[0]);
+  EXPECT_DOUBLE_EQ((*top.traction[0])(0.002), 1.0e6);
+  EXPECT_DOUBLE_EQ((*top.traction[0])(0.008), 2.0e6);
+  EXPECT_FALSE(top.traction[1]);
+  EXPECT_FALSE(top.displacement[2]);  // 2D: no third component
+  EXPECT_FALSE(top.traction[2]);
+  ASSERT_TRUE(top.temperature);
+  EXPECT_DOUBLE_EQ((*top.temperature)(0.005), 343.15);
+
+  EXPECT_FALSE(p.contact);
+  const tc::physics::SolverSettings defaults;
+  EXPECT_EQ(p.solver.max_qp_iterations, defaults.max_qp_iterations);
+  EXPECT_EQ(p.solver.coupling_tolerance, defaults.coupling_tolerance);
+  EXPECT_EQ(p.output.directory, file.parent_path() / "out");
+  EXPECT_EQ(p.output.every, 1);
+}
+
+TEST(CaseReader, QuasistaticWithSolverAndOutputOptions) {
+  const Problem p = read_case(valid_case("quasistatic.toml"));
+  EXPECT_EQ(p.title, "quasistatic strip");
+  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::Quasistatic);
+  EXPECT_EQ(p.time.n_steps(), 3);
+  EXPECT_DOUBLE_EQ(p.physics.reference_temperature, 300.0);
+  EXPECT_FALSE(p.physics.thermal_expansion);
+  EXPECT_FALSE(p.physics.thermoelastic_heating);
+  const auto& b = p.bodies.at(0);
+  EXPECT_DOUBLE_EQ(b.material.poisson_ratio, 0.0);
+  EXPECT_DOUBLE_EQ(b.initial_temperature, 300.0);  // θ₀ of this file
+  EXPECT_DOUBLE_EQ(b.body_force[1](0.15), -5.0e3);
+  EXPECT_EQ(b.subdomains, 3);
+  ASSERT_EQ(p.boundaries.size(), 2u);
+  ASSERT_TRUE(p.boundaries[0].heat_flux);
+  EXPECT_DOUBLE_EQ((*p.boundaries[0].heat_flux)(0.0), -50.0);
+  EXPECT_DOUBLE_EQ((*p.boundaries[1].displacement[0])(0.3), 0.01);
+  EXPECT_EQ(p.solver.factorization, "");  // "auto"
+  EXPECT_EQ(p.solver.max_qp_iterations, 10);
+  EXPECT_EQ(p.output.directory, fs::path("/tmp/tc-quasistatic"));
+}
+
+TEST(CaseReader, GmshFileRelativeToTheCaseGivesNamedBoundaries) {
+  const Problem p = read_case(valid_case("gmsh-file.toml"));
+  const auto& m = p.bodies.at(0).mesh;
+  EXPECT_EQ(m.n_cells(), 2);
+  EXPECT_EQ(m.n_nodes(), 4);
+  EXPECT_TRUE(m.has_boundary("left"));
+  EXPECT_TRUE(m.has_boundary("bottom"));
+  EXPECT_EQ(p.boundaries.at(1).where, "bottom");
+  EXPECT_DOUBLE_EQ((*p.boundaries[1].heat_flux)(0.5), 50.0);
+}
+
+TEST(CaseReader, FactorizationNamesAndMissingFile) {
+  const auto dir = fs::temp_directory_path() / "tc_io_case_reader_test";
+  fs::create_directories(dir);
+  std::string text;
+  {
+    std::ifstream in(valid_case("plane-strain-2d.toml"));
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  std::ofstream(dir / "case.toml") << text << "\n[solver]\nfactorization = \"mumps\"\n";
+  EXPECT_EQ(read_case(dir / "case.toml").solver.factorization, "mumps");
+  try {
+    (void)read_case(dir / "absent.toml");
+    FAIL() << "no InputError";
+  } catch (const tc::InputError& e) {
+    ASSERT_EQ(e.issues().size(), 1u);
+    EXPECT_EQ(e.issues()[0].file, (dir / "absent.toml").string());
+  }
+}
+
+}  // namespace

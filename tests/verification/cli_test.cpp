@@ -1,0 +1,127 @@
+// The command line contract of case-format.md: exit codes, messages naming file:line:key,
+// and what a run leaves behind. Runs every example and every malformed case file.
+#include "support/cli.hpp"
+
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using tc::test::thermocontact;
+
+namespace {
+
+std::vector<fs::path> files_in(const fs::path& dir, const std::string& name = "") {
+  std::vector<fs::path> out;
+  if (!fs::exists(dir)) return out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.path().extension() == ".toml" && (name.empty() || e.path().filename() == name))
+      out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+int count_lines(const std::string& s) {
+  return static_cast<int>(std::count(s.begin(), s.end(), '\n'));
+}
+
+TEST(Cli, InfoNamesPetscAndTheFactorizations) {
+  const auto r = thermocontact("info");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("PETSc"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Cholesky"), std::string::npos) << r.output;
+}
+
+TEST(Cli, EveryInvalidCaseExitsWithTwoNamingFileLineAndKey) {
+  const auto cases = files_in(fs::path(TC_SOURCE_DIR) / "tests/cases/invalid");
+  ASSERT_GE(cases.size(), 20u);
+  for (const auto& c : cases) {
+    const auto r = thermocontact("check " + c.string());
+    EXPECT_EQ(r.exit_code, 2) << c << "\n" << r.output;
+    // FILE:LINE: KEY: message, with a positive line number.
+    const std::regex located(
+        std::regex_replace(c.string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+        R"(:[1-9][0-9]*: [^:]+: .+)");
+    EXPECT_TRUE(std::regex_search(r.output, located)) << c << "\n" << r.output;
+    // Each `# expect: KEY SUBSTRING` line of the file names an issue that must be reported.
+    std::istringstream lines(tc::test::read_file(c));
+    std::string line;
+    int expectations = 0;
+    while (std::getline(lines, line)) {
+      if (line.rfind("# expect: ", 0) != 0) continue;
+      const auto rest = line.substr(10);
+      const auto key = rest.substr(0, rest.find(' '));
+      const auto text = rest.substr(rest.find(' ') + 1);
+      ++expectations;
+      bool found = false;
+      std::istringstream out(r.output);
+      std::string l;
+      while (std::getline(out, l))
+        found = found || (l.find(": " + key + ": ") != std::string::npos &&
+                          l.find(text) != std::string::npos);
+      EXPECT_TRUE(found) << c << ": expected key " << key << " with '" << text << "' in\n"
+                         << r.output;
+    }
+    EXPECT_GE(expectations, 1) << c;
+    const auto run =
+        thermocontact("run " + c.string() + " --output " + tc::test::fresh_dir("invalid").string());
+    EXPECT_EQ(run.exit_code, 2) << c << "\n" << run.output;
+  }
+}
+
+TEST(Cli, EveryExampleRunsAndLeavesItsOutput) {
+  const auto cases = files_in(fs::path(TC_SOURCE_DIR) / "examples", "case.toml");
+  ASSERT_FALSE(cases.empty());
+  for (const auto& c : cases) {
+    const auto out = tc::test::fresh_dir(c.parent_path().filename().string());
+    const auto r = thermocontact("run " + c.string() + " --output " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << c << "\n" << r.output;
+    const auto summary = tc::test::read_file(out / "summary.json");
+    EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
+    const auto history = tc::test::read_file(out / "history.csv");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(summary, m, std::regex(R"("steps_done": ([0-9]+))")));
+    // A header and one row per step, t = 0 included.
+    EXPECT_EQ(count_lines(history), std::stoi(m[1]) + 2) << c;
+    EXPECT_TRUE(fs::exists(out / "result.pvd"));
+    EXPECT_NE(tc::test::read_file(out / "result.pvd").find(".vtu"), std::string::npos);
+  }
+}
+
+TEST(Cli, ANumericalFailureStopsWithExitOneAndKeepsTheStepsDone) {
+  // A strongly coupled body and a fixed point allowed one iteration at a tolerance it
+  // cannot meet: the run must stop at step 1, say so, and leave valid output.
+  const auto dir = tc::test::fresh_dir("failure");
+  std::ofstream(dir / "case.toml") << R"(
+dimension = 2
+[time]
+step = 1e-6
+end = 1e-5
+[solver]
+coupling_tolerance = 1e-14
+max_coupling_iterations = 1
+[materials.m]
+density = 7850.0
+young_modulus = 2.0e11
+poisson_ratio = 0.3
+thermal_expansion = 1e-4
+specific_heat = 450.0
+thermal_conductivity = 50.0
+[[bodies]]
+name = "b"
+material = "m"
+mesh = { box = { min = [0.0, 0.0], max = [0.01, 0.01], cells = [2, 2] } }
+initial_temperature = 400.0
+)";
+  const auto r =
+      thermocontact("run " + (dir / "case.toml").string() + " --output " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("step 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("residual"), std::string::npos) << r.output;
+  const auto summary = tc::test::read_file(dir / "out/summary.json");
+  EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
+  EXPECT_EQ(count_lines(tc::test::read_file(dir / "out/history.csv")), 2);  // header + t = 0
+}
+
+}  // namespace
