@@ -18,6 +18,7 @@
 #include <cmath>
 #include <set>
 
+#include "support/problems.hpp"
 #include "support/test_meshes.hpp"
 #include "tc/fem/assembler.hpp"
 
@@ -26,16 +27,7 @@ using mesh::CellType;
 
 namespace {
 
-fem::Material steel() {
-  fem::Material m;
-  m.density = 7850;
-  m.young_modulus = 2.0e11;
-  m.poisson_ratio = 0.3;
-  m.thermal_expansion = 1.2e-5;
-  m.specific_heat = 450;
-  m.thermal_conductivity = 50;
-  return m;
-}
+using test::steel;
 
 /// A distorted mesh of [0,1]^d: n cells per axis, interior nodes moved by up to 0.2 h (small
 /// enough that every cell stays convex; the kernels throw on an inverted cell).

@@ -26,8 +26,7 @@ struct QuadraturePoint {
 
 /// Shape function values N (n) and reference gradients dN (n × dim) at xi.
 void shape(CellType t, const std::array<double, 3>& xi, Eigen::VectorXd& n, Eigen::MatrixXd& dn);
-void shape(FacetType t, const std::array<double, 3>& xi, Eigen::VectorXd& n,
-           Eigen::MatrixXd& dn);
+void shape(FacetType t, const std::array<double, 3>& xi, Eigen::VectorXd& n, Eigen::MatrixXd& dn);
 
 /// Node coordinates of one element, one row per node, `dim` columns.
 using Coords = Eigen::MatrixXd;
@@ -57,8 +56,8 @@ using Func = std::function<double(const mesh::Point&)>;
 /// Cauchy stress σ(u) − β(θ − θ₀)I at the cell centre (3×3; plane strain gives σ_zz ≠ 0).
 /// u_e: interleaved nodal displacements, dtheta_e: nodal θ − θ₀.
 [[nodiscard]] Eigen::Matrix3d cell_stress(CellType t, const Coords& x, const Eigen::VectorXd& u_e,
-                                          const Eigen::VectorXd& dtheta_e, double lambda,
-                                          double mu, double beta);
+                                          const Eigen::VectorXd& dtheta_e, double lambda, double mu,
+                                          double beta);
 /// Heat flux −κ∇θ at the cell centre (3 components, z = 0 in 2D).
 [[nodiscard]] Eigen::Vector3d cell_heat_flux(CellType t, const Coords& x,
                                              const Eigen::VectorXd& theta_e, double kappa);

@@ -9,40 +9,56 @@ namespace tc::mesh {
 
 int n_nodes(CellType t) {
   switch (t) {
-    case CellType::Tri3: return 3;
-    case CellType::Quad4: return 4;
-    case CellType::Tet4: return 4;
-    case CellType::Hex8: return 8;
+    case CellType::Tri3:
+      return 3;
+    case CellType::Quad4:
+      return 4;
+    case CellType::Tet4:
+      return 4;
+    case CellType::Hex8:
+      return 8;
   }
   return 0;
 }
 
 int n_nodes(FacetType t) {
   switch (t) {
-    case FacetType::Line2: return 2;
-    case FacetType::Tri3: return 3;
-    case FacetType::Quad4: return 4;
+    case FacetType::Line2:
+      return 2;
+    case FacetType::Tri3:
+      return 3;
+    case FacetType::Quad4:
+      return 4;
   }
   return 0;
 }
 
-int dimension(CellType t) { return (t == CellType::Tri3 || t == CellType::Quad4) ? 2 : 3; }
+int dimension(CellType t) {
+  return (t == CellType::Tri3 || t == CellType::Quad4) ? 2 : 3;
+}
 
 const char* name(CellType t) {
   switch (t) {
-    case CellType::Tri3: return "Tri3";
-    case CellType::Quad4: return "Quad4";
-    case CellType::Tet4: return "Tet4";
-    case CellType::Hex8: return "Hex8";
+    case CellType::Tri3:
+      return "Tri3";
+    case CellType::Quad4:
+      return "Quad4";
+    case CellType::Tet4:
+      return "Tet4";
+    case CellType::Hex8:
+      return "Hex8";
   }
   return "?";
 }
 
 const char* name(FacetType t) {
   switch (t) {
-    case FacetType::Line2: return "Line2";
-    case FacetType::Tri3: return "Tri3";
-    case FacetType::Quad4: return "Quad4";
+    case FacetType::Line2:
+      return "Line2";
+    case FacetType::Tri3:
+      return "Tri3";
+    case FacetType::Quad4:
+      return "Quad4";
   }
   return "?";
 }

@@ -4,6 +4,8 @@
 
 namespace tc::physics {
 
-int TimeSettings::n_steps() const { return static_cast<int>(std::lround(end / step)); }
+int TimeSettings::n_steps() const {
+  return static_cast<int>(std::lround(end / step));
+}
 
 }  // namespace tc::physics

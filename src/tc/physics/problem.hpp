@@ -19,8 +19,8 @@ enum class Scheme { Dynamic, Quasistatic };
 
 struct TimeSettings {
   Scheme scheme = Scheme::Dynamic;
-  double step = 0;  // τ [s]
-  double end = 0;   // T [s]
+  double step = 0;                    // τ [s]
+  double end = 0;                     // T [s]
   [[nodiscard]] int n_steps() const;  // round(end / step)
 };
 
@@ -35,7 +35,7 @@ struct Body {
   std::string material_name;
   fem::Material material;
   mesh::Mesh mesh;
-  double initial_temperature = 0;           // θ at t = 0 [K]
+  double initial_temperature = 0;            // θ at t = 0 [K]
   std::array<double, 3> initial_velocity{};  // u̇ at t = 0
   std::array<TimeTable, 3> body_force{};     // f of (2.1) [N/m³]
   TimeTable heat_source{0.0};                // r of (2.8) [W/m³]
