@@ -127,6 +127,11 @@ struct MmsCase {
   const char* name;
 };
 
+// Readable test names in ctest (gtest would print the struct's bytes).
+void PrintTo(const MmsCase& c, std::ostream* os) {
+  *os << c.name;
+}
+
 class Mms : public ::testing::TestWithParam<MmsCase> {};
 
 TEST_P(Mms, ObservedOrders) {
