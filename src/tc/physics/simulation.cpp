@@ -169,11 +169,12 @@ void Simulation::support_forces(int b, core::Vector& r) const {
     s.dtheta.shift(-problem_.physics.reference_temperature);
     m.coupling_u_theta.mult_add(s.dtheta, r);
   }
-  auto rv = r.view();
-  auto fv = f.view();
-  std::vector<char> constrained(sys.n_u(), 0);
-  for (const PetscInt d : sys.u_dirichlet_dofs()) constrained[d] = 1;
-  for (PetscInt i = 0; i < sys.n_u(); ++i) rv[i] = constrained[i] ? rv[i] : fv[i];
+  {  // f is scratch: overwrite its constrained entries with the support forces, keep the rest
+    auto rv = r.view();
+    auto fv = f.view();
+    for (const PetscInt d : sys.u_dirichlet_dofs()) fv[d] = rv[d];
+  }
+  r.copy_from(f);
 }
 
 int Simulation::couple_body(int b) {
