@@ -2,6 +2,12 @@
 function(tc_layer name)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  if(NOT sources)  # a layer being built up may be headers only
+    add_library(tc_${name} INTERFACE)
+    target_include_directories(tc_${name} INTERFACE ${PROJECT_SOURCE_DIR}/src)
+    target_link_libraries(tc_${name} INTERFACE ${ARG_DEPS})
+    return()
+  endif()
   add_library(tc_${name} STATIC ${sources})
   target_include_directories(tc_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
   target_link_libraries(tc_${name} PUBLIC ${ARG_DEPS} PRIVATE tc_warnings)

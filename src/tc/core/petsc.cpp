@@ -67,16 +67,45 @@ Vector Vector::from(std::span<const double> values) {
   return v;
 }
 
+Vector Vector::distributed(MPI_Comm comm, PetscInt local_size) {
+  Vector v;
+  TC_PETSC(VecCreateMPI(comm, local_size, PETSC_DETERMINE, v.v_.out()));
+  TC_PETSC(VecSet(v.get(), 0.0));
+  return v;
+}
+
+Vector Vector::adopt(::Vec v) {
+  Vector out;
+  *out.v_.out() = v;
+  return out;
+}
+
 PetscInt Vector::size() const {
   PetscInt n = 0;
   TC_PETSC(VecGetSize(get(), &n));
   return n;
 }
 
+PetscInt Vector::local_size() const {
+  PetscInt n = 0;
+  TC_PETSC(VecGetLocalSize(get(), &n));
+  return n;
+}
+
+MPI_Comm Vector::comm() const {
+  return PetscObjectComm(reinterpret_cast<PetscObject>(get()));
+}
+
 Vector Vector::clone() const {
+  Vector c = duplicate();
+  TC_PETSC(VecCopy(get(), c.get()));
+  return c;
+}
+
+Vector Vector::duplicate() const {
   Vector c;
   TC_PETSC(VecDuplicate(get(), c.v_.out()));
-  TC_PETSC(VecCopy(get(), c.get()));
+  TC_PETSC(VecSet(c.get(), 0.0));
   return c;
 }
 
@@ -117,22 +146,22 @@ double Vector::sum() const {
   return s;
 }
 
+double Vector::max_abs() const {
+  PetscReal n = 0;
+  TC_PETSC(VecNorm(get(), NORM_INFINITY, &n));
+  return n;
+}
+
 std::vector<double> Vector::to_std() const {
-  const PetscScalar* a = nullptr;
-  TC_PETSC(VecGetArrayRead(get(), &a));
-  std::vector<double> out(a, a + size());
-  TC_PETSC(VecRestoreArrayRead(get(), &a));
-  return out;
+  auto r = read();
+  return {r.span().begin(), r.span().end()};
 }
 
 bool Vector::all_finite() const {
-  const PetscScalar* a = nullptr;
-  const PetscInt n = size();
-  TC_PETSC(VecGetArrayRead(get(), &a));
-  bool ok = true;
-  for (PetscInt i = 0; i < n && ok; ++i) ok = std::isfinite(a[i]);
-  TC_PETSC(VecRestoreArrayRead(get(), &a));
-  return ok;
+  // NaN propagates through the sum of |x_i| and Inf stays Inf: one collective reduction.
+  PetscReal n1 = 0;
+  TC_PETSC(VecNorm(get(), NORM_1, &n1));
+  return std::isfinite(n1);
 }
 
 Vector::View::View(::Vec v) : v_(v) {
@@ -142,6 +171,15 @@ Vector::View::View(::Vec v) : v_(v) {
 
 Vector::View::~View() {
   (void)VecRestoreArray(v_, &data_);
+}
+
+Vector::ReadView::ReadView(::Vec v) : v_(v) {
+  TC_PETSC(VecGetArrayRead(v_, &data_));
+  TC_PETSC(VecGetLocalSize(v_, &n_));
+}
+
+Vector::ReadView::~ReadView() {
+  (void)VecRestoreArrayRead(v_, &data_);
 }
 
 // ---------------------------------------------------------------------- SparseMatrix

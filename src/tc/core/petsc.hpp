@@ -61,16 +61,24 @@ class Handle {
   H h_ = nullptr;
 };
 
-/// A sequential (per-rank) dense vector of doubles.
+/// A dense vector of doubles: sequential (per rank) by default, or distributed over the ranks
+/// of a communicator (the dual vectors of the QP layer).
 class Vector {
  public:
   Vector() = default;
   explicit Vector(PetscInt n);  // zero-initialised, on PETSC_COMM_SELF
   [[nodiscard]] static Vector from(std::span<const double> values);
+  /// Zero-initialised, `local_size` entries on this rank of `comm` (collective).
+  [[nodiscard]] static Vector distributed(MPI_Comm comm, PetscInt local_size);
+  /// Takes ownership of an existing PETSc vector (one reference).
+  [[nodiscard]] static Vector adopt(::Vec v);
 
   [[nodiscard]] ::Vec get() const { return v_.get(); }
-  [[nodiscard]] PetscInt size() const;
-  [[nodiscard]] Vector clone() const;  // same layout and values
+  [[nodiscard]] PetscInt size() const;  // global size
+  [[nodiscard]] PetscInt local_size() const;
+  [[nodiscard]] MPI_Comm comm() const;
+  [[nodiscard]] Vector clone() const;      // same layout and values
+  [[nodiscard]] Vector duplicate() const;  // same layout, zero values
   void zero();
   void fill(double value);
   void copy_from(const Vector& other);
@@ -80,8 +88,9 @@ class Vector {
   [[nodiscard]] double dot(const Vector& other) const;
   [[nodiscard]] double norm() const;  // 2-norm
   [[nodiscard]] double sum() const;
-  [[nodiscard]] std::vector<double> to_std() const;
-  [[nodiscard]] bool all_finite() const;
+  [[nodiscard]] double max_abs() const;              // the infinity norm
+  [[nodiscard]] std::vector<double> to_std() const;  // the local entries
+  [[nodiscard]] bool all_finite() const;             // collective
 
   /// Read/write access to the local entries for the lifetime of the view.
   class View {
@@ -99,6 +108,23 @@ class Vector {
     PetscInt n_ = 0;
   };
   [[nodiscard]] View view() { return View(get()); }
+
+  /// Read-only access to the local entries for the lifetime of the view.
+  class ReadView {
+   public:
+    explicit ReadView(::Vec v);
+    ~ReadView();
+    ReadView(const ReadView&) = delete;
+    ReadView& operator=(const ReadView&) = delete;
+    double operator[](PetscInt i) const { return data_[i]; }
+    [[nodiscard]] std::span<const double> span() const { return {data_, static_cast<size_t>(n_)}; }
+
+   private:
+    ::Vec v_;
+    const double* data_ = nullptr;
+    PetscInt n_ = 0;
+  };
+  [[nodiscard]] ReadView read() const { return ReadView(get()); }
 
  private:
   Handle<::Vec, VecDestroy> v_;

@@ -1,0 +1,237 @@
+#include "tc/qp/mpgp.hpp"
+
+#include <fmt/format.h>
+
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+namespace tc::qp {
+
+const char* name(QpStatus s) {
+  switch (s) {
+    case QpStatus::converged:
+      return "converged";
+    case QpStatus::max_iterations:
+      return "max_iterations";
+    case QpStatus::breakdown:
+      return "breakdown";
+  }
+  return "?";
+}
+
+double objective_from_gradient(const Vector& x, const Vector& g, const Vector& d) {
+  // g = Fx − d ⇒ xᵀFx = xᵀ(g + d) ⇒ f = ½ xᵀ(g + d) − xᵀd = ½ xᵀ(g − d).
+  return 0.5 * (x.dot(g) - x.dot(d));
+}
+
+Mpgp::Mpgp(const LinearOperator& f, const FeasibleSet& set, QpOptions options)
+    : f_(f), set_(set), options_(options) {}
+
+Mprgp::Mprgp(const LinearOperator& f, const FeasibleSet& set, QpOptions options)
+    : impl_(f, set, options) {
+  assert(!set.has_discs() && "discs need Mpgp");
+}
+
+namespace {
+
+/// The work vectors and counters of one solve; the steps below are the three moves of the
+/// algorithm (Dostál 2009, Alg. 5.8; Dostál & Kozubek 2012, Alg. 3.1).
+struct State {
+  const LinearOperator& f;
+  const FeasibleSet& set;
+  const QpOptions& opt;
+  const Vector& d;
+  Vector& x;
+  Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save;
+  double alpha_bar = 0;
+  QpResult r;
+
+  State(const LinearOperator& f_, const FeasibleSet& s, const QpOptions& o, const Vector& d_,
+        Vector& x_)
+      : f(f_),
+        set(s),
+        opt(o),
+        d(d_),
+        x(x_),
+        g(x_.duplicate()),
+        phi(g.duplicate()),
+        beta(g.duplicate()),
+        gp(g.duplicate()),
+        p(g.duplicate()),
+        fp(g.duplicate()),
+        z(g.duplicate()),
+        work(g.duplicate()),
+        x_save(g.duplicate()),
+        g_save(g.duplicate()) {}
+
+  void apply(const Vector& in, Vector& out) {
+    f.apply(in, out);
+    ++r.operator_applications;
+  }
+  void gradient() {  // g = F x − d
+    apply(x, g);
+    g.axpy(-1.0, d);
+  }
+  void split() { set.split_gradient(x, g, phi, beta, gp); }
+  /// The search direction in the face: φ, or the masked preconditioned φ.
+  void precondition() {
+    if (!opt.preconditioner) {
+      z.copy_from(phi);
+      return;
+    }
+    opt.preconditioner->apply(phi, z);
+    set.restrict_to_free(x, z);
+  }
+  /// Dostál's proportioning test ‖β‖² ≤ Γ² g̃ᵀφ with the reduced free gradient
+  /// g̃ = (x − P(x − ᾱ φ))/ᾱ, which never lets a step of length ᾱ leave the set.
+  bool proportional() {
+    work.copy_from(x);
+    work.axpy(-alpha_bar, phi);
+    set.project(work);
+    work.axpy(-1.0, x);  // = −ᾱ g̃
+    const double reduced = -work.dot(phi) / alpha_bar;
+    return beta.dot(beta) <= opt.gamma * opt.gamma * reduced;
+  }
+
+  /// A conjugate gradient step, or an expansion step when CG would leave the set.
+  /// Returns false on breakdown (F not positive definite on p).
+  bool cg_or_expansion() {
+    apply(p, fp);
+    const double pfp = p.dot(fp);
+    if (!(pfp > 0)) return false;
+    const double a_cg = g.dot(p) / pfp;
+    const double a_f = set.max_step(x, p);
+    if (a_cg <= a_f) {
+      ++r.cg_steps;
+      x.axpy(-a_cg, p);
+      g.axpy(-a_cg, fp);
+      split();
+      precondition();
+      const double b = z.dot(fp) / pfp;  // keeps p F-conjugate to the previous direction
+      p.scale(-b);
+      p.axpy(1.0, z);
+      return true;
+    }
+    ++r.expansion_steps;
+    set.advance(x, p, a_f);  // as far as feasible: components reaching the boundary bind
+    g.axpy(-a_f, fp);
+    split();
+    expand(opt.expansion == Expansion::free_gradient ? phi : g);
+    return true;
+  }
+
+  /// The fixed-step projected gradient move that follows the feasible step. f cannot rise
+  /// for ᾱ ≤ 2/λ_max; if it does, λ_max was underestimated: undo, halve ᾱ, go on. The change
+  /// Δf = ½ sᵀ(g_old + g_new), s = x_new − x_old, is exact for a quadratic and avoids
+  /// subtracting two values of f near the minimum.
+  void expand(const Vector& direction) {
+    x_save.copy_from(x);
+    g_save.copy_from(g);
+    x.axpy(-alpha_bar, direction);
+    set.project(x);
+    gradient();
+    work.copy_from(x);
+    work.axpy(-1.0, x_save);  // s
+    const double change = 0.5 * (work.dot(g_save) + work.dot(g));
+    // s itself carries the round-off of x − x_old (ε‖x‖ per entry), so Δf is known to
+    // ~ε‖x‖‖g‖ only; an underestimated λ_max raises f by O(ᾱ‖g‖²), far above that.
+    const double noise = 1e3 * std::numeric_limits<double>::epsilon() * x.norm() * g_save.norm();
+    if (change > noise) {
+      x.copy_from(x_save);
+      g.copy_from(g_save);
+      alpha_bar *= 0.5;
+      ++r.step_halvings;
+    }
+    split();
+    precondition();
+    p.copy_from(z);
+  }
+
+  /// A step along the chopped gradient β, releasing components from the boundary. With
+  /// upper bounds or discs it may leave the set: then it stops at the boundary, and when it
+  /// cannot move at all (a disc's tangent leaves the circle at once) a projected gradient
+  /// step of length ᾱ takes its place.
+  bool proportioning() {
+    ++r.proportioning_steps;
+    const double a_f = set.chopped_step_may_leave() ? set.max_step(x, beta) : infinity;
+    if (a_f <= 0) {
+      // The active components must move, so the full gradient, not φ (zero on them).
+      expand(g);
+      return true;
+    }
+    apply(beta, fp);
+    const double bfb = beta.dot(fp);
+    if (!(bfb > 0)) return false;
+    // gᵀβ = βᵀβ exactly for the chopped gradient of intervals and discs; computed as gᵀβ
+    // it would carry the round-off of β's normal part on a circle (ε‖g‖‖β‖), which for a
+    // small β can even change its sign.
+    const double a = std::min(beta.dot(beta) / bfb, a_f);
+    if (a < a_f)
+      x.axpy(-a, beta);
+    else
+      set.advance(x, beta, a);
+    g.axpy(-a, fp);
+    split();
+    precondition();
+    p.copy_from(z);
+    return true;
+  }
+};
+
+}  // namespace
+
+QpResult Mpgp::solve(const Vector& d, Vector& x) const {
+  State s(f_, set_, options_, d, x);
+  double lambda_max = options_.max_eigenvalue;
+  if (!(lambda_max > 0)) {
+    const auto est = estimate_max_eigenvalue(f_, options_.lanczos_steps);
+    s.r.operator_applications += est.applications;
+    lambda_max = est.bound;
+  }
+  s.r.max_eigenvalue = lambda_max;
+  s.alpha_bar = options_.alpha_factor / lambda_max;
+  s.r.tolerance = std::max(options_.rtol * d.norm(), options_.atol);
+
+  set_.project(x);
+  s.gradient();
+  s.split();
+  s.precondition();
+  s.p.copy_from(s.z);
+
+  for (;;) {
+    s.r.projected_gradient = s.gp.norm();
+    if (!std::isfinite(s.r.projected_gradient) || !std::isfinite(s.alpha_bar)) {
+      s.r.status = QpStatus::breakdown;
+      s.r.message = fmt::format("non-finite projected gradient at iteration {}", s.r.iterations);
+      break;
+    }
+    if (s.r.projected_gradient <= s.r.tolerance) {
+      s.r.status = QpStatus::converged;
+      break;
+    }
+    if (s.r.iterations >= options_.max_iterations) {
+      s.r.status = QpStatus::max_iterations;
+      s.r.message = fmt::format(
+          "not converged in {} iterations: projected gradient {:.3e} > tolerance {:.3e} "
+          "({} applications of F)",
+          s.r.iterations, s.r.projected_gradient, s.r.tolerance, s.r.operator_applications);
+      break;
+    }
+    const bool prop = s.proportional();
+    const bool ok = prop ? s.cg_or_expansion() : s.proportioning();
+    ++s.r.iterations;
+    if (!ok) {
+      s.r.status = QpStatus::breakdown;
+      s.r.message = fmt::format(
+          "F is not positive definite on the search direction at iteration {} (projected "
+          "gradient {:.3e})",
+          s.r.iterations, s.r.projected_gradient);
+      s.r.projected_gradient = s.gp.norm();
+      break;
+    }
+  }
+  return s.r;
+}
+
+}  // namespace tc::qp

@@ -1,0 +1,76 @@
+#pragma once
+// MPRGP (Dostál & Schöberl 2005) and MPGP (Dostál & Kozubek 2012): minimise
+//   f(λ) = ½ λᵀFλ − λᵀd   over a product of simple convex sets Ω   (the dual QP (6.9)).
+// Conjugate gradients in the face of the current active set, proportioning steps that release
+// components when the chopped gradient dominates, and expansion steps — a maximal feasible
+// step followed by a projected gradient step of fixed length ᾱ ∈ (0, 2/‖F‖] — that add
+// them. The rate of convergence is bounded in terms of the spectrum of F only, which is what
+// makes the FETI solver numerically scalable.
+#include <string>
+
+#include "tc/qp/operator.hpp"
+#include "tc/qp/sets.hpp"
+
+namespace tc::qp {
+
+enum class Expansion {
+  free_gradient,  // x ← P(x − ᾱ φ(x)): the original MPRGP step
+  full_gradient,  // x ← P(x − ᾱ g(x)): also moves active components (Kružík et al. 2020)
+};
+
+struct QpOptions {
+  double rtol = 1e-8;         // stop when ‖g^P‖ ≤ max(rtol ‖d‖, atol)
+  double atol = 1e-30;        // absolute floor (d = 0 has the solution of the set alone)
+  int max_iterations = 2000;  // iterations (CG, expansion and proportioning steps)
+  double gamma = 1.0;         // proportioning parameter Γ
+  double alpha_factor = 1.9;  // ᾱ = alpha_factor / λ_max(F); theory allows (0, 2]
+  double max_eigenvalue = 0;  // λ_max(F) if known (e.g. reused across steps); 0 = estimate
+  int lanczos_steps = 20;     // for the estimate
+  Expansion expansion = Expansion::free_gradient;
+  /// Optional SPD preconditioner applied to the free gradient in the face (masked); null = none.
+  const LinearOperator* preconditioner = nullptr;
+};
+
+enum class QpStatus { converged, max_iterations, breakdown };
+[[nodiscard]] const char* name(QpStatus s);
+
+struct [[nodiscard]] QpResult {
+  QpStatus status = QpStatus::breakdown;
+  int iterations = 0;
+  int operator_applications = 0;  // including the eigenvalue estimate
+  double projected_gradient = 0;  // final ‖g^P‖
+  double tolerance = 0;           // the ‖g^P‖ required
+  double max_eigenvalue = 0;      // the λ_max used (to reuse)
+  int cg_steps = 0, expansion_steps = 0, proportioning_steps = 0;
+  int step_halvings = 0;  // ᾱ halved after an expansion that raised f (λ_max underestimated)
+  std::string message;    // why it stopped, with the numbers
+  [[nodiscard]] bool converged() const { return status == QpStatus::converged; }
+};
+
+/// The proportioning solver on any FeasibleSet: with intervals only it is MPRGP, with discs
+/// MPGP. x holds the initial guess (projected onto Ω first) and returns the solution.
+class Mpgp {
+ public:
+  Mpgp(const LinearOperator& f, const FeasibleSet& set, QpOptions options = {});
+  QpResult solve(const Vector& d, Vector& x) const;
+
+ private:
+  const LinearOperator& f_;
+  const FeasibleSet& set_;
+  QpOptions options_;
+};
+
+/// MPRGP: the same algorithm on bound and interval constraints (no discs).
+class Mprgp {
+ public:
+  Mprgp(const LinearOperator& f, const FeasibleSet& set, QpOptions options = {});
+  QpResult solve(const Vector& d, Vector& x) const { return impl_.solve(d, x); }
+
+ private:
+  Mpgp impl_;
+};
+
+/// ½ xᵀFx − xᵀd from the gradient g = Fx − d, without another application of F.
+[[nodiscard]] double objective_from_gradient(const Vector& x, const Vector& g, const Vector& d);
+
+}  // namespace tc::qp

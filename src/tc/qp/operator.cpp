@@ -1,0 +1,73 @@
+#include "tc/qp/operator.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace tc::qp {
+
+void MatrixOperator::apply(const Vector& x, Vector& y) const {
+  TC_PETSC(MatMult(a_, x.get(), y.get()));
+}
+
+Vector MatrixOperator::make_vector() const {
+  ::Vec v = nullptr;
+  TC_PETSC(MatCreateVecs(a_, &v, nullptr));
+  auto out = Vector::adopt(v);
+  out.zero();
+  return out;
+}
+
+namespace {
+/// A start vector with no special structure, identical for every rank count: entry i of the
+/// global numbering gets a fixed pseudo-random value, so 1 and N ranks estimate the same λ.
+void fill_start_vector(Vector& v) {
+  PetscInt begin = 0, end = 0;
+  TC_PETSC(VecGetOwnershipRange(v.get(), &begin, &end));
+  auto view = v.view();
+  for (PetscInt i = begin; i < end; ++i) {
+    const auto h = static_cast<std::uint64_t>(i + 1) * 0x9E3779B97F4A7C15ULL;
+    view[i - begin] = 0.5 + static_cast<double>((h >> 11) % 1000003) / 1000003.0;
+  }
+}
+}  // namespace
+
+EigenEstimate estimate_max_eigenvalue(const LinearOperator& f, int steps) {
+  Vector q = f.make_vector(), q_prev = f.make_vector(), w = f.make_vector();
+  fill_start_vector(q);
+  q.scale(1.0 / q.norm());
+  steps = std::max<PetscInt>(1, std::min<PetscInt>(steps, q.size()));
+
+  std::vector<double> alpha, beta;  // the Lanczos tridiagonal T_k
+  EigenEstimate est;
+  double beta_prev = 0;
+  for (int k = 0; k < steps; ++k) {
+    f.apply(q, w);
+    ++est.applications;
+    const double a = w.dot(q);
+    w.axpy(-a, q);
+    if (k > 0) w.axpy(-beta_prev, q_prev);
+    alpha.push_back(a);
+    const double b = w.norm();
+    beta.push_back(b);
+    if (!(b > 1e-12 * std::abs(a))) break;  // an invariant subspace: T_k is exact
+    q_prev.copy_from(q);
+    q.copy_from(w);
+    q.scale(1.0 / b);
+    beta_prev = b;
+  }
+  const auto n = static_cast<Eigen::Index>(alpha.size());
+  Eigen::VectorXd diag = Eigen::Map<Eigen::VectorXd>(alpha.data(), n);
+  Eigen::VectorXd sub =
+      Eigen::Map<Eigen::VectorXd>(beta.data(), n).head(std::max<Eigen::Index>(n - 1, 0));
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;
+  eig.computeFromTridiagonal(diag, sub, Eigen::ComputeEigenvectors);
+  est.ritz = eig.eigenvalues()(n - 1);
+  // ‖F y − θ y‖ = β_k |s_k| for the Ritz pair (θ, y = Q s): an eigenvalue lies within it.
+  const double residual = std::abs(beta.back() * eig.eigenvectors()(n - 1, n - 1));
+  est.bound = est.ritz + residual;
+  return est;
+}
+
+}  // namespace tc::qp

@@ -1,0 +1,164 @@
+#include "tc/qp/sets.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cassert>
+
+namespace tc::qp {
+
+namespace {
+double all_min(double local, MPI_Comm comm) {
+  double global = local;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, comm);
+  return global;
+}
+double all_max(double local, MPI_Comm comm) {
+  double global = local;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return global;
+}
+std::array<double, 2> pair(std::span<const double> v, const DiscBlock& b) {
+  return {v[b.first], v[b.second]};
+}
+}  // namespace
+
+FeasibleSet::FeasibleSet(const Vector& layout)
+    : intervals_(static_cast<size_t>(layout.local_size())),
+      in_disc_(static_cast<size_t>(layout.local_size()), 0) {}
+
+void FeasibleSet::set_interval(PetscInt i, Interval iv) {
+  assert(iv.lo <= iv.hi);
+  intervals_.at(static_cast<size_t>(i)) = iv;
+}
+
+void FeasibleSet::add_disc(DiscBlock block) {
+  assert(block.disc.r >= 0 && block.first != block.second);
+  in_disc_.at(static_cast<size_t>(block.first)) = 1;
+  in_disc_.at(static_cast<size_t>(block.second)) = 1;
+  discs_.push_back(block);
+}
+
+bool FeasibleSet::chopped_step_may_leave() const {
+  if (!discs_.empty()) return true;
+  for (size_t i = 0; i < intervals_.size(); ++i)
+    if (!in_disc_[i] && intervals_[i].hi < infinity) return true;
+  return false;
+}
+
+void FeasibleSet::project(Vector& x) const {
+  auto v = x.view();
+  for (size_t i = 0; i < intervals_.size(); ++i)
+    if (!in_disc_[i]) v[i] = intervals_[i].project(v[i]);
+  for (const auto& b : discs_) {
+    const auto p = b.disc.project({v[b.first], v[b.second]});
+    v[b.first] = p[0];
+    v[b.second] = p[1];
+  }
+}
+
+double FeasibleSet::violation(const Vector& x) const {
+  const auto r = x.read();
+  const auto v = r.span();
+  double worst = 0;
+  for (size_t i = 0; i < intervals_.size(); ++i)
+    if (!in_disc_[i]) worst = std::max({worst, intervals_[i].lo - v[i], v[i] - intervals_[i].hi});
+  for (const auto& b : discs_) {
+    const auto p = pair(v, b);
+    worst = std::max(worst, std::hypot(p[0], p[1]) - b.disc.r);
+  }
+  return all_max(worst, x.comm());
+}
+
+void FeasibleSet::split_gradient(const Vector& x, const Vector& g, Vector& free, Vector& chopped,
+                                 Vector& projected) const {
+  const auto rx = x.read();
+  const auto rg = g.read();
+  const auto xv = rx.span(), gv = rg.span();
+  auto fv = free.view();
+  auto cv = chopped.view();
+  auto pv = projected.view();
+  for (size_t i = 0; i < intervals_.size(); ++i) {
+    if (in_disc_[i]) continue;
+    const auto& iv = intervals_[i];
+    const bool act = iv.active(xv[i]);
+    fv[i] = act ? 0.0 : gv[i];
+    cv[i] = act ? iv.chopped(xv[i], gv[i]) : 0.0;
+    pv[i] = fv[i] + cv[i];
+  }
+  for (const auto& b : discs_) {
+    const auto xp = pair(xv, b), gp = pair(gv, b);
+    const bool act = b.disc.active(xp);
+    const auto c = act ? b.disc.chopped(xp, gp) : std::array<double, 2>{0.0, 0.0};
+    fv[b.first] = act ? 0.0 : gp[0];
+    fv[b.second] = act ? 0.0 : gp[1];
+    cv[b.first] = c[0];
+    cv[b.second] = c[1];
+    pv[b.first] = fv[b.first] + c[0];
+    pv[b.second] = fv[b.second] + c[1];
+  }
+}
+
+double FeasibleSet::max_step(const Vector& x, const Vector& p) const {
+  const auto rx = x.read();
+  const auto rp = p.read();
+  const auto xv = rx.span(), pv = rp.span();
+  double alpha = infinity;
+  for (size_t i = 0; i < intervals_.size(); ++i)
+    if (!in_disc_[i]) alpha = std::min(alpha, intervals_[i].max_step(xv[i], pv[i]));
+  for (const auto& b : discs_) alpha = std::min(alpha, b.disc.max_step(pair(xv, b), pair(pv, b)));
+  return std::max(all_min(alpha, x.comm()), 0.0);
+}
+
+void FeasibleSet::advance(Vector& x, const Vector& p, double alpha) const {
+  const auto rp = p.read();
+  const auto pv = rp.span();
+  auto xv = x.view();
+  // A component whose own maximal step is α (to round-off) is the one that blocked: it
+  // lands on the boundary exactly instead of 1 ulp inside or outside it.
+  const double reach = alpha * (1 + 1e-12);
+  for (size_t i = 0; i < intervals_.size(); ++i) {
+    if (in_disc_[i] || pv[i] == 0) continue;
+    const auto& iv = intervals_[i];
+    const double own = iv.max_step(xv[i], pv[i]);
+    xv[i] = own <= reach ? (pv[i] > 0 ? iv.lo : iv.hi) : iv.project(xv[i] - alpha * pv[i]);
+  }
+  for (const auto& b : discs_) {
+    const std::array<double, 2> xp{xv[b.first], xv[b.second]};
+    const auto pp = pair(pv, b);
+    if (pp[0] == 0 && pp[1] == 0) continue;
+    std::array<double, 2> y{xp[0] - alpha * pp[0], xp[1] - alpha * pp[1]};
+    if (b.disc.max_step(xp, pp) <= reach) {
+      const double n = std::hypot(y[0], y[1]);
+      if (n > 0) y = {y[0] * b.disc.r / n, y[1] * b.disc.r / n};
+    }
+    y = b.disc.project(y);
+    xv[b.first] = y[0];
+    xv[b.second] = y[1];
+  }
+}
+
+void FeasibleSet::restrict_to_free(const Vector& x, Vector& v) const {
+  const auto rx = x.read();
+  const auto xv = rx.span();
+  auto vv = v.view();
+  for (size_t i = 0; i < intervals_.size(); ++i)
+    if (!in_disc_[i] && intervals_[i].active(xv[i])) vv[i] = 0;
+  for (const auto& b : discs_)
+    if (b.disc.active(pair(xv, b))) vv[b.first] = vv[b.second] = 0;
+}
+
+PetscInt FeasibleSet::count_active(const Vector& x) const {
+  const auto rx = x.read();
+  const auto xv = rx.span();
+  PetscInt n = 0;
+  for (size_t i = 0; i < intervals_.size(); ++i)
+    if (!in_disc_[i] && intervals_[i].active(xv[i])) ++n;
+  for (const auto& b : discs_)
+    if (b.disc.active(pair(xv, b))) n += 2;
+  PetscInt total = n;
+  MPI_Allreduce(&n, &total, 1, MPIU_INT, MPI_SUM, x.comm());
+  return total;
+}
+
+}  // namespace tc::qp

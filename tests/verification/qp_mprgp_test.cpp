@@ -1,0 +1,285 @@
+// MPRGP/MPGP against QPs whose solution is known by construction (tests/support/
+// qp_problems.hpp), and the KKT conditions checked independently of the solver's own
+// gradient splitting: feasibility, the natural residual ‖x − P(x − g)‖ and complementarity.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "support/qp_problems.hpp"
+#include "tc/qp/mpgp.hpp"
+
+namespace tc::test {
+namespace {
+
+using qp::QpOptions;
+
+struct Outcome {
+  qp::QpResult result;
+  double error = 0;            // ‖x − x*‖∞
+  double residual = 0;         // ‖x − P(x − g)‖₂ with g = Fx − d recomputed
+  double violation = 0;        // distance outside the set
+  double complementarity = 0;  // |Σ (x − x_proj_bound)·g| over the active blocks, see below
+};
+
+Outcome solve(QpProblem& p, QpOptions opt = {}) {
+  qp::MatrixOperator f(p.f.get());
+  Outcome o;
+  core::Vector x = p.x_star.duplicate();
+  o.result = qp::Mpgp(f, p.set, opt).solve(p.d, x);
+  core::Vector g = x.duplicate(), y = x.duplicate(), e = x.clone();
+  f.apply(x, g);
+  g.axpy(-1.0, p.d);
+  y.copy_from(x);
+  y.axpy(-1.0, g);
+  p.set.project(y);
+  y.axpy(-1.0, x);
+  o.residual = y.norm();
+  e.axpy(-1.0, p.x_star);
+  o.error = e.max_abs();
+  o.violation = p.set.violation(x);
+  // xᵀg − x*ᵀg: at the solution ⟨g, x' − x⟩ ≥ 0 ∀x' ∈ Ω; with x' = x* it is ≈ 0 when x ≈ x*.
+  o.complementarity = std::abs(x.dot(g) - p.x_star.dot(g));
+  return o;
+}
+
+// ---------------------------------------------------------------- small, known solutions
+
+struct Case {
+  const char* name;
+  QpKind kind;
+  double active;
+  double degenerate;
+};
+
+class KnownSolution : public ::testing::TestWithParam<Case> {};
+
+TEST_P(KnownSolution, ReachesTheSolutionBuiltIn) {
+  const auto c = GetParam();
+  auto p = random_qp(PETSC_COMM_SELF, 12, c.kind, 100.0, c.active, c.degenerate, 7);
+  QpOptions opt;
+  opt.rtol = 1e-12;
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  // ‖x − x*‖ ≲ κ ‖g^P‖/λ_max-scale: κ ≤ 100 and ‖g^P‖ ≤ 1e-12 ‖d‖ with ‖d‖, ‖x*‖ = O(1..10)
+  // leave 1e-9; 1e-8 is the margin.
+  EXPECT_LT(o.error, 1e-8);
+  // Iterates are projected or snapped; a disc projection lands on r to a few ulps.
+  EXPECT_LE(o.violation, 1e-14);
+  EXPECT_LT(o.residual, 1e-10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Qp, KnownSolution,
+                         ::testing::Values(Case{"all_free", QpKind::free, 0.0, 0.0},
+                                           Case{"all_active", QpKind::lower, 1.0, 0.0},
+                                           Case{"none_active", QpKind::lower, 0.0, 0.0},
+                                           Case{"mixed", QpKind::lower, 0.5, 0.0},
+                                           Case{"degenerate", QpKind::lower, 0.6, 0.5},
+                                           Case{"box_2d_friction", QpKind::box, 0.5, 0.0},
+                                           Case{"box_all_at_bounds", QpKind::box, 1.0, 0.0},
+                                           Case{"disc_mixed", QpKind::disc, 0.5, 0.0},
+                                           Case{"disc_on_circle", QpKind::disc, 1.0, 0.0},
+                                           Case{"disc_inside", QpKind::disc, 0.0, 0.0},
+                                           Case{"disc_degenerate", QpKind::disc, 1.0, 0.5},
+                                           Case{"contact_3d", QpKind::contact3d, 0.5, 0.0}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Qp, DiscAtItsCentreWithZeroRadius) {
+  // One disc of radius 0 (γ = 0: a node out of contact has no friction): x = 0 whatever d.
+  core::Vector layout(2);
+  qp::FeasibleSet set(layout);
+  set.add_disc({0, 1, {0.0}});
+  core::Handle<::Mat, MatDestroy> a;
+  TC_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, nullptr, a.out()));
+  const PetscInt idx[2] = {0, 1};
+  const double vals[4] = {2, 1, 1, 3};
+  TC_PETSC(MatSetValues(a.get(), 2, idx, 2, idx, vals, INSERT_VALUES));
+  TC_PETSC(MatAssemblyBegin(a.get(), MAT_FINAL_ASSEMBLY));
+  TC_PETSC(MatAssemblyEnd(a.get(), MAT_FINAL_ASSEMBLY));
+  qp::MatrixOperator f(a.get());
+  const auto d = core::Vector::from(std::vector<double>{3.0, -4.0});
+  core::Vector x = core::Vector::from(std::vector<double>{1.0, 1.0});
+  const auto r = qp::Mpgp(f, set, {}).solve(d, x);
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_EQ(x.max_abs(), 0.0);
+}
+
+TEST(Qp, TwoVariablesOnTheCircleClosedForm) {
+  // F = I, d outside the unit disc: the solution is the projection d/‖d‖ (exactly).
+  core::Vector layout(2);
+  qp::FeasibleSet set(layout);
+  set.add_disc({0, 1, {1.0}});
+  core::Handle<::Mat, MatDestroy> a;
+  TC_PETSC(MatCreateConstantDiagonal(PETSC_COMM_SELF, 2, 2, 2, 2, 1.0, a.out()));
+  qp::MatrixOperator f(a.get());
+  const auto d = core::Vector::from(std::vector<double>{3.0, 4.0});
+  core::Vector x(2);
+  QpOptions opt;
+  opt.rtol = 1e-14;
+  const auto r = qp::Mpgp(f, set, opt).solve(d, x);
+  ASSERT_TRUE(r.converged()) << r.message;
+  const auto v = x.to_std();
+  EXPECT_NEAR(v[0], 0.6, 1e-13);  // round-off of a few operations on O(1) numbers
+  EXPECT_NEAR(v[1], 0.8, 1e-13);
+}
+
+// ------------------------------------------------------------- KKT at sizes 10 … 10⁴
+
+struct KktCase {
+  QpKind kind;
+  PetscInt blocks;
+};
+
+class Kkt : public ::testing::TestWithParam<KktCase> {};
+
+TEST_P(Kkt, RandomSpdInstance) {
+  const auto c = GetParam();
+  auto p = random_qp(PETSC_COMM_SELF, c.blocks, c.kind, 1e3, 0.5, 0.1, 1234 + c.blocks);
+  QpOptions opt;
+  opt.rtol = 1e-10;
+  opt.max_iterations = 20000;
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  const double tol = o.result.tolerance;
+  EXPECT_LE(o.result.projected_gradient, tol);
+  EXPECT_LE(o.violation, 1e-14);  // a few ulps of the radius (discs), see KnownSolution
+  // The natural residual is bounded by ‖g^P‖ (componentwise for intervals and discs); the
+  // recomputed gradient differs from the updated one by round-off of ~iterations·ε‖d‖.
+  EXPECT_LE(o.residual, 2 * tol + 1e-13 * p.d.norm());
+  // κ ≤ 1e3 and ‖g^P‖ ≤ 1e-10‖d‖: the error in x is ≲ κ ‖g^P‖/λ_max ~ 1e-7·‖x*‖-scale.
+  EXPECT_LT(o.error, 1e-6);
+  EXPECT_LT(o.complementarity, 1e-6 * p.d.norm());
+}
+
+std::vector<KktCase> kkt_cases() {
+  std::vector<KktCase> out;
+  for (const auto k : {QpKind::lower, QpKind::box, QpKind::disc, QpKind::contact3d})
+    for (const PetscInt n : {10, 100, 1000, 10000}) out.push_back({k, n / block_size(k) + 1});
+  return out;
+}
+
+const char* kind_name(QpKind k) {
+  switch (k) {
+    case QpKind::free:
+      return "free";
+    case QpKind::lower:
+      return "lower";
+    case QpKind::box:
+      return "box";
+    case QpKind::disc:
+      return "disc";
+    case QpKind::contact3d:
+      return "contact3d";
+  }
+  return "?";
+}
+
+INSTANTIATE_TEST_SUITE_P(Qp, Kkt, ::testing::ValuesIn(kkt_cases()), [](const auto& info) {
+  return std::string(kind_name(info.param.kind)) + "_" +
+         std::to_string(info.param.blocks * block_size(info.param.kind));
+});
+
+// ------------------------------------------------------------------ options and failures
+
+TEST(Qp, FullGradientExpansionReachesTheSameSolution) {
+  auto p = random_qp(PETSC_COMM_SELF, 500, QpKind::contact3d, 1e3, 0.5, 0.0, 99);
+  QpOptions opt;
+  opt.rtol = 1e-10;
+  opt.expansion = qp::Expansion::full_gradient;
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  EXPECT_LT(o.error, 1e-6);  // as in Kkt
+}
+
+/// y = diag(F)⁻¹ x: Jacobi, the simplest preconditioner in face.
+class Jacobi final : public qp::LinearOperator {
+ public:
+  explicit Jacobi(::Mat a) {
+    ::Vec v = nullptr;
+    TC_PETSC(MatCreateVecs(a, &v, nullptr));
+    inv_ = core::Vector::adopt(v);
+    TC_PETSC(MatGetDiagonal(a, inv_.get()));
+    TC_PETSC(VecReciprocal(inv_.get()));
+  }
+  void apply(const core::Vector& x, core::Vector& y) const override {
+    TC_PETSC(VecPointwiseMult(y.get(), inv_.get(), x.get()));
+  }
+  [[nodiscard]] core::Vector make_vector() const override { return inv_.duplicate(); }
+
+ private:
+  core::Vector inv_;
+};
+
+TEST(Qp, PreconditioningInFaceHelpsABadlyScaledProblem) {
+  // D F D with D spanning two decades: Jacobi undoes most of the scaling.
+  auto p = random_qp(PETSC_COMM_SELF, 2000, QpKind::lower, 1e2, 0.5, 0.0, 5);
+  core::Vector s = p.d.duplicate();
+  {
+    auto v = s.view();
+    for (PetscInt i = 0; i < s.local_size(); ++i) v[i] = std::pow(10.0, std::sin(0.37 * i));
+  }
+  TC_PETSC(MatDiagonalScale(p.f.get(), s.get(), s.get()));
+  // With y = D⁻¹x the solution x* maps to D⁻¹x* and bounds at 0 stay at 0; rebuild d.
+  TC_PETSC(VecPointwiseDivide(p.x_star.get(), p.x_star.get(), s.get()));
+  TC_PETSC(VecPointwiseMult(p.g_star.get(), p.g_star.get(), s.get()));
+  TC_PETSC(MatMult(p.f.get(), p.x_star.get(), p.d.get()));
+  p.d.axpy(-1.0, p.g_star);
+
+  QpOptions plain;
+  plain.rtol = 1e-9;
+  plain.max_iterations = 50000;
+  const auto a = solve(p, plain);
+  Jacobi jacobi(p.f.get());
+  QpOptions pre = plain;
+  pre.preconditioner = &jacobi;
+  const auto b = solve(p, pre);
+  ASSERT_TRUE(a.result.converged()) << a.result.message;
+  ASSERT_TRUE(b.result.converged()) << b.result.message;
+  EXPECT_LT(b.result.operator_applications, a.result.operator_applications / 2)
+      << "plain " << a.result.operator_applications << ", Jacobi in face "
+      << b.result.operator_applications;
+  // x* has entries up to 1e2·O(1): the relative accuracy of Kkt (1e-6) on that scale.
+  EXPECT_LT(b.error, 1e-6 * p.x_star.max_abs());
+}
+
+TEST(Qp, ReportsNonConvergenceWithItsNumbers) {
+  auto p = random_qp(PETSC_COMM_SELF, 1000, QpKind::lower, 1e4, 0.5, 0.0, 3);
+  QpOptions opt;
+  opt.max_iterations = 5;
+  const auto o = solve(p, opt);
+  EXPECT_EQ(o.result.status, qp::QpStatus::max_iterations);
+  EXPECT_EQ(o.result.iterations, 5);
+  EXPECT_GT(o.result.projected_gradient, o.result.tolerance);
+  EXPECT_NE(o.result.message.find("5 iterations"), std::string::npos) << o.result.message;
+}
+
+TEST(Qp, StopsOnAnIndefiniteOperator) {
+  core::Handle<::Mat, MatDestroy> a;
+  TC_PETSC(MatCreateConstantDiagonal(PETSC_COMM_SELF, 4, 4, 4, 4, -1.0, a.out()));
+  qp::MatrixOperator f(a.get());
+  core::Vector x(4);
+  qp::FeasibleSet set(x);
+  const auto d = core::Vector::from(std::vector<double>{1, 2, 3, 4});
+  QpOptions opt;
+  opt.max_eigenvalue = 1.0;  // the estimate of an indefinite F is meaningless
+  const auto r = qp::Mpgp(f, set, opt).solve(d, x);
+  EXPECT_EQ(r.status, qp::QpStatus::breakdown);
+  EXPECT_FALSE(r.message.empty());
+}
+
+TEST(Qp, LanczosBracketsTheLargestEigenvalue) {
+  // diag(1, …, 1000): λ_max = 1000; 20 Lanczos steps find it to far better than 1 %.
+  const PetscInt n = 1000;
+  core::Handle<::Mat, MatDestroy> a;
+  TC_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 1, nullptr, a.out()));
+  for (PetscInt i = 0; i < n; ++i) TC_PETSC(MatSetValue(a.get(), i, i, i + 1.0, INSERT_VALUES));
+  TC_PETSC(MatAssemblyBegin(a.get(), MAT_FINAL_ASSEMBLY));
+  TC_PETSC(MatAssemblyEnd(a.get(), MAT_FINAL_ASSEMBLY));
+  const auto est = qp::estimate_max_eigenvalue(qp::MatrixOperator(a.get()), 20);
+  EXPECT_LE(est.ritz, 1000.0 * (1 + 1e-12));  // a Ritz value never exceeds λ_max
+  EXPECT_GE(est.bound, 1000.0 * (1 - 1e-3));
+  EXPECT_LT(est.bound, 1000.0 * 1.01);
+  EXPECT_EQ(est.applications, 20);
+}
+
+}  // namespace
+}  // namespace tc::test
