@@ -1,0 +1,87 @@
+#pragma once
+// The mechanical step with contact, dualised (6.9): for the slave and master bodies with
+// factorised A_i (4/τ²M_u + K_u, or K_u when quasistatic; Dirichlet data eliminated),
+//   A_i u_i + B_iᵀ λ = f_i,   λ ∈ M(γ),   (μ − λ)ᵀ(B u − c) ≤ 0  ∀μ ∈ M(γ),
+// where B = [B_s B_m] stacks, per contact node k, the normal row and the dim − 1 tangential
+// rows (5.3–5.4, 6.4). Eliminating u gives the QP in λ:
+//   min ½λᵀFλ − λᵀd,  F = Σ_i B_i A_i⁻¹ B_iᵀ,  d = Σ_i B_i A_i⁻¹ f_i − c,
+// over λ_n,k ≥ 0 and ‖λ_τ,k‖ ≤ 𝔉γ_k (an interval in 2D, a disc in 3D), and then
+// u_i = A_i⁻¹(f_i − B_iᵀλ). F is applied matrix-free (two solves per application) or formed
+// explicitly (m solves per body) when the interface is small; which one is reported.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tc/physics/constrained_solver.hpp"
+#include "tc/qp/mpgp.hpp"
+
+namespace tc::physics {
+
+/// The constraint rows of one step in node-major order: row dim·k is the normal of contact
+/// node k, row dim·k + 1 + l its tangent l. Columns are each body's displacement dofs.
+struct ContactRows {
+  int dim = 3;
+  core::SparseMatrix slave, master;
+  std::vector<double> gap;  // weighted gap g_k ≥ 0 when open, in the configuration of B
+  [[nodiscard]] PetscInt n_nodes() const { return static_cast<PetscInt>(gap.size()); }
+  [[nodiscard]] PetscInt n_rows() const { return dim * n_nodes(); }
+};
+
+enum class DualOperator { matrix_free, explicit_schur };
+[[nodiscard]] const char* name(DualOperator k);
+
+struct DualContactSettings {
+  qp::QpOptions qp;
+  /// F is formed explicitly when it has at most this many rows (m solves per body and an
+  /// m×m dense matrix, against two solves per QP iteration matrix-free); 0 = never.
+  PetscInt explicit_limit = 1500;
+};
+
+class DualContactSolver {
+ public:
+  DualContactSolver(const ConstrainedSolver& slave, const ConstrainedSolver& master,
+                    PetscInt n_u_slave, PetscInt n_u_master, DualContactSettings settings);
+
+  /// New constraint rows (each step, from the mortar pair in the current configuration).
+  void set_rows(ContactRows rows);
+  [[nodiscard]] const ContactRows& rows() const { return rows_; }
+  [[nodiscard]] DualOperator kind() const { return kind_; }
+  /// Solves applied while forming F explicitly (0 when matrix-free).
+  [[nodiscard]] int setup_solves() const { return setup_solves_; }
+
+  /// c of (5.4): c_n,k = g_k + (B u_ref)_n,k (non-penetration of the increment from the
+  /// configuration of B) and c_τ = (B u_slip)_τ (the slip is measured from u_slip: u^k, or
+  /// u^k + τ/2 u̇^k with Newmark, which makes B_τ u − c_τ = τ/2 B_τ u̇^{k+1}).
+  [[nodiscard]] std::vector<double> targets(const core::Vector& ref_slave,
+                                            const core::Vector& ref_master,
+                                            const core::Vector& slip_slave,
+                                            const core::Vector& slip_master) const;
+
+  /// Given u_free,i = A_i⁻¹ f_i (with the Dirichlet values), the targets c and the friction
+  /// bounds 𝔉γ_k per node, solves for λ (warm-started from its value on entry) and returns
+  /// u_i = u_free,i − A_i⁻¹ B_iᵀ λ.
+  qp::QpResult solve(const core::Vector& u_free_slave, const core::Vector& u_free_master,
+                     std::span<const double> c, std::span<const double> friction_bound,
+                     core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master);
+
+  /// y = Σ_i B_i A_i⁻¹ B_iᵀ x (matrix-free application; also used to form F).
+  void apply_f(const core::Vector& x, core::Vector& y) const;
+
+ private:
+  void solve_homogeneous(const ConstrainedSolver& s, const core::Vector& rhs,
+                         core::Vector& x) const;
+  void form_explicit();
+
+  const ConstrainedSolver& slave_;
+  const ConstrainedSolver& master_;
+  DualContactSettings settings_;
+  ContactRows rows_;
+  DualOperator kind_ = DualOperator::matrix_free;
+  core::Handle<::Mat, MatDestroy> f_dense_;
+  int setup_solves_ = 0;
+  double lambda_max_ = 0;  // reused while the number of rows does not change
+  PetscInt lambda_max_rows_ = -1;
+  mutable core::Vector ws_, wm_, ys_, ym_, zs_, zm_;
+};
+
+}  // namespace tc::physics

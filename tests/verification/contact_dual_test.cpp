@@ -1,0 +1,159 @@
+// The dual contact solve (6.9) on a problem with a closed form, independent of the mortar
+// layer: two blocks with matching meshes, node-to-node rows weighted by the nodal areas.
+// The slave (on top) is pressed down by a prescribed displacement −δ of its top face; both
+// blocks stand on rollers (x = 0: u_x = 0, y = 0: u_y = 0), the master on its bottom face.
+// Frictionless and quasistatic, the state is uniaxial: σ_zz = −E δ/(h_s + h_m) in both
+// blocks, so every contact multiplier (a pressure) is E δ/(h_s + h_m).
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "support/problems.hpp"
+#include "tc/fem/assembler.hpp"
+#include "tc/physics/dual_contact.hpp"
+
+namespace tc::test {
+namespace {
+
+using physics::ConstrainedSolver;
+
+struct Block {
+  mesh::Mesh mesh;
+  fem::BodyMatrices matrices;
+  std::vector<PetscInt> dirichlet;
+  core::Vector u_prescribed;
+  std::unique_ptr<ConstrainedSolver> solver;
+};
+
+Block make_block(int dim, const mesh::Point& lo, const mesh::Point& hi, std::array<int, 3> cells,
+                 const std::string& moved_face, double moved_by, const std::string& fixed_face) {
+  Block b;
+  b.mesh = mesh::make_box(dim, lo, hi, cells);
+  b.matrices = fem::assemble_body(b.mesh, steel());
+  const PetscInt n_u = dim * b.mesh.n_nodes();
+  b.u_prescribed = core::Vector(n_u);
+  std::map<PetscInt, double> fixed;
+  for (const int a : b.mesh.boundary_nodes("xmin")) fixed[dim * a + 0] = 0;
+  if (dim == 3)
+    for (const int a : b.mesh.boundary_nodes("ymin")) fixed[dim * a + 1] = 0;
+  const int vertical = dim - 1;
+  if (!fixed_face.empty())
+    for (const int a : b.mesh.boundary_nodes(fixed_face)) fixed[dim * a + vertical] = 0;
+  if (!moved_face.empty())
+    for (const int a : b.mesh.boundary_nodes(moved_face)) fixed[dim * a + vertical] = moved_by;
+  {
+    auto v = b.u_prescribed.view();
+    for (const auto& [dof, value] : fixed) {
+      b.dirichlet.push_back(dof);
+      v[dof] = value;
+    }
+  }
+  b.solver = std::make_unique<ConstrainedSolver>(b.matrices.stiffness_u, b.dirichlet, "");
+  return b;
+}
+
+/// Node-to-node rows between the slave's bottom ("min" of the vertical axis) and the
+/// master's top: normal = −e_vertical (out of the slave), tangents the other axes.
+physics::ContactRows node_to_node(int dim, const Block& slave, const Block& master) {
+  const std::string bottom = dim == 3 ? "zmin" : "ymin", top = dim == 3 ? "zmax" : "ymax";
+  const auto weights = fem::boundary_integrals(slave.mesh, bottom);
+  const auto s_nodes = slave.mesh.boundary_nodes(bottom);
+  const auto m_nodes = master.mesh.boundary_nodes(top);
+  physics::ContactRows rows;
+  rows.dim = dim;
+  const PetscInt m = dim * static_cast<PetscInt>(s_nodes.size());
+  std::vector<PetscInt> nnz(m, 1);
+  rows.slave = core::SparseMatrix(m, dim * slave.mesh.n_nodes(), nnz);
+  rows.master = core::SparseMatrix(m, dim * master.mesh.n_nodes(), nnz);
+  for (size_t k = 0; k < s_nodes.size(); ++k) {
+    const auto& xs = slave.mesh.point(s_nodes[k]);
+    int partner = -1;  // the master node at the same place
+    for (const int a : m_nodes) {
+      const auto& xm = master.mesh.point(a);
+      if (std::abs(xm[0] - xs[0]) + std::abs(xm[1] - xs[1]) + std::abs(xm[2] - xs[2]) < 1e-12)
+        partner = a;
+    }
+    EXPECT_GE(partner, 0);
+    const double w = weights[s_nodes[k]];
+    rows.gap.push_back(0.0);
+    for (int r = 0; r < dim; ++r) {
+      // Row r: r = 0 the normal −e_{dim−1}, r ≥ 1 the tangent e_{r−1}.
+      const int axis = r == 0 ? dim - 1 : r - 1;
+      const double sign = r == 0 ? -1.0 : 1.0;
+      const PetscInt row = dim * static_cast<PetscInt>(k) + r;
+      const PetscInt cs = dim * s_nodes[k] + axis, cm = dim * partner + axis;
+      const double vs = sign * w, vm = -sign * w;
+      rows.slave.add_values({&row, 1}, {&cs, 1}, &vs);
+      rows.master.add_values({&row, 1}, {&cm, 1}, &vm);
+    }
+  }
+  rows.slave.assemble();
+  rows.master.assemble();
+  return rows;
+}
+
+struct Result {
+  std::vector<double> lambda;
+  qp::QpResult qp;
+};
+
+Result solve(int dim, PetscInt explicit_limit) {
+  const double hs = 0.5, hm = 1.0, delta = 1e-4;
+  const auto up = [&](double z) { return dim == 3 ? mesh::Point{1, 1, z} : mesh::Point{1, z, 0}; };
+  const auto down = [&](double z) {
+    return dim == 3 ? mesh::Point{0, 0, z} : mesh::Point{0, z, 0};
+  };
+  const std::string bottom = dim == 3 ? "zmin" : "ymin", top = dim == 3 ? "zmax" : "ymax";
+  auto slave = make_block(dim, down(hm), up(hm + hs), {4, dim == 3 ? 4 : 3, 3}, top, -delta, "");
+  auto master = make_block(dim, down(0), up(hm), {4, dim == 3 ? 4 : 5, 5}, "", 0.0, bottom);
+  auto rows = node_to_node(dim, slave, master);
+
+  physics::DualContactSettings settings;
+  settings.qp.rtol = 1e-12;
+  settings.explicit_limit = explicit_limit;
+  physics::DualContactSolver solver(*slave.solver, *master.solver, slave.u_prescribed.size(),
+                                    master.u_prescribed.size(), settings);
+  solver.set_rows(std::move(rows));
+  // u_free = A⁻¹ f with f = 0 and the prescribed values.
+  core::Vector fs(slave.u_prescribed.size()), fm(master.u_prescribed.size());
+  core::Vector us = slave.u_prescribed.clone(), um = master.u_prescribed.clone();
+  slave.solver->solve(fs, us);
+  master.solver->solve(fm, um);
+  core::Vector zero_s(us.size()), zero_m(um.size());
+  const auto c = solver.targets(zero_s, zero_m, zero_s, zero_m);
+  const std::vector<double> frictionless(static_cast<size_t>(solver.rows().n_nodes()), 0.0);
+  core::Vector lambda(solver.rows().n_rows()), u_s(us.size()), u_m(um.size());
+  Result r;
+  r.qp = solver.solve(us, um, c, frictionless, lambda, u_s, u_m);
+  EXPECT_EQ(solver.kind(), explicit_limit > 0 ? physics::DualOperator::explicit_schur
+                                              : physics::DualOperator::matrix_free);
+  r.lambda = lambda.to_std();
+  return r;
+}
+
+class ContactPatch : public ::testing::TestWithParam<std::tuple<int, PetscInt>> {};
+
+TEST_P(ContactPatch, MatchingMeshesCarryTheUniaxialPressure) {
+  const auto [dim, limit] = GetParam();
+  const auto r = solve(dim, limit);
+  ASSERT_TRUE(r.qp.converged()) << r.qp.message;
+  const auto mat = steel();
+  // Uniaxial stress: rollers leave the lateral strains free, so σ = E ε (3D); plane strain
+  // adds ε_zz = 0, so σ = E/(1 − ν²) ε in 2D.
+  const double modulus = dim == 3 ? mat.young_modulus
+                                  : mat.young_modulus / (1 - mat.poisson_ratio * mat.poisson_ratio);
+  const double pressure = modulus * 1e-4 / 1.5;
+  const int d = dim;
+  for (size_t k = 0; k < r.lambda.size() / d; ++k) {
+    // Linear elements reproduce the uniform state exactly; the QP stops at ‖g^P‖ ≤ 1e-12‖d‖.
+    EXPECT_NEAR(r.lambda[d * k], pressure, 1e-8 * pressure) << "node " << k;
+    for (int l = 1; l < d; ++l) EXPECT_EQ(r.lambda[d * k + l], 0.0);  // frictionless
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Dual, ContactPatch,
+                         ::testing::Combine(::testing::Values(2, 3),
+                                            ::testing::Values(PetscInt{0}, PetscInt{1500})));
+
+}  // namespace
+}  // namespace tc::test
