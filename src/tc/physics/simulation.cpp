@@ -42,6 +42,8 @@ struct Simulation::Solvers {
   std::unique_ptr<ConstrainedSolver> mech, heat;
   core::Vector f_u, f_theta, rhs_u_base, rhs_theta_base, rhs_u, rhs_theta;
   core::Vector u_new, theta_new, u_prev, theta_prev, velocity, dtheta, work_u, work_theta;
+  bool expansion = false;  // θ drives u (thermal expansion on, α ≠ 0)
+  bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
 };
 
 Simulation::Simulation(const Problem& problem) : problem_(problem) {
@@ -66,6 +68,9 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
                                                     problem_.solver.factorization);
     }
     factorization_ = s->mech->package();
+    const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
+    s->expansion = problem_.physics.thermal_expansion && coupled_material;
+    s->heating = problem_.physics.thermoelastic_heating && coupled_material;
     for (auto* v :
          {&s->f_u, &s->rhs_u_base, &s->rhs_u, &s->u_new, &s->u_prev, &s->velocity, &s->work_u})
       *v = core::Vector(sys.n_u());
@@ -177,18 +182,14 @@ void Simulation::support_forces(int b, core::Vector& r) const {
   r.copy_from(f);
 }
 
-int Simulation::couple_body(int b) {
+void Simulation::prepare_step(int b) {
   const double tau = problem_.time.step;
   const double t = (step_ + 1) * tau;
-  const double theta0 = problem_.physics.reference_temperature;
   const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
   const auto& sys = *systems_[b];
   const auto& m = sys.matrices();
   auto& st = states_[b];
   auto& s = *solvers_[b];
-  const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
-  const bool expansion = problem_.physics.thermal_expansion && coupled_material;
-  const bool heating = problem_.physics.thermoelastic_heating && coupled_material;
 
   // Right-hand sides that do not change within the fixed point.
   sys.mechanical_load(t, s.f_u);
@@ -210,79 +211,59 @@ int Simulation::couple_body(int b) {
   s.u_new.axpy(tau, st.v);
   if (dynamic) s.u_new.axpy(0.5 * tau * tau, st.a);
   s.theta_new.copy_from(st.theta);
+}
 
-  const int step = step_ + 1;
-  int iteration = 0;
-  auto heat_step = [&] {  // (6.1) with the velocity of the current displacement iterate
-    auto scope = timers_.scope("heat_solve");
-    s.rhs_theta.copy_from(s.rhs_theta_base);
-    if (heating) {  // −K_θu u̇ = θ₀ K_uθᵀ u̇ (docs/choices.md)
-      s.velocity.copy_from(s.u_new);
-      s.velocity.axpy(-1.0, st.u);
-      if (dynamic) {
-        s.velocity.scale(2.0 / tau);  // (5.2) with γ = 1/2
-        s.velocity.axpy(-1.0, st.v);
-      } else {
-        s.velocity.scale(1.0 / tau);
-      }
-      s.work_theta.zero();
-      m.coupling_u_theta.mult_transpose(s.velocity, s.work_theta);
-      s.rhs_theta.axpy(theta0, s.work_theta);
-    }
-    sys.prescribe_theta(t, s.theta_new);
-    s.heat->solve(s.rhs_theta, s.theta_new);
-    require_finite(s.theta_new, "temperature", step, iteration);
-  };
-  auto mech_step = [&] {  // (6.3) with θ^{k+1,p+1}
-    auto scope = timers_.scope("mechanical_solve");
-    s.rhs_u.copy_from(s.rhs_u_base);
-    if (expansion) {
-      s.dtheta.copy_from(s.theta_new);
-      s.dtheta.shift(-theta0);
-      m.coupling_u_theta.mult(s.dtheta, s.work_u);
-      s.rhs_u.axpy(-1.0, s.work_u);
-    }
-    sys.prescribe_u(t, s.u_new);
-    s.mech->solve(s.rhs_u, s.u_new);
-    require_finite(s.u_new, "displacement", step, iteration);
-  };
-
-  if (!(expansion && heating)) {
-    // One-way coupling: one pass in the right order is the exact solution of the step.
-    iteration = 1;
-    if (expansion) {
-      heat_step();
-      mech_step();
+void Simulation::heat_step(int b, int iteration) {
+  // (6.1) with the velocity of the current displacement iterate.
+  auto scope = timers_.scope("heat_solve");
+  const double tau = problem_.time.step;
+  const auto& sys = *systems_[b];
+  const auto& st = states_[b];
+  auto& s = *solvers_[b];
+  s.rhs_theta.copy_from(s.rhs_theta_base);
+  if (s.heating) {  // −K_θu u̇ = θ₀ K_uθᵀ u̇ (docs/choices.md)
+    s.velocity.copy_from(s.u_new);
+    s.velocity.axpy(-1.0, st.u);
+    if (problem_.time.scheme == Scheme::Dynamic) {
+      s.velocity.scale(2.0 / tau);  // (5.2) with γ = 1/2
+      s.velocity.axpy(-1.0, st.v);
     } else {
-      mech_step();
-      heat_step();
+      s.velocity.scale(1.0 / tau);
     }
-  } else {
-    const double tol = problem_.solver.coupling_tolerance;
-    double change = 0;
-    for (iteration = 1; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
-      s.u_prev.copy_from(s.u_new);
-      s.theta_prev.copy_from(s.theta_new);
-      heat_step();
-      mech_step();
-      s.u_prev.axpy(-1.0, s.u_new);
-      s.theta_prev.axpy(-1.0, s.theta_new);
-      const double du = s.u_prev.norm(), un = s.u_new.norm();
-      const double dth = s.theta_prev.norm(), thn = s.theta_new.norm();
-      change = std::max(un > 0 ? du / un : du, thn > 0 ? dth / thn : dth);
-      if (du <= tol * un && dth <= tol * thn) break;
-    }
-    if (iteration > problem_.solver.max_coupling_iterations)
-      throw NumericalError(
-          fmt::format("the staggered fixed point (6.3) of body '{}' did not converge to {:.1e}",
-                      sys.body().name, tol),
-          step, iteration - 1, change);
+    s.work_theta.zero();
+    sys.matrices().coupling_u_theta.mult_transpose(s.velocity, s.work_theta);
+    s.rhs_theta.axpy(problem_.physics.reference_temperature, s.work_theta);
   }
+  sys.prescribe_theta((step_ + 1) * tau, s.theta_new);
+  s.heat->solve(s.rhs_theta, s.theta_new);
+  require_finite(s.theta_new, "temperature", step_ + 1, iteration);
+}
 
+void Simulation::mech_step(int b, int iteration) {
+  // (6.3) with θ^{k+1,p+1}, without contact forces.
+  auto scope = timers_.scope("mechanical_solve");
+  const auto& sys = *systems_[b];
+  auto& s = *solvers_[b];
+  s.rhs_u.copy_from(s.rhs_u_base);
+  if (s.expansion) {
+    s.dtheta.copy_from(s.theta_new);
+    s.dtheta.shift(-problem_.physics.reference_temperature);
+    sys.matrices().coupling_u_theta.mult(s.dtheta, s.work_u);
+    s.rhs_u.axpy(-1.0, s.work_u);
+  }
+  sys.prescribe_u((step_ + 1) * problem_.time.step, s.u_new);
+  s.mech->solve(s.rhs_u, s.u_new);
+  require_finite(s.u_new, "displacement", step_ + 1, iteration);
+}
+
+void Simulation::update_state(int b) {
   // Newmark / backward-difference updates of u̇ and ü.
+  const double tau = problem_.time.step;
+  auto& st = states_[b];
+  auto& s = *solvers_[b];
   s.work_u.copy_from(s.u_new);
   s.work_u.axpy(-1.0, st.u);  // Δu
-  if (dynamic) {
+  if (problem_.time.scheme == Scheme::Dynamic) {
     st.a.scale(-1.0);  // ü^{k+1} = 4/τ² Δu − 4/τ u̇^k − ü^k
     st.a.axpy(-4.0 / tau, st.v);
     st.a.axpy(4.0 / (tau * tau), s.work_u);
@@ -294,6 +275,44 @@ int Simulation::couple_body(int b) {
   }
   st.u.copy_from(s.u_new);
   st.theta.copy_from(s.theta_new);
+}
+
+int Simulation::couple_body(int b) {
+  const auto& sys = *systems_[b];
+  auto& s = *solvers_[b];
+  prepare_step(b);
+  int iteration = 1;
+  if (!(s.expansion && s.heating)) {
+    // One-way coupling: one pass in the right order is the exact solution of the step.
+    if (s.expansion) {
+      heat_step(b, iteration);
+      mech_step(b, iteration);
+    } else {
+      mech_step(b, iteration);
+      heat_step(b, iteration);
+    }
+  } else {
+    const double tol = problem_.solver.coupling_tolerance;
+    double change = 0;
+    for (iteration = 1; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
+      s.u_prev.copy_from(s.u_new);
+      s.theta_prev.copy_from(s.theta_new);
+      heat_step(b, iteration);
+      mech_step(b, iteration);
+      s.u_prev.axpy(-1.0, s.u_new);
+      s.theta_prev.axpy(-1.0, s.theta_new);
+      const double du = s.u_prev.norm(), un = s.u_new.norm();
+      const double dth = s.theta_prev.norm(), thn = s.theta_new.norm();
+      change = std::max(un > 0 ? du / un : du, thn > 0 ? dth / thn : dth);
+      if (du <= tol * un && dth <= tol * thn) break;
+    }
+    if (iteration > problem_.solver.max_coupling_iterations)
+      throw NumericalError(
+          fmt::format("the staggered fixed point (6.3) of body '{}' did not converge to {:.1e}",
+                      sys.body().name, tol),
+          step_ + 1, iteration - 1, change);
+  }
+  update_state(b);
   return iteration;
 }
 

@@ -78,7 +78,11 @@ class Simulation {
  private:
   struct Solvers;
   void initialise();
-  int couple_body(int b);  // the staggered loop of 6.3 for one body; returns iterations
+  int couple_body(int b);    // the staggered loop of 6.3 for one body; returns iterations
+  void prepare_step(int b);  // right-hand sides fixed within the step, predictor
+  void heat_step(int b, int iteration);  // (6.1)/(5.6) with the current u iterate
+  void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
+  void update_state(int b);              // Newmark/backward-difference updates of u̇, ü
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void support_forces(int b, core::Vector& r) const;  // reactions at constrained dofs
   void fill_row(int coupling, double wall);
