@@ -8,6 +8,7 @@
 
 #include <map>
 
+#include "support/contact_rows.hpp"
 #include "support/problems.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/physics/dual_contact.hpp"
@@ -52,44 +53,8 @@ Block make_block(int dim, const mesh::Point& lo, const mesh::Point& hi, std::arr
   return b;
 }
 
-/// Node-to-node rows between the slave's bottom ("min" of the vertical axis) and the
-/// master's top: normal = −e_vertical (out of the slave), tangents the other axes.
-physics::ContactRows node_to_node(int dim, const Block& slave, const Block& master) {
-  const std::string bottom = dim == 3 ? "zmin" : "ymin", top = dim == 3 ? "zmax" : "ymax";
-  const auto weights = fem::boundary_integrals(slave.mesh, bottom);
-  const auto s_nodes = slave.mesh.boundary_nodes(bottom);
-  const auto m_nodes = master.mesh.boundary_nodes(top);
-  physics::ContactRows rows;
-  rows.dim = dim;
-  const PetscInt m = dim * static_cast<PetscInt>(s_nodes.size());
-  std::vector<PetscInt> nnz(m, 1);
-  rows.slave = core::SparseMatrix(m, dim * slave.mesh.n_nodes(), nnz);
-  rows.master = core::SparseMatrix(m, dim * master.mesh.n_nodes(), nnz);
-  for (size_t k = 0; k < s_nodes.size(); ++k) {
-    const auto& xs = slave.mesh.point(s_nodes[k]);
-    int partner = -1;  // the master node at the same place
-    for (const int a : m_nodes) {
-      const auto& xm = master.mesh.point(a);
-      if (std::abs(xm[0] - xs[0]) + std::abs(xm[1] - xs[1]) + std::abs(xm[2] - xs[2]) < 1e-12)
-        partner = a;
-    }
-    EXPECT_GE(partner, 0);
-    const double w = weights[s_nodes[k]];
-    rows.gap.push_back(0.0);
-    for (int r = 0; r < dim; ++r) {
-      // Row r: r = 0 the normal −e_{dim−1}, r ≥ 1 the tangent e_{r−1}.
-      const int axis = r == 0 ? dim - 1 : r - 1;
-      const double sign = r == 0 ? -1.0 : 1.0;
-      const PetscInt row = dim * static_cast<PetscInt>(k) + r;
-      const PetscInt cs = dim * s_nodes[k] + axis, cm = dim * partner + axis;
-      const double vs = sign * w, vm = -sign * w;
-      rows.slave.add_values({&row, 1}, {&cs, 1}, &vs);
-      rows.master.add_values({&row, 1}, {&cm, 1}, &vm);
-    }
-  }
-  rows.slave.assemble();
-  rows.master.assemble();
-  return rows;
+physics::ContactRows node_to_node(int, const Block& slave, const Block& master) {
+  return node_to_node_rows(slave.mesh, master.mesh);
 }
 
 struct Result {

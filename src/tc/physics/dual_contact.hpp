@@ -22,7 +22,8 @@ namespace tc::physics {
 struct ContactRows {
   int dim = 3;
   core::SparseMatrix slave, master;
-  std::vector<double> gap;  // weighted gap g_k ≥ 0 when open, in the configuration of B
+  std::vector<double> gap;      // weighted gap g_k ≥ 0 when open, in the configuration of B
+  std::vector<double> weights;  // ∫ψ_k over the contact: λ_k × weight_k is a force
   [[nodiscard]] PetscInt n_nodes() const { return static_cast<PetscInt>(gap.size()); }
   [[nodiscard]] PetscInt n_rows() const { return dim * n_nodes(); }
 };

@@ -316,12 +316,160 @@ int Simulation::couple_body(int b) {
   return iteration;
 }
 
+void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings settings) {
+  if (!problem_.contact) throw Error("enable_contact: the problem has no [contact]");
+  const auto& c = *problem_.contact;
+  settings.qp.rtol = problem_.solver.qp_tolerance;
+  settings.qp.max_iterations = problem_.solver.max_qp_iterations;
+  contact_rows_ = std::move(builder);
+  dual_ = std::make_unique<DualContactSolver>(
+      *solvers_[c.slave_body]->mech, *solvers_[c.master_body]->mech, systems_[c.slave_body]->n_u(),
+      systems_[c.master_body]->n_u(), settings);
+}
+
+std::vector<double> Simulation::contact_multipliers() const {
+  return lambda_.get() ? lambda_.to_std() : std::vector<double>{};
+}
+
+int Simulation::couple_contact() {
+  const auto& c = *problem_.contact;
+  const int sb = c.slave_body, mb = c.master_body;
+  const double tau = problem_.time.step;
+  const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
+  auto& ss = *solvers_[sb];
+  auto& sm = *solvers_[mb];
+  const auto& sts = states_[sb];
+  const auto& stm = states_[mb];
+  prepare_step(sb);
+  prepare_step(mb);
+  {
+    auto scope = timers_.scope("mortar");
+    dual_->set_rows(contact_rows_(sts.u, stm.u));
+  }
+  const auto& rows = dual_->rows();
+  const int dim = rows.dim;
+  const PetscInt nc = rows.n_nodes();
+  // Warm start from the last step's multipliers while the contact nodes stay the same.
+  std::vector<double> previous = lambda_.get() ? lambda_.to_std() : std::vector<double>{};
+  lambda_ = core::Vector(rows.n_rows());
+  if (static_cast<PetscInt>(previous.size()) == rows.n_rows()) {
+    auto lv = lambda_.view();
+    for (PetscInt i = 0; i < rows.n_rows(); ++i) lv[i] = previous[i];
+  }
+  // The slip is measured from u^k + τ/2 u̇^k (Newmark: B_τu − c_τ = τ/2 B_τu̇^{k+1}), 5.4.
+  ss.work_u.copy_from(sts.u);
+  sm.work_u.copy_from(stm.u);
+  if (dynamic) {
+    ss.work_u.axpy(0.5 * tau, sts.v);
+    sm.work_u.axpy(0.5 * tau, stm.v);
+  }
+  const auto targets = dual_->targets(sts.u, stm.u, ss.work_u, sm.work_u);
+
+  std::vector<double> bound(static_cast<size_t>(nc));
+  auto tresca_bound = [&] {  // γ = λ_n of the previous iterate (6.3)
+    const auto lv = lambda_.read();
+    for (PetscInt k = 0; k < nc; ++k) bound[k] = c.friction * std::max(lv[dim * k], 0.0);
+  };
+  tresca_bound();
+  contact_stats_.qp_iterations = 0;
+  contact_stats_.operator_applications = dual_->setup_solves() / 2;
+  core::Vector lambda_prev = lambda_.clone();
+  const double tol = problem_.solver.coupling_tolerance;
+  const int step = step_ + 1;
+  int iteration = 1;
+  double change = 0;
+  for (; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
+    lambda_prev.copy_from(lambda_);
+    ss.theta_prev.copy_from(ss.theta_new);
+    sm.theta_prev.copy_from(sm.theta_new);
+    heat_step(sb, iteration);
+    heat_step(mb, iteration);
+    mech_step(sb, iteration);  // u_free = A⁻¹f with the Dirichlet data
+    mech_step(mb, iteration);
+    {
+      auto scope = timers_.scope("qp");
+      ss.u_prev.copy_from(ss.u_new);
+      sm.u_prev.copy_from(sm.u_new);
+      const auto r =
+          dual_->solve(ss.u_prev, sm.u_prev, targets, bound, lambda_, ss.u_new, sm.u_new);
+      contact_stats_.qp_iterations += r.iterations;
+      contact_stats_.operator_applications += r.operator_applications;
+      if (!r.converged())
+        throw NumericalError(fmt::format("the contact QP (6.9) did not converge: {}", r.message),
+                             step, iteration, r.projected_gradient);
+    }
+    require_finite(ss.u_new, "displacement", step, iteration);
+    require_finite(sm.u_new, "displacement", step, iteration);
+    tresca_bound();
+    lambda_prev.axpy(-1.0, lambda_);
+    ss.theta_prev.axpy(-1.0, ss.theta_new);
+    sm.theta_prev.axpy(-1.0, sm.theta_new);
+    const double dl = lambda_prev.norm(), ln = lambda_.norm();
+    const double dth = std::hypot(ss.theta_prev.norm(), sm.theta_prev.norm());
+    const double thn = std::hypot(ss.theta_new.norm(), sm.theta_new.norm());
+    change = std::max(ln > 0 ? dl / ln : dl, thn > 0 ? dth / thn : dth);
+    if (dl <= tol * ln && dth <= tol * thn) break;
+  }
+  if (iteration > problem_.solver.max_coupling_iterations)
+    throw NumericalError(
+        fmt::format("the staggered fixed point (6.3) with contact did not converge to {:.1e}", tol),
+        step, iteration - 1, change);
+
+  // The slip increment B_τ(u^{k+1} − u^k) for the dissipation, before the state moves on.
+  ss.work_u.copy_from(ss.u_new);
+  ss.work_u.axpy(-1.0, sts.u);
+  sm.work_u.copy_from(sm.u_new);
+  sm.work_u.axpy(-1.0, stm.u);
+  core::Vector inc(rows.n_rows());
+  rows.slave.mult(ss.work_u, inc);
+  rows.master.mult_add(sm.work_u, inc);
+  slip_ = inc.to_std();
+  update_state(sb);
+  update_state(mb);
+  for (int b = 0; b < n_bodies(); ++b)
+    if (b != sb && b != mb) couple_body(b);
+  return iteration;
+}
+
+void Simulation::contact_bookkeeping() {
+  const auto& rows = dual_->rows();
+  const int dim = rows.dim;
+  const double friction = problem_.contact->friction;
+  const auto l = lambda_.to_std();
+  auto& cs = contact_stats_;
+  cs.normal_force = cs.tangential_force = 0;
+  cs.active_nodes = cs.slip_nodes = 0;
+  for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
+    const double w = rows.weights[k];
+    const double ln = l[dim * k];
+    double lt2 = 0, work = 0;
+    for (int i = 1; i < dim; ++i) {
+      lt2 += l[dim * k + i] * l[dim * k + i];
+      work += l[dim * k + i] * slip_[dim * k + i];
+    }
+    const double lt = std::sqrt(lt2);
+    cs.normal_force += w * ln;
+    cs.tangential_force += w * lt;
+    cs.dissipation += work;  // λ_τ is a traction, B_τ Δu already carries the weights
+    if (ln > 0) {
+      ++cs.active_nodes;
+      if (friction > 0 && lt >= friction * ln * (1 - 1e-6)) ++cs.slip_nodes;
+    }
+  }
+}
+
 void Simulation::advance() {
   const auto t0 = Clock::now();
   std::vector<core::Vector> old_u;
   for (const auto& st : states_) old_u.push_back(st.u.clone());
   int coupling = 0;
-  for (int b = 0; b < n_bodies(); ++b) coupling = std::max(coupling, couple_body(b));
+  if (problem_.contact) {
+    if (!dual_) throw Error("the problem has contact but no contact rows (enable_contact)");
+    coupling = couple_contact();
+    contact_bookkeeping();
+  } else {
+    for (int b = 0; b < n_bodies(); ++b) coupling = std::max(coupling, couple_body(b));
+  }
   ++step_;
   finish_step_bookkeeping(old_u, coupling, seconds_since(t0));
 }
@@ -395,23 +543,23 @@ void Simulation::fill_row(int coupling, double wall) {
   row_ = {static_cast<double>(step_),
           time(),
           static_cast<double>(coupling),
-          0.0,  // qp_iterations: no contact yet
-          0.0,  // operator_applications
+          static_cast<double>(contact_stats_.qp_iterations),
+          static_cast<double>(contact_stats_.operator_applications),
           kinetic_energy(),
           strain_energy(),
           thermal_energy(),
           external_work_,
-          0.0,  // contact_normal_force
-          0.0,  // contact_tangential_force
-          0.0,  // frictional_dissipation
+          contact_stats_.normal_force,
+          contact_stats_.tangential_force,
+          contact_stats_.dissipation,
           0.0,  // heat_generated
           0.0,  // heat_to_slave
           0.0,  // heat_to_master
           0.0,  // heat_conducted
           tmax,
           tmin,
-          0.0,  // active_nodes
-          0.0,  // slip_nodes
+          static_cast<double>(contact_stats_.active_nodes),
+          static_cast<double>(contact_stats_.slip_nodes),
           wall};
   for (int b = 0; b < n_bodies(); ++b) {
     const auto f = forces_[b].to_std();

@@ -7,6 +7,7 @@
 // Contract of run(): the observer sees start() once, then step() for t = 0 and for every
 // completed step in order, then finish() exactly once, also when the run stops early.
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "tc/core/timer.hpp"
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/constrained_solver.hpp"
+#include "tc/physics/dual_contact.hpp"
 
 namespace tc::physics {
 
@@ -31,6 +33,22 @@ struct RunStatus {
 
 class Simulation;
 
+/// The contact rows of a step (B_s, B_m, gap, nodal weights) from the displacements of the
+/// slave and master at t^k: the configuration in which the constraints are linearised.
+using ContactRowsBuilder =
+    std::function<ContactRows(const core::Vector& u_slave, const core::Vector& u_master)>;
+
+/// What the contact did in the last step (history.csv columns).
+struct ContactStatistics {
+  int qp_iterations = 0;
+  int operator_applications = 0;
+  double normal_force = 0;      // Σ_k w_k λ_n,k
+  double tangential_force = 0;  // Σ_k w_k ‖λ_τ,k‖
+  double dissipation = 0;       // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
+  int active_nodes = 0;         // λ_n,k > 0
+  int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − 1e-6))
+};
+
 /// Receives the run's progress: output writers, progress lines, tests.
 class Observer {
  public:
@@ -45,6 +63,13 @@ class Simulation {
   /// Assembles and factorises (collective on no communicator: each rank holds every body).
   explicit Simulation(const Problem& problem);
   ~Simulation();
+
+  /// Turns on the contact of problem().contact, with the rows built by `builder` each step.
+  void enable_contact(ContactRowsBuilder builder, DualContactSettings settings = {});
+  [[nodiscard]] const ContactStatistics& contact_statistics() const { return contact_stats_; }
+  /// The contact multipliers of the last step, node-major [λ_n, λ_τ…] (empty without contact).
+  [[nodiscard]] std::vector<double> contact_multipliers() const;
+  [[nodiscard]] const DualContactSolver* dual_solver() const { return dual_.get(); }
 
   /// Runs all steps, or until `stop` becomes non-zero (checked between steps).
   RunStatus run(Observer& observer, const std::atomic<int>* stop = nullptr);
@@ -83,6 +108,8 @@ class Simulation {
   void heat_step(int b, int iteration);  // (6.1)/(5.6) with the current u iterate
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
   void update_state(int b);              // Newmark/backward-difference updates of u̇, ü
+  int couple_contact();  // the staggered loop of 6.3 for the contact pair (heat, dual QP)
+  void contact_bookkeeping();
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void support_forces(int b, core::Vector& r) const;  // reactions at constrained dofs
   void fill_row(int coupling, double wall);
@@ -100,6 +127,12 @@ class Simulation {
   std::string factorization_;
   std::vector<std::string> columns_;
   std::vector<double> row_;
+
+  ContactRowsBuilder contact_rows_;
+  std::unique_ptr<DualContactSolver> dual_;
+  core::Vector lambda_;
+  std::vector<double> slip_;  // B_τ Δu of the last step (node-major, normal rows unused)
+  ContactStatistics contact_stats_;
 };
 
 }  // namespace tc::physics
