@@ -57,6 +57,21 @@ physics::ContactRows node_to_node(int, const Block& slave, const Block& master) 
   return node_to_node_rows(slave.mesh, master.mesh);
 }
 
+/// u_free = A⁻¹f with f = 0 and the prescribed values: the block without contact.
+core::Vector free_solution(const Block& b) {
+  core::Vector f(b.u_prescribed.size());
+  core::Vector u = b.u_prescribed.clone();
+  b.solver->solve(f, u);
+  return u;
+}
+
+/// c of (5.4) from the reference configuration (u^k = 0, at rest).
+std::vector<double> reference_targets(const physics::DualContactSolver& solver,
+                                      const core::Vector& us, const core::Vector& um) {
+  const core::Vector zero_s(us.size()), zero_m(um.size());
+  return solver.targets(zero_s, zero_m, zero_s, zero_m);
+}
+
 struct Result {
   std::vector<double> lambda;
   qp::QpResult qp;
@@ -79,13 +94,8 @@ Result solve(int dim, PetscInt explicit_limit) {
   physics::DualContactSolver solver(*slave.solver, *master.solver, slave.u_prescribed.size(),
                                     master.u_prescribed.size(), settings);
   solver.set_rows(std::move(rows));
-  // u_free = A⁻¹ f with f = 0 and the prescribed values.
-  core::Vector fs(slave.u_prescribed.size()), fm(master.u_prescribed.size());
-  core::Vector us = slave.u_prescribed.clone(), um = master.u_prescribed.clone();
-  slave.solver->solve(fs, us);
-  master.solver->solve(fm, um);
-  core::Vector zero_s(us.size()), zero_m(um.size());
-  const auto c = solver.targets(zero_s, zero_m, zero_s, zero_m);
+  const auto us = free_solution(slave), um = free_solution(master);
+  const auto c = reference_targets(solver, us, um);
   const std::vector<double> frictionless(static_cast<size_t>(solver.rows().n_nodes()), 0.0);
   core::Vector lambda(solver.rows().n_rows()), u_s(us.size()), u_m(um.size());
   Result r;
@@ -162,12 +172,8 @@ Friction slide(double shift, double friction) {
                                     master.u_prescribed.size(), settings);
   solver.set_rows(node_to_node(dim, slave, master));
   const PetscInt nc = solver.rows().n_nodes();
-  core::Vector fs(slave.u_prescribed.size()), fm(master.u_prescribed.size());
-  core::Vector us = slave.u_prescribed.clone(), um = master.u_prescribed.clone();
-  slave.solver->solve(fs, us);
-  master.solver->solve(fm, um);
-  core::Vector zero_s(us.size()), zero_m(um.size());
-  const auto c = solver.targets(zero_s, zero_m, zero_s, zero_m);
+  const auto us = free_solution(slave), um = free_solution(master);
+  const auto c = reference_targets(solver, us, um);
 
   Friction out;
   core::Vector lambda(dim * nc), previous(dim * nc), u_s(us.size()), u_m(um.size());
