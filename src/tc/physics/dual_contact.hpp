@@ -12,21 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "tc/contact/contact_rows.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/qp/mpgp.hpp"
 
 namespace tc::physics {
 
-/// The constraint rows of one step in node-major order: row dim·k is the normal of contact
-/// node k, row dim·k + 1 + l its tangent l. Columns are each body's displacement dofs.
-struct ContactRows {
-  int dim = 3;
-  core::SparseMatrix slave, master;
-  std::vector<double> gap;      // weighted gap g_k ≥ 0 when open, in the configuration of B
-  std::vector<double> weights;  // ∫ψ_k over the contact: λ_k × weight_k is a force
-  [[nodiscard]] PetscInt n_nodes() const { return static_cast<PetscInt>(gap.size()); }
-  [[nodiscard]] PetscInt n_rows() const { return dim * n_nodes(); }
-};
+using contact::ContactRows;
 
 enum class DualOperator { matrix_free, explicit_schur };
 [[nodiscard]] const char* name(DualOperator k);

@@ -1,0 +1,23 @@
+#pragma once
+// The constraint rows of one step, as the mortar pair produces them and the dual solve
+// (physics::DualContactSolver, 6.9) consumes them: B = [B_s B_m] of (4.3) in node-major order,
+// the weighted gap g of (2.6) and the nodal weights of the multiplier basis.
+#include <vector>
+
+#include "tc/core/petsc.hpp"
+
+namespace tc::contact {
+
+/// Row dim·k is the normal of contact node k, row dim·k + 1 + l its tangent l. Columns are
+/// each body's displacement dofs (interleaved, k + d·j).
+struct ContactRows {
+  int dim = 3;
+  core::SparseMatrix slave, master;
+  std::vector<double> gap;      // weighted gap g_k ≥ 0 when open, in the configuration of B
+  std::vector<double> weights;  // ∫ψ_k over the contact: λ_k × weight_k is a force
+  std::vector<int> nodes;       // slave mesh node of each contact node (may be empty)
+  [[nodiscard]] PetscInt n_nodes() const { return static_cast<PetscInt>(gap.size()); }
+  [[nodiscard]] PetscInt n_rows() const { return dim * n_nodes(); }
+};
+
+}  // namespace tc::contact
