@@ -1,0 +1,132 @@
+#pragma once
+// Geometry stage of the mortar pair (the "geom" stage of LLNL Tribol): small vector algebra,
+// the shape functions of contact facets, averaged nodal normals and tangents on the slave side,
+// the auxiliary plane of a slave face onto which master faces are projected (Puso & Laursen
+// 2004; Popp et al. 2010), 2D segment overlap and 3D polygon clipping (Sutherland–Hodgman),
+// and the inverse of a projected facet map. Pure functions, no PETSc, no allocation per call.
+#include <array>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "tc/mesh/mesh.hpp"
+
+namespace tc::contact {
+
+using Vec3 = std::array<double, 3>;
+using Vec2 = std::array<double, 2>;
+
+inline Vec3 operator+(const Vec3& a, const Vec3& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+inline Vec3 operator-(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline Vec3 operator*(double s, const Vec3& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
+inline double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double norm(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
+inline Vec3 normalized(const Vec3& a) {
+  return (1.0 / norm(a)) * a;
+}
+
+/// Values (and reference derivatives) of the linear shape functions of a facet. Reference
+/// cells: Line2 ξ ∈ [0, 1], φ = (1 − ξ, ξ); Tri3 the unit triangle, φ = (1 − ξ − η, ξ, η);
+/// Quad4 [−1, 1]² in VTK order, φ_a = ¼(1 ± ξ)(1 ± η).
+struct ShapeValues {
+  int n = 0;
+  std::array<double, 4> phi{};
+  std::array<Vec2, 4> dphi{};  // ∂φ_a/∂(ξ, η)
+};
+[[nodiscard]] ShapeValues facet_shape(mesh::FacetType t, const Vec2& xi);
+
+/// A facet's vertices in the current configuration.
+struct FacetPoints {
+  mesh::FacetType type = mesh::FacetType::Line2;
+  int n = 0;
+  std::array<Vec3, 4> x{};
+};
+[[nodiscard]] FacetPoints facet_points(const mesh::Facet& f, std::span<const Vec3> x);
+
+/// Outward unit normal of a facet at its centre: Line2 (t_y, −t_x) with t = x1 − x0 (mesh.hpp),
+/// Tri3 and Quad4 by the right-hand rule (for Quad4 the cross product of the diagonals, which
+/// is the normal of the bilinear surface at ξ = η = 0).
+[[nodiscard]] Vec3 centre_normal(const FacetPoints& f);
+/// Unit normal of the facet at its vertex a (for a warped Quad4, that of the corner).
+[[nodiscard]] Vec3 vertex_normal(const FacetPoints& f, int a);
+/// Diameter of the facet's bounding box.
+[[nodiscard]] double facet_size(const FacetPoints& f);
+
+/// Averaged nodal normals (Popp, Gitterle, Gee, Wall 2010): at each node the normalised sum
+/// of the unit vertex normals of the facets around it. Indexed by mesh node; zero for nodes
+/// on none of the facets.
+[[nodiscard]] std::vector<Vec3> averaged_normals(std::span<const mesh::Facet> facets,
+                                                 std::span<const Vec3> x);
+
+/// Orthonormal tangents of a unit normal n. 2D: τ = (−n_y, n_x). 3D: τ₁ is the coordinate
+/// axis least aligned with n, made orthogonal to n; τ₂ = τ₁ × n. (For n = −e_z this gives
+/// τ₁ = e_x, τ₂ = e_y, the frame of tests/support/contact_rows.hpp.)
+void tangents_of(int dim, const Vec3& n, Vec3& t0, Vec3& t1);
+
+/// The auxiliary plane of one slave face: through its centroid, normal the face's centre
+/// normal n₀, with in-plane axes e₁, e₂ such that (e₁, e₂, n₀) is right-handed, so the slave
+/// face is counter-clockwise in plane coordinates. In 2D the "plane" is the slave line,
+/// origin at vertex 0 and e₁ = the unit tangent (one coordinate; the second is 0).
+struct FacePlane {
+  Vec3 origin{}, normal{}, e1{}, e2{};
+  [[nodiscard]] Vec2 project(const Vec3& x) const {
+    const Vec3 d = x - origin;
+    return {dot(d, e1), dot(d, e2)};
+  }
+};
+[[nodiscard]] FacePlane face_plane(const FacetPoints& slave, int dim);
+
+/// A convex (or star-shaped) polygon in plane coordinates; at most 16 vertices, enough for a
+/// quadrilateral clipped by a quadrilateral (≤ 8).
+struct Polygon {
+  int n = 0;
+  std::array<Vec2, 16> v{};
+  void push(const Vec2& p) { v[n++] = p; }
+};
+[[nodiscard]] double signed_area(const Polygon& p);
+
+/// The facet's vertices projected onto the plane, counter-clockwise (reversed when the facet
+/// faces the other way, as master faces do); `reversed` records it so that vertex a of the
+/// polygon is facet vertex order[a].
+struct ProjectedFacet {
+  Polygon polygon;
+  std::array<int, 4> order{0, 1, 2, 3};
+};
+[[nodiscard]] ProjectedFacet project(const FacetPoints& f, const FacePlane& plane);
+
+/// Sutherland–Hodgman: the part of `subject` inside the convex, counter-clockwise `clip`.
+/// Points on a clip edge (within a round-off band) count as inside, so matching meshes do not
+/// lose slivers of area.
+[[nodiscard]] Polygon clip(const Polygon& subject, const Polygon& clip);
+
+/// 2D: the overlap [lo, hi] of the slave segment [0, L] with the projected master segment
+/// [min(a, b), max(a, b)]; empty when hi ≤ lo.
+struct Interval {
+  double lo = 0, hi = 0;
+};
+[[nodiscard]] Interval overlap(double length, double a, double b);
+
+/// Reference coordinates of the point of facet f whose projection onto the plane is p, given
+/// the facet's projected vertices q (in facet order). Exact for Line2 and Tri3 (affine);
+/// Newton on the bilinear map for Quad4 (one step for parallelograms).
+[[nodiscard]] Vec2 inverse_map(mesh::FacetType t, const std::array<Vec2, 4>& q, const Vec2& p);
+
+/// Ratio of the facet's surface element |x_ξ × x_η| to that of its projection onto the plane,
+/// at ξ: 1 for a planar face parallel to the plane; for a warped Quad4 it maps the plane's
+/// area onto the true surface (so that ∫ dS over the slave surface is its area).
+[[nodiscard]] double area_ratio(const FacetPoints& f, const FacePlane& plane, const Vec2& xi);
+
+}  // namespace tc::contact

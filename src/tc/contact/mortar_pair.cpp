@@ -1,0 +1,418 @@
+#include "tc/contact/mortar_pair.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+
+#include "tc/contact/search.hpp"
+#include "tc/core/error.hpp"
+
+namespace tc::contact {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point& t0) {
+  const auto now = Clock::now();
+  const double s = std::chrono::duration<double>(now - t0).count();
+  t0 = now;
+  return s;
+}
+
+bool facet_fits(mesh::FacetType t, int dim) {
+  return dim == 2 ? t == mesh::FacetType::Line2 : t != mesh::FacetType::Line2;
+}
+
+std::vector<mesh::Facet> checked_boundary(const mesh::Mesh& m, const std::string& name,
+                                          const char* side) {
+  if (!m.has_boundary(name)) {
+    std::string known;
+    for (const auto& b : m.boundary_names()) known += (known.empty() ? "" : ", ") + b;
+    throw MeshError(std::string("mortar pair: the ") + side + " mesh has no boundary '" + name +
+                    "' (it has: " + known + ")");
+  }
+  auto facets = m.boundary(name);
+  for (const auto& f : facets)
+    if (!facet_fits(f.type, m.dim()))
+      throw MeshError(std::string("mortar pair: ") + side + " boundary '" + name + "' has a " +
+                      mesh::name(f.type) + " facet in a " + std::to_string(m.dim()) + "D mesh");
+  return facets;
+}
+
+/// Positions X + u of every node (u interleaved; empty = reference configuration).
+void positions(const mesh::Mesh& m, std::span<const double> u, const char* side,
+               std::vector<Vec3>& x) {
+  const int d = m.dim();
+  if (!u.empty() && u.size() != static_cast<size_t>(d * m.n_nodes()))
+    throw Error(std::string("MortarPair::update: the ") + side + " displacement has " +
+                std::to_string(u.size()) + " entries, expected " + std::to_string(d * m.n_nodes()) +
+                " (dim × nodes) or none");
+  x.resize(m.n_nodes());
+  for (int j = 0; j < m.n_nodes(); ++j) {
+    x[j] = m.point(j);
+    if (!u.empty())
+      for (int k = 0; k < d; ++k) x[j][k] += u[d * j + k];
+  }
+}
+
+void check_size(std::span<const double> v, size_t n, const char* what) {
+  if (v.size() != n)
+    throw Error(std::string("MortarPair: ") + what + " has " + std::to_string(v.size()) +
+                " entries, expected " + std::to_string(n));
+}
+
+}  // namespace
+
+const char* name(MultiplierBasis b) {
+  return b == MultiplierBasis::dual ? "dual" : "standard";
+}
+
+MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
+                       const mesh::Mesh& master, std::string master_boundary, MortarOptions options)
+    : slave_(slave),
+      master_(master),
+      slave_name_(std::move(slave_boundary)),
+      master_name_(std::move(master_boundary)),
+      options_(options),
+      dim_(slave.dim()) {
+  if (master.dim() != dim_)
+    throw MeshError("mortar pair: the slave mesh is " + std::to_string(dim_) +
+                    "D but the master mesh is " + std::to_string(master.dim()) + "D");
+  if (!(options_.search_radius >= 0))
+    throw Error("mortar pair: search_radius must be ≥ 0 (0 = automatic), got " +
+                std::to_string(options_.search_radius));
+  slave_facets_ = checked_boundary(slave, slave_name_, "slave");
+  master_facets_ = checked_boundary(master, master_name_, "master");
+  update();
+}
+
+void MortarPair::update(std::span<const double> u_slave, std::span<const double> u_master) {
+  timings_ = {};
+  auto t0 = Clock::now();
+  set_positions(u_slave, u_master);
+  timings_.geometry += since(t0);
+  search();
+  timings_.search += since(t0);
+  build_segments();
+  timings_.geometry += since(t0);
+  integrate();
+  timings_.integration += since(t0);
+  assemble();
+  timings_.assembly += since(t0);
+}
+
+void MortarPair::set_positions(std::span<const double> u_slave, std::span<const double> u_master) {
+  positions(slave_, u_slave, "slave", xs_);
+  positions(master_, u_master, "master", xm_);
+  slave_points_.resize(slave_facets_.size());
+  master_points_.resize(master_facets_.size());
+  double largest = 0;
+  for (size_t e = 0; e < slave_facets_.size(); ++e) {
+    slave_points_[e] = facet_points(slave_facets_[e], xs_);
+    largest = std::max(largest, facet_size(slave_points_[e]));
+  }
+  for (size_t f = 0; f < master_facets_.size(); ++f) {
+    master_points_[f] = facet_points(master_facets_[f], xm_);
+    largest = std::max(largest, facet_size(master_points_[f]));
+  }
+  radius_ = options_.search_radius > 0 ? options_.search_radius : largest;
+}
+
+void MortarPair::search() {
+  std::vector<Aabb> boxes(master_points_.size());
+  for (size_t f = 0; f < boxes.size(); ++f) boxes[f] = bounding_box(master_points_[f]);
+  const AabbTree tree(std::move(boxes));
+  candidates_ = Csr{};
+  for (const auto& s : slave_points_) {
+    tree.query(bounding_box(s).inflated(radius_), candidates_.cols);
+    candidates_.offsets.push_back(static_cast<int>(candidates_.cols.size()));
+  }
+}
+
+void MortarPair::build_segments() {
+  node_normals_ = averaged_normals(slave_facets_, xs_);
+  const size_t n_faces = slave_facets_.size();
+  planes_.resize(n_faces);
+  warped_.assign(n_faces, 0);
+  face_area_.assign(n_faces, 0.0);
+  segments_.clear();
+  face_segments_.assign(1, 0);
+  for (size_t e = 0; e < n_faces; ++e) {
+    const FacetPoints& s = slave_points_[e];
+    const FacePlane plane = face_plane(s, dim_);
+    planes_[e] = plane;
+    const double size = facet_size(s);
+    for (int a = 0; a < s.n && dim_ == 3; ++a)
+      if (std::abs(dot(s.x[a] - plane.origin, plane.normal)) > 1e-12 * size) warped_[e] = 1;
+    const Polygon own = project(s, plane).polygon;
+    face_area_[e] = dim_ == 2 ? norm(s.x[1] - s.x[0]) : signed_area(own);
+    for (int i = candidates_.offsets[e]; i < candidates_.offsets[e + 1]; ++i) {
+      const int f = candidates_.cols[i];
+      const FacetPoints& m = master_points_[f];
+      // Only faces that face the slave: skips the far side of a thin or curved master body.
+      if (dot(centre_normal(m), plane.normal) >= 0) continue;
+      MortarSegment seg{static_cast<int>(e), f, {}};
+      if (dim_ == 2) {
+        const Interval iv =
+            overlap(face_area_[e], plane.project(m.x[0])[0], plane.project(m.x[1])[0]);
+        if (!(iv.hi - iv.lo > 1e-14 * face_area_[e])) continue;
+        seg.cell.push({iv.lo, 0});
+        seg.cell.push({iv.hi, 0});
+      } else {
+        seg.cell = clip(project(m, plane).polygon, own);
+        if (seg.cell.n < 3 || !(signed_area(seg.cell) > 1e-14 * face_area_[e])) continue;
+      }
+      segments_.push_back(seg);
+    }
+    face_segments_.push_back(static_cast<int>(segments_.size()));
+  }
+}
+
+template <class F>
+void MortarPair::for_each_segment(F&& f) const {
+  for (size_t e = 0; e + 1 < face_segments_.size(); ++e) {
+    if (face_segments_[e] == face_segments_[e + 1]) continue;
+    const PlacedFacet s = place(slave_points_[e], planes_[e]);
+    for (int i = face_segments_[e]; i < face_segments_[e + 1]; ++i) {
+      const MortarSegment& seg = segments_[i];
+      f(seg, planes_[e], s, warped_[e] != 0, place(master_points_[seg.master], planes_[e]));
+    }
+  }
+}
+
+void MortarPair::integrate() {
+  using Local = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
+  const int n_points = dim_ == 2 ? mortar_points_2d : mortar_points;
+  Triplets dt(slave_.n_nodes()), mt(slave_.n_nodes());
+  overlap_area_ = 0;
+  std::vector<int> mnodes;                  // master nodes seen by the current slave face
+  std::vector<std::array<double, 4>> mstd;  // ∫ φ_a^s φ_c^m per local master node c
+  for (size_t e = 0; e + 1 < face_segments_.size(); ++e) {
+    if (face_segments_[e] == face_segments_[e + 1]) continue;
+    const int ns = slave_points_[e].n;
+    Local me = Local::Zero(ns, ns);
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1> de = decltype(de)::Zero(ns);
+    mnodes.clear();
+    mstd.clear();
+    const PlacedFacet s = place(slave_points_[e], planes_[e]);
+    for (int i = face_segments_[e]; i < face_segments_[e + 1]; ++i) {
+      const MortarSegment& seg = segments_[i];
+      const auto& mf = master_facets_[seg.master];
+      std::array<int, 4> col{};
+      for (int b = 0; b < master_points_[seg.master].n; ++b) {
+        const auto it = std::find(mnodes.begin(), mnodes.end(), mf.nodes[b]);
+        col[b] = static_cast<int>(it - mnodes.begin());
+        if (it == mnodes.end()) {
+          mnodes.push_back(mf.nodes[b]);
+          mstd.push_back({0, 0, 0, 0});
+        }
+      }
+      const PlacedFacet m = place(master_points_[seg.master], planes_[e]);
+      for_each_point(dim_, planes_[e], s, warped_[e] != 0, m, seg.cell, n_points,
+                     [&](const MortarPoint& q) {
+                       for (int a = 0; a < ns; ++a) {
+                         const double wa = q.weight * q.slave.phi[a];
+                         de(a) += wa;
+                         for (int b = 0; b < ns; ++b) me(a, b) += wa * q.slave.phi[b];
+                         for (int b = 0; b < q.master.n; ++b)
+                           mstd[col[b]][a] += wa * q.master.phi[b];
+                       }
+                     });
+    }
+    const double covered = de.sum();
+    // A face covered on less than 1e-12 of its area is a round-off sliver (edges of matching
+    // meshes): dropped, since its dual basis would be ill-conditioned and its weight is nil.
+    if (!(covered > 1e-12 * face_area_[e])) continue;
+    overlap_area_ += covered;
+    const auto& nodes = slave_facets_[e].nodes;
+    Eigen::MatrixXd mcov(ns, static_cast<Eigen::Index>(mnodes.size()));
+    for (size_t c = 0; c < mnodes.size(); ++c)
+      for (int a = 0; a < ns; ++a) mcov(a, static_cast<Eigen::Index>(c)) = mstd[c][a];
+    Eigen::MatrixXd mface;
+    if (options_.basis == MultiplierBasis::dual) {
+      // Biorthogonality on the covered part (Popp et al. 2012): ψ_a = Σ_b A_ab φ_b with
+      // A = diag(d) Me⁻¹, so ∫ψ_a φ_b = δ_ab d_a and M_face = A M_std.
+      mface = de.asDiagonal() * me.ldlt().solve(mcov);
+      for (int a = 0; a < ns; ++a) dt.add(nodes[a], nodes[a], de(a));
+    } else {
+      mface = mcov;
+      for (int a = 0; a < ns; ++a)
+        for (int b = 0; b < ns; ++b) dt.add(nodes[a], nodes[b], me(a, b));
+    }
+    for (int a = 0; a < ns; ++a)
+      for (size_t c = 0; c < mnodes.size(); ++c)
+        mt.add(nodes[a], mnodes[c], mface(a, static_cast<Eigen::Index>(c)));
+  }
+  d_rows_ = dt.compress();
+  m_rows_ = mt.compress();
+}
+
+void MortarPair::assemble() {
+  const int n_s = slave_.n_nodes();
+  std::vector<double> weight(n_s, 0.0), scale(n_s, 0.0);
+  for (int j = 0; j < n_s; ++j)
+    for (int i = d_rows_.offsets[j]; i < d_rows_.offsets[j + 1]; ++i) weight[j] += d_rows_.vals[i];
+  for (size_t e = 0; e < slave_facets_.size(); ++e)
+    for (const int a : slave_facets_[e].node_span()) scale[a] += face_area_[e];
+  contact_nodes_.clear();
+  contact_index_.assign(n_s, -1);
+  normals_.clear();
+  tangents_[0].clear();
+  tangents_[1].clear();
+  weights_.clear();
+  gap_.clear();
+  for (int j = 0; j < n_s; ++j) {
+    if (!(weight[j] > 1e-12 * scale[j])) continue;
+    contact_index_[j] = static_cast<int>(contact_nodes_.size());
+    contact_nodes_.push_back(j);
+    const Vec3 n = node_normals_[j];
+    Vec3 t0, t1;
+    tangents_of(dim_, n, t0, t1);
+    normals_.push_back(n);
+    tangents_[0].push_back(t0);
+    tangents_[1].push_back(t1);
+    weights_.push_back(weight[j]);
+    // (2.6) weighted: g_j = n_j·(Σ M_jl x_l^m − Σ D_jl x_l^s).
+    Vec3 diff{0, 0, 0};
+    for (int i = m_rows_.offsets[j]; i < m_rows_.offsets[j + 1]; ++i)
+      diff = diff + m_rows_.vals[i] * xm_[m_rows_.cols[i]];
+    for (int i = d_rows_.offsets[j]; i < d_rows_.offsets[j + 1]; ++i)
+      diff = diff - d_rows_.vals[i] * xs_[d_rows_.cols[i]];
+    gap_.push_back(dot(n, diff));
+  }
+  d_ = to_matrix(d_rows_, contact_nodes_, n_s);
+  m_ = to_matrix(m_rows_, contact_nodes_, master_.n_nodes());
+  b_slave_ = directional_rows(d_rows_, 1.0, dim_ * n_s);
+  b_master_ = directional_rows(m_rows_, -1.0, dim_ * master_.n_nodes());
+}
+
+core::SparseMatrix MortarPair::directional_rows(const Csr& csr, double sign,
+                                                PetscInt n_cols) const {
+  const PetscInt n_rows = dim_ * static_cast<PetscInt>(contact_nodes_.size());
+  std::vector<PetscInt> nnz(n_rows);
+  for (size_t k = 0; k < contact_nodes_.size(); ++k) {
+    const int j = contact_nodes_[k];
+    for (int r = 0; r < dim_; ++r) nnz[dim_ * k + r] = dim_ * (csr.offsets[j + 1] - csr.offsets[j]);
+  }
+  core::SparseMatrix b(n_rows, n_cols, nnz);
+  std::vector<PetscInt> cols;
+  std::vector<double> vals;
+  for (size_t k = 0; k < contact_nodes_.size(); ++k) {
+    const int j = contact_nodes_[k];
+    for (int r = 0; r < dim_; ++r) {
+      const Vec3& dir = r == 0 ? normals_[k] : tangents_[r - 1][k];
+      cols.clear();
+      vals.clear();
+      for (int i = csr.offsets[j]; i < csr.offsets[j + 1]; ++i)
+        for (int c = 0; c < dim_; ++c) {
+          cols.push_back(dim_ * static_cast<PetscInt>(csr.cols[i]) + c);
+          vals.push_back(sign * csr.vals[i] * dir[c]);
+        }
+      if (cols.empty()) continue;
+      const PetscInt row = dim_ * static_cast<PetscInt>(k) + r;
+      b.add_values({&row, 1}, cols, vals.data());
+    }
+  }
+  b.assemble();
+  return b;
+}
+
+ContactRows MortarPair::rows() const {
+  ContactRows r;
+  r.dim = dim_;
+  r.slave = b_slave_.copy();
+  r.master = b_master_.copy();
+  r.gap = gap_;
+  r.weights = weights_;
+  return r;
+}
+
+const std::vector<std::array<double, 3>>& MortarPair::tangents(int l) const {
+  if (l < 0 || l > dim_ - 2)
+    throw Error("MortarPair::tangents: l must be in [0, " + std::to_string(dim_ - 2) + "], got " +
+                std::to_string(l));
+  return tangents_[l];
+}
+
+ThermalContact MortarPair::thermal_conductance(std::span<const double> gamma, double beta_c) const {
+  check_size(gamma, contact_nodes_.size(), "gamma (one per contact node)");
+  const int n_s = slave_.n_nodes(), n_m = master_.n_nodes();
+  const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
+  Triplets ss(n_s), sm(n_s), ms(n_m), mm(n_m);
+  for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
+                       bool warped, const PlacedFacet& m) {
+    const auto& sn = slave_facets_[seg.slave].nodes;
+    const auto& mn = master_facets_[seg.master].nodes;
+    double lss[4][4] = {}, lsm[4][4] = {}, lmm[4][4] = {};
+    for_each_point(dim_, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
+      double g = 0;  // γ = Σ_k γ_k φ_k^s (0 at slave nodes that are not contact nodes)
+      for (int a = 0; a < q.slave.n; ++a)
+        if (contact_index_[sn[a]] >= 0) g += gamma[contact_index_[sn[a]]] * q.slave.phi[a];
+      const double w = beta_c * g * q.weight;
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+          lss[a][b] += w * q.slave.phi[a] * q.slave.phi[b];
+          lsm[a][b] -= w * q.slave.phi[a] * q.master.phi[b];
+          lmm[a][b] += w * q.master.phi[a] * q.master.phi[b];
+        }
+    });
+    const int ns = s.facet->n, nm = m.facet->n;
+    for (int a = 0; a < ns; ++a)
+      for (int b = 0; b < ns; ++b) ss.add(sn[a], sn[b], lss[a][b]);
+    for (int a = 0; a < ns; ++a)
+      for (int b = 0; b < nm; ++b) {
+        sm.add(sn[a], mn[b], lsm[a][b]);
+        ms.add(mn[b], sn[a], lsm[a][b]);
+      }
+    for (int a = 0; a < nm; ++a)
+      for (int b = 0; b < nm; ++b) mm.add(mn[a], mn[b], lmm[a][b]);
+  });
+  return {to_matrix(ss.compress(), n_s), to_matrix(sm.compress(), n_m),
+          to_matrix(ms.compress(), n_s), to_matrix(mm.compress(), n_m)};
+}
+
+FrictionalHeat MortarPair::frictional_heat(std::span<const double> gamma, double friction,
+                                           double delta_c, std::span<const double> v_slave,
+                                           std::span<const double> v_master) const {
+  check_size(gamma, contact_nodes_.size(), "gamma (one per contact node)");
+  const int d = dim_;
+  if (!v_slave.empty()) check_size(v_slave, d * slave_.n_nodes(), "the slave velocity");
+  if (!v_master.empty()) check_size(v_master, d * master_.n_nodes(), "the master velocity");
+  FrictionalHeat heat;
+  heat.slave.assign(slave_.n_nodes(), 0.0);
+  heat.master.assign(master_.n_nodes(), 0.0);
+  const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
+  auto velocity = [d](std::span<const double> v, int node) {
+    Vec3 out{0, 0, 0};
+    if (!v.empty())
+      for (int k = 0; k < d; ++k) out[k] = v[d * node + k];
+    return out;
+  };
+  for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
+                       bool warped, const PlacedFacet& m) {
+    const auto& sn = slave_facets_[seg.slave].nodes;
+    const auto& mn = master_facets_[seg.master].nodes;
+    for_each_point(d, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
+      double g = 0;
+      Vec3 n{0, 0, 0}, jump{0, 0, 0};
+      for (int a = 0; a < q.slave.n; ++a) {
+        if (contact_index_[sn[a]] >= 0) g += gamma[contact_index_[sn[a]]] * q.slave.phi[a];
+        n = n + q.slave.phi[a] * node_normals_[sn[a]];
+        jump = jump + q.slave.phi[a] * velocity(v_slave, sn[a]);
+      }
+      for (int b = 0; b < q.master.n; ++b)
+        jump = jump - q.master.phi[b] * velocity(v_master, mn[b]);
+      n = normalized(n);
+      const Vec3 slip = jump - dot(jump, n) * n;
+      const double power = friction * g * norm(slip) * q.weight;  // 𝔉γ‖[u̇]_τ‖ dS
+      heat.total += power;
+      for (int a = 0; a < q.slave.n; ++a) heat.slave[sn[a]] += delta_c * power * q.slave.phi[a];
+      for (int b = 0; b < q.master.n; ++b)
+        heat.master[mn[b]] += (1 - delta_c) * power * q.master.phi[b];
+    });
+  });
+  return heat;
+}
+
+}  // namespace tc::contact

@@ -1,0 +1,160 @@
+#pragma once
+// The mortar discretisation of one slave–master interface (thesis §4.3–4.4; segment-based
+// integration after Puso & Laursen 2004 and Popp, Gitterle, Gee, Wall 2010; dual basis after
+// Wohlmuth 2000, on the overlapped part of each face after Popp, Wohlmuth, Gee, Wall 2012).
+// Stages as in LLNL Tribol: search (search.hpp), geometry and clipping (geometry.hpp),
+// integration (integration.hpp), assembly (assembly.hpp).
+//
+// Multipliers live on the slave nodes: λ_h = Σ_k λ_k ψ_k. With φ the nodal shape functions,
+//   D_kj = ∫ ψ_k φ_j^s dS,   M_kj = ∫ ψ_k (φ_j^m ∘ projection) dS,
+// integrated over the part of the slave surface that the master covers. The constraint rows
+// of (4.3) and the weighted gap of (2.6), with n_k the slave's averaged outward nodal normal:
+//   B_s[normal k] = Σ_j D_kj n_kᵀ (slave dofs of j),  B_m[normal k] = −Σ_j M_kj n_kᵀ (...),
+//   g_k = n_k·(Σ_j M_kj x_j^m − Σ_j D_kj x_j^s)  (≥ 0 when open; B_n Δu ≤ g),
+// and the same with the tangents τ_l in the tangential rows.
+//
+// Contract:
+//  - Both meshes must outlive the pair (it keeps references).
+//  - The constructor evaluates the reference configuration (an update() with no displacement).
+//  - Every accessor refers to the last update(); references returned by them are invalidated
+//    by the next update().
+//  - Sequential: every rank that calls it computes the whole interface (matrices on
+//    PETSC_COMM_SELF); not collective.
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tc/contact/assembly.hpp"
+#include "tc/contact/contact_rows.hpp"
+#include "tc/contact/integration.hpp"
+#include "tc/core/petsc.hpp"
+#include "tc/mesh/mesh.hpp"
+
+namespace tc::contact {
+
+enum class MultiplierBasis { standard, dual };
+[[nodiscard]] const char* name(MultiplierBasis b);
+
+struct MortarOptions {
+  MultiplierBasis basis = MultiplierBasis::dual;
+  /// Master faces whose bounding box is farther than this (max-norm distance between bounding
+  /// boxes, current configuration) from the slave face's box are skipped. 0 = automatic: the
+  /// largest facet diameter of the two surfaces in the configuration of the update, i.e. one
+  /// element layer, enough for any contact that can close within a step that moves the
+  /// surfaces less than an element.
+  double search_radius = 0;
+};
+
+/// Wall-clock seconds of the stages of the last update().
+struct MortarTimings {
+  double search = 0, geometry = 0, integration = 0, assembly = 0;
+};
+
+/// L_θγ of §4.4 split into the blocks over each body's full node numbering: ss (N_s × N_s),
+/// sm (N_s × N_m), ms (N_m × N_s), mm (N_m × N_m).
+struct ThermalContact {
+  core::SparseMatrix ss, sm, ms, mm;
+};
+
+/// d_θγ of §4.4: nodal heat inputs over each body's nodes [W] and their sum
+/// total = ∫ 𝔉 γ ‖[u̇]_τ‖ dS.
+struct FrictionalHeat {
+  std::vector<double> slave, master;
+  double total = 0;
+};
+
+class MortarPair {
+ public:
+  /// Throws MeshError when a boundary is missing, the dimensions differ, or a facet type does
+  /// not fit the dimension (Line2 in 2D, Tri3/Quad4 in 3D).
+  MortarPair(const mesh::Mesh& slave, std::string slave_boundary, const mesh::Mesh& master,
+             std::string master_boundary, MortarOptions options = {});
+
+  /// Evaluates the interface in the configuration X + u (u interleaved: dof d·j + k; an empty
+  /// span is the reference configuration). Everything below refers to the last update().
+  void update(std::span<const double> u_slave = {}, std::span<const double> u_master = {});
+
+  [[nodiscard]] int dim() const { return dim_; }
+  [[nodiscard]] const MortarOptions& options() const { return options_; }
+  /// The search radius used by the last update (the automatic one when options say 0).
+  [[nodiscard]] double search_radius() const { return radius_; }
+
+  /// Contact node k (row block k of rows()) → slave mesh node, ascending. A slave node is a
+  /// contact node when its multiplier has a positive weight ∫ψ_k over the overlapped surface
+  /// (more than 1e-12 of the area of its faces). The list may change between updates.
+  [[nodiscard]] const std::vector<int>& contact_nodes() const { return contact_nodes_; }
+  /// Contact index of a slave mesh node, −1 when it is not a contact node.
+  [[nodiscard]] int contact_index(int slave_node) const { return contact_index_[slave_node]; }
+
+  /// B_s, B_m node-major (row dim·k: normal of contact node k, dim·k + 1 + l: tangent l),
+  /// columns each body's displacement dofs; gap g_k; weights ∫ψ_k over the overlap. A copy.
+  [[nodiscard]] ContactRows rows() const;
+  /// Per contact node: the slave's outward averaged nodal normal (unit) and tangents l = 0
+  /// (2D, 3D) and 1 (3D), orthonormal with it.
+  [[nodiscard]] const std::vector<std::array<double, 3>>& normals() const { return normals_; }
+  [[nodiscard]] const std::vector<std::array<double, 3>>& tangents(int l) const;
+  [[nodiscard]] const std::vector<double>& gap() const { return gap_; }
+  [[nodiscard]] const std::vector<double>& weights() const { return weights_; }
+
+  /// D (contact nodes × slave nodes; diagonal, D_kk = ∫ψ_k, with the dual basis) and
+  /// M (contact nodes × master nodes), scalar.
+  [[nodiscard]] const core::SparseMatrix& d_matrix() const { return d_; }
+  [[nodiscard]] const core::SparseMatrix& m_matrix() const { return m_; }
+
+  /// L_θγ of §4.4: β_C ∫ γ [θ][χ] dS with γ = Σ_k γ_k φ_k^s (γ per contact node).
+  [[nodiscard]] ThermalContact thermal_conductance(std::span<const double> gamma,
+                                                   double beta_c) const;
+  /// d_θγ of §4.4: ∫ 𝔉 γ ‖[u̇]_τ‖ χ dS, δ_C of it to the slave and 1 − δ_C to the master;
+  /// [u̇]_τ is the part of u̇_s − u̇_m orthogonal to the interpolated nodal normal. v_* are the
+  /// bodies' velocities (interleaved dofs; empty = at rest).
+  [[nodiscard]] FrictionalHeat frictional_heat(std::span<const double> gamma, double friction,
+                                               double delta_c, std::span<const double> v_slave,
+                                               std::span<const double> v_master) const;
+
+  [[nodiscard]] const MortarTimings& timings() const { return timings_; }
+  /// The mortar segments of the last update (slave face, master face, clip cell).
+  [[nodiscard]] const std::vector<MortarSegment>& segments() const { return segments_; }
+  /// Area (length in 2D) of the slave surface covered by the master in the last update.
+  [[nodiscard]] double overlap_area() const { return overlap_area_; }
+
+ private:
+  void set_positions(std::span<const double> u_slave, std::span<const double> u_master);
+  void search();
+  void build_segments();
+  void integrate();
+  void assemble();
+  [[nodiscard]] core::SparseMatrix directional_rows(const Csr& csr, double sign,
+                                                    PetscInt n_cols) const;
+  /// Calls f(segment, plane, placed slave face, warped, placed master face) per segment.
+  template <class F>
+  void for_each_segment(F&& f) const;
+
+  const mesh::Mesh& slave_;
+  const mesh::Mesh& master_;
+  std::string slave_name_, master_name_;
+  MortarOptions options_;
+  int dim_;
+  std::vector<mesh::Facet> slave_facets_, master_facets_;
+
+  // State of the last update.
+  std::vector<Vec3> xs_, xm_;  // current positions of the surface nodes (others unused)
+  std::vector<FacetPoints> slave_points_, master_points_;
+  std::vector<FacePlane> planes_;
+  std::vector<char> warped_;
+  std::vector<Vec3> node_normals_;  // averaged normal per slave node
+  std::vector<double> face_area_;   // full area of each slave face (projected, for thresholds)
+  double radius_ = 0;
+  Csr candidates_;                       // master faces near each slave face (cols only)
+  std::vector<MortarSegment> segments_;  // grouped by slave face
+  std::vector<int> face_segments_;       // segments_[face_segments_[e], face_segments_[e + 1])
+  Csr d_rows_, m_rows_;                  // by slave node
+  double overlap_area_ = 0;
+  std::vector<int> contact_nodes_, contact_index_;
+  std::vector<std::array<double, 3>> normals_, tangents_[2];
+  std::vector<double> gap_, weights_;
+  core::SparseMatrix d_, m_, b_slave_, b_master_;
+  MortarTimings timings_;
+};
+
+}  // namespace tc::contact
