@@ -206,6 +206,10 @@ inline double surface_area(const mesh::Mesh& m, const std::string& boundary) {
 inline void expect_sums(const contact::MortarPair& p, double area, double tol) {
   double w = 0;
   for (const double x : p.weights()) w += x;
+  if (std::getenv("TC_MORTAR_VERBOSE"))
+    std::printf("sums: D %.2e M %.2e weights %.2e (relative)\n",
+                std::abs(sum_of(p.d_matrix()) - area) / area,
+                std::abs(sum_of(p.m_matrix()) - area) / area, std::abs(w - area) / area);
   EXPECT_NEAR(sum_of(p.d_matrix()), area, tol * area);
   EXPECT_NEAR(sum_of(p.m_matrix()), area, tol * area);
   EXPECT_NEAR(w, area, tol * area);
@@ -250,12 +254,18 @@ inline Transfer transfer(const contact::MortarPair& p, const mesh::Mesh& slave,
 
 /// max_k |g_k − δ weight_k| / (δ max_k weight_k).
 inline double gap_error(const contact::MortarPair& p, double delta) {
+  struct Report {
+    double err = 0;
+    ~Report() {
+      if (std::getenv("TC_MORTAR_VERBOSE")) std::printf("gap error %.2e\n", err);
+    }
+  };
   double err = 0, wmax = 0;
   for (size_t k = 0; k < p.gap().size(); ++k) {
     err = std::max(err, std::abs(p.gap()[k] - delta * p.weights()[k]));
     wmax = std::max(wmax, p.weights()[k]);
   }
-  return err / (delta * wmax);
+  return Report{err / (delta * wmax)}.err;
 }
 
 inline Rotation rotation(const contact::Vec3& axis_in, double angle) {

@@ -325,6 +325,7 @@ ContactRows MortarPair::rows() const {
   r.master = b_master_.copy();
   r.gap = gap_;
   r.weights = weights_;
+  r.nodes = contact_nodes_;
   return r;
 }
 
