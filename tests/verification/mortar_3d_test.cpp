@@ -173,6 +173,31 @@ TEST_P(Mortar3d, PartialOverlapMasterOffsetAndSlaveLarger) {
   }
 }
 
+TEST_P(Mortar3d, SliversOfOverlapAtTheEdgeOfTheMaster) {
+  // The master's edge falls a fraction ε of a face short of a slave grid line, so a column of
+  // slave faces is covered on a sliver of relative width ε: the dual basis of those faces is
+  // computed from nearly singular local mass matrices (Popp et al. 2012's partial overlap).
+  const double h = 1.0 / 8, delta = 0.02;
+  for (const double eps : {1e-3, 1e-6, 1e-9, 1e-11}) {
+    SCOPED_TRACE(eps);
+    const double x0 = 5 * h - eps * h;
+    const auto s = slave_block(3, 0, 1, 8, delta);
+    const auto m = master_block(3, x0, 1.3, 5, -0.1, 1.1);
+    const MortarPair pair(s, "zmin", m, "zmax", options());
+    expect_sums(pair, 1 - x0, 1e-12);
+    EXPECT_LT(gap_error(pair, delta), 1e-12);
+    const auto s0 = slave_block(3, 0, 1, 8);
+    expect_exact_transfer(MortarPair(s0, "zmin", m, "zmax", options()), s0, m);
+    // A higher weight threshold drops the nodes that only a sliver touches: D stays well
+    // conditioned (≤ 100 instead of up to 1e10) and the transfer exact on the others.
+    const MortarPair strict(s0, "zmin", m, "zmax", {GetParam(), 0.0, 1e-4});
+    const auto t = transfer(strict, s0, m, linear);
+    EXPECT_LT(t.cond, 100.0);
+    EXPECT_LT(t.error, 1e-12);
+    EXPECT_EQ(strict.contact_nodes().size(), 4u * 9u);  // the columns x = 5h … 1
+  }
+}
+
 TEST_P(Mortar3d, RigidMotionChangesOnlyTheFrame) {
   const auto s = bend(jitter(slave_block(3, 0, 1, 7, 0.03), "zmin", 0.03, 61, true), 0.15);
   const auto m = bend(jitter(master_block(3, -0.2, 1.2, 5), "zmax", 0.05, 62, true), 0.15);

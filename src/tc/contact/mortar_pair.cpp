@@ -82,6 +82,9 @@ MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
   if (!(options_.search_radius >= 0))
     throw Error("mortar pair: search_radius must be ≥ 0 (0 = automatic), got " +
                 std::to_string(options_.search_radius));
+  if (!(options_.weight_threshold >= 0 && options_.weight_threshold < 1))
+    throw Error("mortar pair: weight_threshold must be in [0, 1), got " +
+                std::to_string(options_.weight_threshold));
   slave_facets_ = checked_boundary(slave, slave_name_, "slave");
   master_facets_ = checked_boundary(master, master_name_, "master");
   update();
@@ -263,7 +266,7 @@ void MortarPair::assemble() {
   weights_.clear();
   gap_.clear();
   for (int j = 0; j < n_s; ++j) {
-    if (!(weight[j] > 1e-12 * scale[j])) continue;
+    if (!(weight[j] > options_.weight_threshold * scale[j])) continue;
     contact_index_[j] = static_cast<int>(contact_nodes_.size());
     contact_nodes_.push_back(j);
     const Vec3 n = node_normals_[j];

@@ -44,6 +44,11 @@ struct MortarOptions {
   /// element layer, enough for any contact that can close within a step that moves the
   /// surfaces less than an element.
   double search_radius = 0;
+  /// A slave node is a contact node when its weight ∫ψ_k exceeds this fraction of the area of
+  /// its slave faces. The default keeps every node that the master really covers (Σ D stays
+  /// the overlapped area to 1e-12); raise it (e.g. 1e-4) to drop nodes touched only by a
+  /// sliver of overlap, whose rows are tiny and make the dual QP (6.9) ill-conditioned.
+  double weight_threshold = 1e-12;
 };
 
 /// Wall-clock seconds of the stages of the last update().
@@ -82,7 +87,8 @@ class MortarPair {
 
   /// Contact node k (row block k of rows()) → slave mesh node, ascending. A slave node is a
   /// contact node when its multiplier has a positive weight ∫ψ_k over the overlapped surface
-  /// (more than 1e-12 of the area of its faces). The list may change between updates.
+  /// (more than options().weight_threshold of the area of its faces). The list may change
+  /// between updates.
   [[nodiscard]] const std::vector<int>& contact_nodes() const { return contact_nodes_; }
   /// Contact index of a slave mesh node, −1 when it is not a contact node.
   [[nodiscard]] int contact_index(int slave_node) const { return contact_index_[slave_node]; }
