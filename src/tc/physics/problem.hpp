@@ -17,10 +17,17 @@ using core::TimeTable;
 
 enum class Scheme { Dynamic, Quasistatic };
 
+/// How Newmark meets contact (dynamic runs with [contact] only): the thesis' plain scheme
+/// (5.1–5.4), or the contact-stabilised Newmark of Deuflhard, Krause & Ertel (IJNME 73, 2008),
+/// whose predictor is projected onto the admissible set in the mass norm and whose position
+/// update drops the last step's contact force: energy then never grows at an impact.
+enum class ContactScheme { Plain, Stabilised };
+
 struct TimeSettings {
   Scheme scheme = Scheme::Dynamic;
-  double step = 0;                    // τ [s]
-  double end = 0;                     // T [s]
+  double step = 0;  // τ [s]
+  double end = 0;   // T [s]
+  ContactScheme contact_scheme = ContactScheme::Stabilised;
   [[nodiscard]] int n_steps() const;  // round(end / step)
 };
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "tc/core/error.hpp"
 
@@ -42,6 +43,11 @@ struct Simulation::Solvers {
   std::unique_ptr<ConstrainedSolver> mech, heat;
   core::Vector f_u, f_theta, rhs_u_base, rhs_theta_base, rhs_u, rhs_theta;
   core::Vector u_new, theta_new, u_prev, theta_prev, velocity, dtheta, work_u, work_theta;
+  core::Vector u_pred;  // Newmark's u^k + τu̇^k, projected onto the admissible set if stabilised
+  // Contact-stabilised Newmark only: M_u factorised, and the force without inertia and contact
+  // g^k = f^k − K_u u^k − K_uθ(θ^k − θ₀) that replaces M_u ü^k (which holds the contact force).
+  std::unique_ptr<ConstrainedSolver> mass;
+  core::Vector g_free;
   bool expansion = false;  // θ drives u (thermal expansion on, α ≠ 0)
   bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
 };
@@ -71,8 +77,8 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
     const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
     s->expansion = problem_.physics.thermal_expansion && coupled_material;
     s->heating = problem_.physics.thermoelastic_heating && coupled_material;
-    for (auto* v :
-         {&s->f_u, &s->rhs_u_base, &s->rhs_u, &s->u_new, &s->u_prev, &s->velocity, &s->work_u})
+    for (auto* v : {&s->f_u, &s->rhs_u_base, &s->rhs_u, &s->u_new, &s->u_prev, &s->velocity,
+                    &s->work_u, &s->u_pred})
       *v = core::Vector(sys.n_u());
     for (auto* v : {&s->f_theta, &s->rhs_theta_base, &s->rhs_theta, &s->theta_new, &s->theta_prev,
                     &s->dtheta, &s->work_theta})
@@ -120,6 +126,7 @@ void Simulation::initialise() {
         m.coupling_u_theta.mult(s.dtheta, s.work_u);
         s.rhs_u.axpy(-1.0, s.work_u);
       }
+      s.g_free = s.rhs_u.clone();  // g⁰ = M ü⁰ (no contact force at t = 0)
       ConstrainedSolver mass(m.mass_u, sys.u_dirichlet_dofs(), problem_.solver.factorization);
       st.a.zero();
       mass.solve(s.rhs_u, st.a);
@@ -194,10 +201,11 @@ void Simulation::prepare_step(int b) {
   // Right-hand sides that do not change within the fixed point.
   sys.mechanical_load(t, s.f_u);
   s.rhs_u_base.copy_from(s.f_u);
-  if (dynamic) {  // f_u^{k+1} of (5.3): + M(4/τ² u + 4/τ u̇ + ü)
+  if (dynamic) {  // f_u^{k+1} of (5.3): + M(4/τ² u + 4/τ u̇ + ü) = M(4/τ² u_pred + ü)
+    s.u_pred.copy_from(st.u);
+    s.u_pred.axpy(tau, st.v);
     s.work_u.copy_from(st.a);
-    s.work_u.axpy(4.0 / tau, st.v);
-    s.work_u.axpy(4.0 / (tau * tau), st.u);
+    s.work_u.axpy(4.0 / (tau * tau), s.u_pred);
     m.mass_u.mult_add(s.work_u, s.rhs_u_base);
   }
   sys.thermal_load(t, s.f_theta);
@@ -210,6 +218,7 @@ void Simulation::prepare_step(int b) {
   s.u_new.copy_from(st.u);
   s.u_new.axpy(tau, st.v);
   if (dynamic) s.u_new.axpy(0.5 * tau * tau, st.a);
+  if (!dynamic) s.u_pred.copy_from(st.u);
   s.theta_new.copy_from(st.theta);
 }
 
@@ -223,10 +232,10 @@ void Simulation::heat_step(int b, int iteration) {
   s.rhs_theta.copy_from(s.rhs_theta_base);
   if (s.heating) {  // −K_θu u̇ = θ₀ K_uθᵀ u̇ (docs/choices.md)
     s.velocity.copy_from(s.u_new);
-    s.velocity.axpy(-1.0, st.u);
+    s.velocity.axpy(-1.0, s.u_pred);
     if (problem_.time.scheme == Scheme::Dynamic) {
-      s.velocity.scale(2.0 / tau);  // (5.2) with γ = 1/2
-      s.velocity.axpy(-1.0, st.v);
+      s.velocity.scale(2.0 / tau);  // (5.2) with γ = 1/2: u̇ = u̇^k + 2/τ(u − u_pred)
+      s.velocity.axpy(1.0, st.v);
     } else {
       s.velocity.scale(1.0 / tau);
     }
@@ -261,20 +270,32 @@ void Simulation::update_state(int b) {
   const double tau = problem_.time.step;
   auto& st = states_[b];
   auto& s = *solvers_[b];
-  s.work_u.copy_from(s.u_new);
-  s.work_u.axpy(-1.0, st.u);  // Δu
   if (problem_.time.scheme == Scheme::Dynamic) {
-    st.a.scale(-1.0);  // ü^{k+1} = 4/τ² Δu − 4/τ u̇^k − ü^k
-    st.a.axpy(-4.0 / tau, st.v);
+    s.work_u.copy_from(s.u_new);
+    s.work_u.axpy(-1.0, s.u_pred);  // u^{k+1} − u_pred = τ²/4 (ü^k + ü^{k+1})
+    st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
     st.a.axpy(4.0 / (tau * tau), s.work_u);
-    st.v.scale(-1.0);  // u̇^{k+1} = 2/τ Δu − u̇^k
-    st.v.axpy(2.0 / tau, s.work_u);
+    st.v.axpy(2.0 / tau, s.work_u);  // u̇^{k+1} = u̇^k + 2/τ(u^{k+1} − u_pred)
   } else {
+    s.work_u.copy_from(s.u_new);
+    s.work_u.axpy(-1.0, st.u);
     st.v.copy_from(s.work_u);
     st.v.scale(1.0 / tau);
   }
   st.u.copy_from(s.u_new);
   st.theta.copy_from(s.theta_new);
+  if (s.mass) {  // g^{k+1} = f^{k+1} − K u^{k+1} − K_uθ(θ^{k+1} − θ₀) (f_u still holds f^{k+1})
+    const auto& m = systems_[b]->matrices();
+    s.g_free.copy_from(s.f_u);
+    m.stiffness_u.mult(st.u, s.work_u);
+    s.g_free.axpy(-1.0, s.work_u);
+    if (problem_.physics.thermal_expansion) {
+      s.dtheta.copy_from(st.theta);
+      s.dtheta.shift(-problem_.physics.reference_temperature);
+      m.coupling_u_theta.mult(s.dtheta, s.work_u);
+      s.g_free.axpy(-1.0, s.work_u);
+    }
+  }
 }
 
 int Simulation::couple_body(int b) {
@@ -322,9 +343,75 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   settings.qp.rtol = problem_.solver.qp_tolerance;
   settings.qp.max_iterations = problem_.solver.max_qp_iterations;
   contact_rows_ = std::move(builder);
-  dual_ = std::make_unique<DualContactSolver>(
-      *solvers_[c.slave_body]->mech, *solvers_[c.master_body]->mech, systems_[c.slave_body]->n_u(),
-      systems_[c.master_body]->n_u(), settings);
+  const int sb = c.slave_body, mb = c.master_body;
+  dual_ = std::make_unique<DualContactSolver>(*solvers_[sb]->mech, *solvers_[mb]->mech,
+                                              systems_[sb]->n_u(), systems_[mb]->n_u(), settings);
+  if (problem_.time.scheme == Scheme::Dynamic &&
+      problem_.time.contact_scheme == ContactScheme::Stabilised) {
+    auto t = timers_.scope("factorization");
+    for (const int b : {sb, mb})
+      solvers_[b]->mass = std::make_unique<ConstrainedSolver>(systems_[b]->matrices().mass_u,
+                                                              systems_[b]->u_dirichlet_dofs(),
+                                                              problem_.solver.factorization);
+    stabiliser_ =
+        std::make_unique<DualContactSolver>(*solvers_[sb]->mass, *solvers_[mb]->mass,
+                                            systems_[sb]->n_u(), systems_[mb]->n_u(), settings);
+  }
+}
+
+void Simulation::stabilise_predictor(std::span<const double> normal_targets) {
+  // Deuflhard–Krause–Ertel: u_pred ← argmin ½‖v − (u^k + τu̇^k)‖²_M over B_n(v − u^k) ≤ g
+  // (frictionless: the projection only removes the normal approach), then the position update
+  // M(u^{k+1} − u_pred) = τ²/4 (g^k + f^{k+1} − K u^{k+1} − … − Bᵀλ^{k+1}) drops the contact
+  // force of step k, which is what made plain Newmark gain energy at the impact.
+  const auto& c = *problem_.contact;
+  const int sb = c.slave_body, mb = c.master_body;
+  const double tau = problem_.time.step;
+  auto& ss = *solvers_[sb];
+  auto& sm = *solvers_[mb];
+  const auto& rows = dual_->rows();
+  stabiliser_->set_rows(
+      {rows.dim, rows.slave.share(), rows.master.share(), rows.gap, rows.weights, rows.nodes});
+  core::Vector multipliers(rows.n_rows());
+  const std::vector<double> no_friction(static_cast<size_t>(rows.n_nodes()), 0.0);
+  ss.u_prev.copy_from(ss.u_pred);
+  sm.u_prev.copy_from(sm.u_pred);
+  const auto r = stabiliser_->solve(ss.u_prev, sm.u_prev, normal_targets, no_friction, multipliers,
+                                    ss.u_pred, sm.u_pred);
+  contact_stats_.qp_iterations += r.iterations;
+  contact_stats_.operator_applications += r.operator_applications + stabiliser_->setup_solves() / 2;
+  if (!r.converged())
+    throw NumericalError(
+        fmt::format("the contact-stabilised predictor (mass projection) did not converge: {}",
+                    r.message),
+        step_ + 1, 0, r.projected_gradient);
+  for (const int b : {sb, mb}) {
+    auto& s = *solvers_[b];
+    s.rhs_u_base.copy_from(s.f_u);
+    s.rhs_u_base.axpy(1.0, s.g_free);
+    systems_[b]->matrices().mass_u.mult(s.u_pred, s.work_u);
+    s.rhs_u_base.axpy(4.0 / (tau * tau), s.work_u);
+    s.u_new.copy_from(s.u_pred);
+  }
+}
+
+void Simulation::warm_start(const ContactRows& rows) {
+  // λ of the last step, node by node: by slave mesh node when the rows name them (the contact
+  // nodes of a mortar pair change as bodies slide), else by position while the count holds.
+  const int dim = rows.dim;
+  const std::vector<double> previous = lambda_.get() ? lambda_.to_std() : std::vector<double>{};
+  lambda_ = core::Vector(rows.n_rows());
+  auto lv = lambda_.view();
+  if (!rows.nodes.empty() && !lambda_nodes_.empty()) {
+    std::map<int, size_t> where;
+    for (size_t k = 0; k < lambda_nodes_.size(); ++k) where[lambda_nodes_[k]] = k;
+    for (size_t k = 0; k < rows.nodes.size(); ++k)
+      if (const auto it = where.find(rows.nodes[k]); it != where.end())
+        for (int i = 0; i < dim; ++i) lv[dim * k + i] = previous[dim * it->second + i];
+  } else if (static_cast<PetscInt>(previous.size()) == rows.n_rows()) {
+    for (PetscInt i = 0; i < rows.n_rows(); ++i) lv[i] = previous[i];
+  }
+  lambda_nodes_ = rows.nodes;
 }
 
 std::vector<double> Simulation::contact_multipliers() const {
@@ -342,6 +429,8 @@ int Simulation::couple_contact() {
   const auto& stm = states_[mb];
   prepare_step(sb);
   prepare_step(mb);
+  contact_stats_.qp_iterations = 0;
+  contact_stats_.operator_applications = 0;
   {
     auto scope = timers_.scope("mortar");
     dual_->set_rows(contact_rows_(sts.u, stm.u));
@@ -349,19 +438,18 @@ int Simulation::couple_contact() {
   const auto& rows = dual_->rows();
   const int dim = rows.dim;
   const PetscInt nc = rows.n_nodes();
-  // Warm start from the last step's multipliers while the contact nodes stay the same.
-  std::vector<double> previous = lambda_.get() ? lambda_.to_std() : std::vector<double>{};
-  lambda_ = core::Vector(rows.n_rows());
-  if (static_cast<PetscInt>(previous.size()) == rows.n_rows()) {
-    auto lv = lambda_.view();
-    for (PetscInt i = 0; i < rows.n_rows(); ++i) lv[i] = previous[i];
+  warm_start(rows);
+  if (stabiliser_) {
+    auto scope = timers_.scope("qp");
+    stabilise_predictor(dual_->targets(sts.u, stm.u, sts.u, stm.u));
   }
-  // The slip is measured from u^k + τ/2 u̇^k (Newmark: B_τu − c_τ = τ/2 B_τu̇^{k+1}), 5.4.
-  ss.work_u.copy_from(sts.u);
-  sm.work_u.copy_from(stm.u);
+  // The slip is measured from u_pred − τ/2 u̇^k (= u^k + τ/2 u̇^k with plain Newmark), so that
+  // B_τu − c_τ = τ/2 B_τu̇^{k+1} (5.4); quasistatic: from u^k.
+  ss.work_u.copy_from(ss.u_pred);
+  sm.work_u.copy_from(sm.u_pred);
   if (dynamic) {
-    ss.work_u.axpy(0.5 * tau, sts.v);
-    sm.work_u.axpy(0.5 * tau, stm.v);
+    ss.work_u.axpy(-0.5 * tau, sts.v);
+    sm.work_u.axpy(-0.5 * tau, stm.v);
   }
   const auto targets = dual_->targets(sts.u, stm.u, ss.work_u, sm.work_u);
 
@@ -371,8 +459,7 @@ int Simulation::couple_contact() {
     for (PetscInt k = 0; k < nc; ++k) bound[k] = c.friction * std::max(lv[dim * k], 0.0);
   };
   tresca_bound();
-  contact_stats_.qp_iterations = 0;
-  contact_stats_.operator_applications = dual_->setup_solves() / 2;
+  contact_stats_.operator_applications += dual_->setup_solves() / 2;
   core::Vector lambda_prev = lambda_.clone();
   const double tol = problem_.solver.coupling_tolerance;
   const int step = step_ + 1;

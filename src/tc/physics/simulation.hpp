@@ -9,6 +9,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,8 @@ class Simulation {
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
   void update_state(int b);              // Newmark/backward-difference updates of u̇, ü
   int couple_contact();  // the staggered loop of 6.3 for the contact pair (heat, dual QP)
+  void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
+  void stabilise_predictor(std::span<const double> normal_targets);
   void contact_bookkeeping();
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void support_forces(int b, core::Vector& r) const;  // reactions at constrained dofs
@@ -130,8 +133,10 @@ class Simulation {
 
   ContactRowsBuilder contact_rows_;
   std::unique_ptr<DualContactSolver> dual_;
+  std::unique_ptr<DualContactSolver> stabiliser_;  // the mass projection (contact-stabilised)
   core::Vector lambda_;
-  std::vector<double> slip_;  // B_τ Δu of the last step (node-major, normal rows unused)
+  std::vector<int> lambda_nodes_;  // slave mesh node of each contact node of lambda_
+  std::vector<double> slip_;       // B_τ Δu of the last step (node-major, normal rows unused)
   ContactStatistics contact_stats_;
 };
 
