@@ -175,33 +175,60 @@ Interval overlap(double length, double a, double b) {
   return {std::max(0.0, std::min(a, b)), std::min(length, std::max(a, b))};
 }
 
-Vec2 inverse_map(FacetType t, const std::array<Vec2, 4>& q, const Vec2& p) {
-  if (t == FacetType::Line2) return {(p[0] - q[0][0]) / (q[1][0] - q[0][0]), 0};
-  if (t == FacetType::Tri3) {
-    const double a = q[1][0] - q[0][0], b = q[2][0] - q[0][0];
-    const double c = q[1][1] - q[0][1], d = q[2][1] - q[0][1];
-    const double rx = p[0] - q[0][0], ry = p[1] - q[0][1];
-    const double det = a * d - b * c;
-    return {(d * rx - b * ry) / det, (a * ry - c * rx) / det};
-  }
-  Vec2 xi{0, 0};
-  for (int it = 0; it < 30; ++it) {
-    const ShapeValues s = facet_shape(t, xi);
-    double r0 = p[0], r1 = p[1], j00 = 0, j01 = 0, j10 = 0, j11 = 0;
-    for (int a = 0; a < 4; ++a) {
-      r0 -= s.phi[a] * q[a][0];
-      r1 -= s.phi[a] * q[a][1];
-      j00 += q[a][0] * s.dphi[a][0];
-      j01 += q[a][0] * s.dphi[a][1];
-      j10 += q[a][1] * s.dphi[a][0];
-      j11 += q[a][1] * s.dphi[a][1];
+PlaneMap PlaneMap::of(FacetType t, const std::array<Vec2, 4>& q) {
+  PlaneMap m;
+  m.type = t;
+  auto combo = [&](const double(&w)[4]) {
+    Vec2 v{0, 0};
+    for (int a = 0; a < 4; ++a) v = {v[0] + w[a] * q[a][0], v[1] + w[a] * q[a][1]};
+    return v;
+  };
+  switch (t) {
+    case FacetType::Line2:
+      m.a = {q[0][0], 0};
+      m.b = {q[1][0] - q[0][0], 0};
+      break;
+    case FacetType::Tri3:
+      m.a = q[0];
+      m.b = combo({-1, 1, 0, 0});
+      m.c = combo({-1, 0, 1, 0});
+      break;
+    case FacetType::Quad4: {
+      // φ_a = ¼(1 + s_aξ)(1 + t_aη) with (s, t) the corners of [−1, 1]² in VTK order.
+      m.a = combo({0.25, 0.25, 0.25, 0.25});
+      m.b = combo({-0.25, 0.25, 0.25, -0.25});
+      m.c = combo({-0.25, -0.25, 0.25, 0.25});
+      m.d = combo({0.25, -0.25, 0.25, -0.25});
+      const double size = std::abs(m.b[0]) + std::abs(m.b[1]) + std::abs(m.c[0]) + std::abs(m.c[1]);
+      m.affine = std::abs(m.d[0]) + std::abs(m.d[1]) <= 1e-15 * size;
+      break;
     }
-    const double det = j00 * j11 - j01 * j10;
-    const double d0 = (j11 * r0 - j01 * r1) / det, d1 = (j00 * r1 - j10 * r0) / det;
+  }
+  return m;
+}
+
+Vec2 PlaneMap::inverse(const Vec2& p) const {
+  if (type == FacetType::Line2) return {(p[0] - a[0]) / b[0], 0};
+  // The affine part: [b c] ξ = p − a.
+  const double rx = p[0] - a[0], ry = p[1] - a[1];
+  const double det = b[0] * c[1] - c[0] * b[1];
+  Vec2 xi{(c[1] * rx - c[0] * ry) / det, (b[0] * ry - b[1] * rx) / det};
+  if (affine) return xi;
+  for (int it = 0; it < 30; ++it) {
+    const double fx = rx - b[0] * xi[0] - c[0] * xi[1] - d[0] * xi[0] * xi[1];
+    const double fy = ry - b[1] * xi[0] - c[1] * xi[1] - d[1] * xi[0] * xi[1];
+    const double j00 = b[0] + d[0] * xi[1], j01 = c[0] + d[0] * xi[0];
+    const double j10 = b[1] + d[1] * xi[1], j11 = c[1] + d[1] * xi[0];
+    const double dj = j00 * j11 - j01 * j10;
+    const double d0 = (j11 * fx - j01 * fy) / dj, d1 = (j00 * fy - j10 * fx) / dj;
     xi = {xi[0] + d0, xi[1] + d1};
     if (std::abs(d0) + std::abs(d1) < 1e-14) break;  // |ξ| ≤ ~1: round-off level
   }
   return xi;
+}
+
+Vec2 inverse_map(FacetType t, const std::array<Vec2, 4>& q, const Vec2& p) {
+  return PlaneMap::of(t, q).inverse(p);
 }
 
 double area_ratio(const FacetPoints& f, const FacePlane& plane, const Vec2& xi) {

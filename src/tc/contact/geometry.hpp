@@ -119,9 +119,20 @@ struct Interval {
 };
 [[nodiscard]] Interval overlap(double length, double a, double b);
 
-/// Reference coordinates of the point of facet f whose projection onto the plane is p, given
-/// the facet's projected vertices q (in facet order). Exact for Line2 and Tri3 (affine);
-/// Newton on the bilinear map for Quad4 (one step for parallelograms).
+/// A facet's map from reference coordinates to the plane, ξ ↦ a + bξ + cη + dξη, from its
+/// projected vertices q (facet order): Line2 (first coordinate only) and Tri3 have d = 0,
+/// Quad4 is bilinear (d = 0 for parallelograms). Built once per facet and plane.
+struct PlaneMap {
+  mesh::FacetType type = mesh::FacetType::Line2;
+  Vec2 a{}, b{}, c{}, d{};
+  bool affine = true;
+  [[nodiscard]] static PlaneMap of(mesh::FacetType t, const std::array<Vec2, 4>& q);
+  /// The reference coordinates of the facet point whose projection is p: exact when affine,
+  /// else Newton from the affine part's solution (2–3 steps to round-off).
+  [[nodiscard]] Vec2 inverse(const Vec2& p) const;
+};
+
+/// PlaneMap::of(t, q).inverse(p).
 [[nodiscard]] Vec2 inverse_map(mesh::FacetType t, const std::array<Vec2, 4>& q, const Vec2& p);
 
 /// Ratio of the facet's surface element |x_ξ × x_η| to that of its projection onto the plane,

@@ -74,6 +74,7 @@ PlacedFacet place(const FacetPoints& f, const FacePlane& plane) {
   PlacedFacet p;
   p.facet = &f;
   for (int a = 0; a < f.n; ++a) p.q[a] = plane.project(f.x[a]);
+  p.map = PlaneMap::of(f.type, p.q);
   return p;
 }
 

@@ -45,6 +45,7 @@ struct MortarSegment {
 struct PlacedFacet {
   const FacetPoints* facet = nullptr;
   std::array<Vec2, 4> q{};
+  PlaneMap map;
 };
 [[nodiscard]] PlacedFacet place(const FacetPoints& f, const FacePlane& plane);
 
@@ -62,9 +63,9 @@ void for_each_point(int dim, const FacePlane& plane, const PlacedFacet& slave, b
                     const PlacedFacet& master, const Polygon& cell, int n, F&& f) {
   auto at = [&](const Vec2& p, double w) {
     MortarPoint q;
-    const Vec2 xs = inverse_map(slave.facet->type, slave.q, p);
+    const Vec2 xs = slave.map.inverse(p);
     q.slave = facet_shape(slave.facet->type, xs);
-    q.master = facet_shape(master.facet->type, inverse_map(master.facet->type, master.q, p));
+    q.master = facet_shape(master.facet->type, master.map.inverse(p));
     q.weight = warped ? w * area_ratio(*slave.facet, plane, xs) : w;
     f(q);
   };

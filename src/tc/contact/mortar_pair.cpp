@@ -128,7 +128,14 @@ void MortarPair::search() {
   const AabbTree tree(std::move(boxes));
   candidates_ = Csr{};
   for (const auto& s : slave_points_) {
-    tree.query(bounding_box(s).inflated(radius_), candidates_.cols);
+    // The points within radius_ of the face along its normal n₀ (the direction of projection)
+    // fill the prism {x + t n₀ : |t| ≤ r}, whose box is the face's box grown by r|n₀_i| along
+    // axis i; a margin of 1e-10 of the face absorbs round-off in the plane.
+    const Vec3 n = centre_normal(s);
+    const double margin = 1e-10 * facet_size(s);
+    const Vec3 grow{radius_ * std::abs(n[0]) + margin, radius_ * std::abs(n[1]) + margin,
+                    radius_ * std::abs(n[2]) + margin};
+    tree.query(bounding_box(s).inflated(grow), candidates_.cols);
     candidates_.offsets.push_back(static_cast<int>(candidates_.cols.size()));
   }
 }

@@ -38,10 +38,11 @@ enum class MultiplierBasis { standard, dual };
 
 struct MortarOptions {
   MultiplierBasis basis = MultiplierBasis::dual;
-  /// Master faces whose bounding box is farther than this (max-norm distance between bounding
-  /// boxes, current configuration) from the slave face's box are skipped. 0 = automatic: the
-  /// largest facet diameter of the two surfaces in the configuration of the update, i.e. one
-  /// element layer, enough for any contact that can close within a step that moves the
+  /// Master faces farther than this from the slave face along its normal are skipped: a master
+  /// face is a candidate when its bounding box meets the box of the prism swept by the slave
+  /// face moved by ±radius along its centre normal (current configuration). 0 = automatic:
+  /// the largest facet diameter of the two surfaces in the configuration of the update, i.e.
+  /// one element layer, enough for any contact that can close within a step that moves the
   /// surfaces less than an element.
   double search_radius = 0;
   /// A slave node is a contact node when its weight ∫ψ_k exceeds this fraction of the area of

@@ -18,10 +18,14 @@ void Aabb::merge(const Aabb& b) {
 }
 
 Aabb Aabb::inflated(double r) const {
+  return inflated(Vec3{r, r, r});
+}
+
+Aabb Aabb::inflated(const Vec3& r) const {
   Aabb b = *this;
   for (int i = 0; i < 3; ++i) {
-    b.lo[i] -= r;
-    b.hi[i] += r;
+    b.lo[i] -= r[i];
+    b.hi[i] += r[i];
   }
   return b;
 }

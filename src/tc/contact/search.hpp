@@ -15,6 +15,7 @@ struct Aabb {
   void grow(const Vec3& p);
   void merge(const Aabb& b);
   [[nodiscard]] Aabb inflated(double r) const;
+  [[nodiscard]] Aabb inflated(const Vec3& r) const;  // by r[i] along axis i
   /// Boxes that touch or overlap (closed boxes).
   [[nodiscard]] bool overlaps(const Aabb& b) const;
   [[nodiscard]] double diagonal() const { return norm(hi - lo); }
