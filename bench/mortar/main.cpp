@@ -1,0 +1,135 @@
+// bench/mortar: MortarPair::update() on 3D non-matching interfaces of growing size, the time
+// per slave face, the growth exponent of the total time (least-squares slope of log(time)
+// against log(slave faces)) and the share of the stages (search, geometry + clipping,
+// integration, assembly). Prints a Markdown table.
+//
+//   build/bin/bench_mortar [slave faces per axis ...] [--standard]
+//
+// The slave is the bottom of [0, 1]² × [0, 0.05] with n × n faces, the master the top of
+// [−0.013, 1.011]² × [−0.05, 0] with about 0.77 n × 0.77 n faces; the interface nodes of both
+// are jittered in-plane by 20 % of their spacing (general quadrilaterals, no alignment), and
+// the slave is lowered by 0.1 % of a face into the master (a closed contact, every face active).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "tc/contact/mortar_pair.hpp"
+#include "tc/core/petsc.hpp"
+#include "tc/mesh/box.hpp"
+
+namespace {
+
+using tc::contact::MortarPair;
+
+/// The box with the nodes of `boundary` (not on its rim) moved in-plane by up to `amplitude`.
+tc::mesh::Mesh jittered(const tc::mesh::Mesh& m, const std::string& boundary, double amplitude,
+                        unsigned seed) {
+  std::vector<char> on(m.n_nodes(), 0);
+  for (const int j : m.boundary_nodes(boundary)) on[j] = 1;
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (const auto& p : m.points())
+    for (int i = 0; i < 2; ++i) lo[i] = std::min(lo[i], p[i]), hi[i] = std::max(hi[i], p[i]);
+  std::mt19937 rng(seed);
+  tc::mesh::Mesh out(3);
+  for (int j = 0; j < m.n_nodes(); ++j) {
+    auto p = m.point(j);
+    for (int i = 0; i < 2; ++i) {
+      const double shift = amplitude * (2.0 * rng() / 4294967295.0 - 1.0);
+      if (on[j] && p[i] > lo[i] + 1e-12 && p[i] < hi[i] - 1e-12) p[i] += shift;
+    }
+    out.add_point(p);
+  }
+  for (int c = 0; c < m.n_cells(); ++c) out.add_cell(m.cell_type(c), m.cell(c));
+  for (const auto& name : m.boundary_names())
+    for (const auto& f : m.boundary(name)) out.add_facet(name, f);
+  return out;
+}
+
+struct Row {
+  int faces = 0, contact_nodes = 0, segments = 0, repeats = 0;
+  double time = 0;  // per update
+  tc::contact::MortarTimings t;
+};
+
+double slope(const std::vector<Row>& rows) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(rows.size());
+  for (const auto& r : rows) {
+    const double x = std::log(static_cast<double>(r.faces)), y = std::log(r.time);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes;
+  tc::contact::MortarOptions options;
+  std::vector<char*> petsc_args{argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--standard") == 0)
+      options.basis = tc::contact::MultiplierBasis::standard;
+    else if (argv[i][0] == '-')
+      petsc_args.push_back(argv[i]);
+    else
+      sizes.push_back(std::stoi(argv[i]));
+  }
+  if (sizes.empty()) sizes = {10, 32, 100, 316};
+  int pargc = static_cast<int>(petsc_args.size());
+  char** pargv = petsc_args.data();
+  tc::core::PetscSession session(&pargc, &pargv);
+
+  std::vector<Row> rows;
+  for (const int n : sizes) {
+    const int nm = std::max(2, static_cast<int>(std::lround(0.77 * n)));
+    const double h = 1.0 / n, hm = 1.024 / nm;
+    const auto slave = jittered(tc::mesh::make_box(3, {0, 0, -1e-3 * h}, {1, 1, 0.05}, {n, n, 1}),
+                                "zmin", 0.2 * h, 1);
+    const auto master =
+        jittered(tc::mesh::make_box(3, {-0.013, -0.013, -0.05}, {1.011, 1.011, 0}, {nm, nm, 1}),
+                 "zmax", 0.2 * hm, 2);
+    MortarPair pair(slave, "zmin", master, "zmax", options);
+    const std::vector<double> us(3 * slave.n_nodes(), 0.0), um(3 * master.n_nodes(), 0.0);
+    Row r;
+    r.faces = n * n;
+    r.repeats = std::max(3, 20000 / r.faces);  // ≥ 0.5 s of work per size
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < r.repeats; ++k) {
+      pair.update(us, um);
+      const auto& t = pair.timings();
+      r.t.search += t.search, r.t.geometry += t.geometry;
+      r.t.integration += t.integration, r.t.assembly += t.assembly;
+    }
+    r.time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / r.repeats;
+    r.contact_nodes = static_cast<int>(pair.contact_nodes().size());
+    r.segments = static_cast<int>(pair.segments().size());
+    rows.push_back(r);
+    fmt::print(stderr, "{} slave faces: {:.3e} s per update\n", r.faces, r.time);
+  }
+
+  fmt::print("basis: {}\n\n", tc::contact::name(options.basis));
+  fmt::print(
+      "| slave faces | master faces | segments | contact nodes | update [s] | per slave face [µs] "
+      "| search | geometry + clipping | integration | assembly |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    const int nm = std::max(2, static_cast<int>(std::lround(0.77 * sizes[i])));
+    const double all = r.t.search + r.t.geometry + r.t.integration + r.t.assembly;
+    fmt::print(
+        "| {} | {} | {} | {} | {:.4f} | {:.2f} | {:.0f} % | {:.0f} % | {:.0f} % | {:.0f} % |\n",
+        r.faces, nm * nm, r.segments, r.contact_nodes, r.time, 1e6 * r.time / r.faces,
+        100 * r.t.search / all, 100 * r.t.geometry / all, 100 * r.t.integration / all,
+        100 * r.t.assembly / all);
+  }
+  if (rows.size() >= 2) fmt::print("\ngrowth exponent of update(): {:.3f}\n", slope(rows));
+  return 0;
+}
