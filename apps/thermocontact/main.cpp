@@ -28,14 +28,6 @@ int report_input_error(const tc::InputError& e) {
   return 2;
 }
 
-/// What this version cannot run yet, though the case file is valid.
-void check_runnable(const tc::physics::Problem& p) {
-  if (p.contact)
-    throw tc::InputError({{p.case_file.string(), 1, "contact",
-                           "found a [contact] table, but contact is not implemented in this "
-                           "version; expected a case without [contact]"}});
-}
-
 int run(const std::string& case_file, const std::string& output, std::vector<std::string> extra,
         const char* program) {
   std::vector<char*> args{const_cast<char*>(program)};
@@ -45,11 +37,11 @@ int run(const std::string& case_file, const std::string& output, std::vector<std
   tc::core::PetscSession session(&argc, &argv);
   try {
     auto problem = tc::io::read_case(case_file);
-    check_runnable(problem);
     if (!output.empty()) problem.output.directory = output;
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     tc::physics::Simulation sim(problem);
+    if (problem.contact) sim.enable_mortar_contact();
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
     tc::io::ProgressLine progress(isatty(STDERR_FILENO) != 0);
     tc::io::Observers observers({&writer, &progress});

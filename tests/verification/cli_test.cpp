@@ -125,3 +125,33 @@ initial_temperature = 400.0
 }
 
 }  // namespace
+
+TEST(Cli, AContactCaseRunsWithTheMortarPairAndWritesContactOutput) {
+  // tests/cases/valid/contact-patch-2d.toml: non-matching blocks pressed by δ = 1e-4 m,
+  // uniaxial plane strain, so the contact force per metre is E/(1 − ν²)·δ/(h_s + h_m) × 1 m.
+  const auto out = tc::test::fresh_dir("contact-patch");
+  const auto c = fs::path(TC_SOURCE_DIR) / "tests/cases/valid/contact-patch-2d.toml";
+  const auto r = thermocontact("run " + c.string() + " --output " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = tc::test::read_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"dual_operator\": \"explicit\""), std::string::npos) << summary;
+  std::istringstream history(tc::test::read_file(out / "history.csv"));
+  std::string header, row, last;
+  std::getline(history, header);
+  while (std::getline(history, row))
+    if (!row.empty()) last = row;
+  const auto column = [](const std::string& line, size_t i) {
+    std::istringstream s(line);
+    std::string cell;
+    for (size_t k = 0; k <= i; ++k) std::getline(s, cell, ',');
+    return cell;
+  };
+  size_t i = 0;
+  while (column(header, i) != "contact_normal_force") ++i;
+  const double expected = 2.0e11 / (1 - 0.09) * 1e-4 / 1.5;
+  // 1e-8: the QP tolerance of the case is 1e-12 relative; the patch test is exact otherwise.
+  EXPECT_NEAR(std::stod(column(last, i)), expected, 1e-8 * expected);
+  const auto vtu = tc::test::read_file(out / "upper_000001.vtu");
+  for (const char* field : {"contact_pressure", "tangential_traction", "slip_velocity"})
+    EXPECT_NE(vtu.find(field), std::string::npos) << field;
+}

@@ -95,6 +95,45 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
     sub.values.push_back(0.0);
   }
   cell_data = {std::move(vm), std::move(flux), std::move(sub)};
+  contact_fields(sim, body, point_data);
+}
+
+void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data) {
+  // On the slave's contact nodes (the multipliers live there), zero elsewhere: λ_n, the
+  // tangential traction Σ_l λ_τl τ_l and the slip velocity Σ_l (B_τlΔu)_k/(w_k τ) τ_l.
+  const auto* pair = sim.mortar();
+  const auto* dual = sim.dual_solver();
+  if (!pair || !dual || body != sim.problem().contact->slave_body) return;
+  const auto& rows = dual->rows();
+  const int dim = rows.dim;
+  const auto lambda = sim.contact_multipliers();
+  const auto& slip = sim.contact_slip();
+  const int n = sim.system(body).body().mesh.n_nodes();
+  Field pressure{"contact_pressure", 1, std::vector<double>(n, 0.0)};
+  Field traction{"tangential_traction", 3, std::vector<double>(3 * n, 0.0)};
+  Field slip_velocity{"slip_velocity", 3, std::vector<double>(3 * n, 0.0)};
+  const bool have_slip = slip.size() == lambda.size() && !lambda.empty();
+  if (static_cast<PetscInt>(lambda.size()) == rows.n_rows() &&
+      rows.nodes.size() == pair->contact_nodes().size()) {
+    const double tau = sim.problem().time.step;
+    for (size_t k = 0; k < rows.nodes.size(); ++k) {
+      const int a = rows.nodes[k];
+      pressure.values[a] = lambda[dim * k];
+      for (int l = 0; l + 1 < dim; ++l) {
+        const auto& t = pair->tangents(l)[k];
+        const double lt = lambda[dim * k + 1 + l];
+        const double w = rows.weights[k];
+        const double v = have_slip && w > 0 ? slip[dim * k + 1 + l] / (w * tau) : 0.0;
+        for (int i = 0; i < 3; ++i) {
+          traction.values[3 * a + i] += lt * t[i];
+          slip_velocity.values[3 * a + i] += v * t[i];
+        }
+      }
+    }
+  }
+  point_data.push_back(std::move(pressure));
+  point_data.push_back(std::move(traction));
+  point_data.push_back(std::move(slip_velocity));
 }
 
 OutputWriter::OutputWriter(std::filesystem::path directory, int every)
@@ -178,13 +217,17 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
     out.print("  \"case\": {},\n", json_string(p.case_file.string()));
     out.print("  \"wall_seconds\": {{\n{}  }},\n", phases);
     out.print("  \"coupling_iterations\": {},\n", sim.total_coupling_iterations());
-    out.print("  \"qp_iterations\": 0,\n  \"operator_applications\": 0,\n");
+    out.print("  \"qp_iterations\": {},\n", sim.total_qp_iterations());
+    out.print("  \"operator_applications\": {},\n", sim.total_operator_applications());
     out.print("  \"dofs\": {},\n", sim.n_dofs());
-    out.print("  \"multipliers\": 0,\n");
+    const auto* dual = sim.dual_solver();
+    out.print("  \"multipliers\": {},\n", dual ? dual->rows().n_rows() : 0);
     out.print("  \"ranks\": {},\n", core::PetscSession::size());
     out.print("  \"subdomains\": {},\n", subdomains);
     out.print("  \"factorization\": {},\n", json_string(sim.factorization()));
-    out.print("  \"dual_operator\": \"none\",\n");
+    out.print(
+        "  \"dual_operator\": {},\n",
+        json_string(dual && dual->rows().n_rows() > 0 ? physics::name(dual->kind()) : "none"));
     out.print("  \"last\": {{\n{}  }}\n", last);
     out.print("}}\n");
   }

@@ -37,6 +37,10 @@ class OutputWriter : public physics::Observer {
 void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data,
                  std::vector<Field>& cell_data);
 
+/// The contact fields of the slave body (contact_pressure, tangential_traction, slip_velocity),
+/// appended to its point data; nothing for other bodies or without a mortar pair.
+void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data);
+
 /// A progress line: rewritten in place on a terminal, plain lines (about 20 per run) otherwise.
 class ProgressLine : public physics::Observer {
  public:

@@ -359,6 +359,24 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   }
 }
 
+void Simulation::enable_mortar_contact(DualContactSettings settings,
+                                       contact::MortarOptions options) {
+  if (!problem_.contact) throw Error("enable_mortar_contact: the problem has no [contact]");
+  const auto& c = *problem_.contact;
+  {
+    auto t = timers_.scope("mortar");
+    mortar_ = std::make_unique<contact::MortarPair>(
+        problem_.bodies[c.slave_body].mesh, c.slave_where, problem_.bodies[c.master_body].mesh,
+        c.master_where, options);
+  }
+  enable_contact(
+      [this](const core::Vector& u_slave, const core::Vector& u_master) {
+        mortar_->update(u_slave.to_std(), u_master.to_std());
+        return mortar_->rows();
+      },
+      std::move(settings));
+}
+
 void Simulation::stabilise_predictor(std::span<const double> normal_targets) {
   // Deuflhard–Krause–Ertel: u_pred ← argmin ½‖v − (u^k + τu̇^k)‖²_M over B_n(v − u^k) ≤ g
   // (frictionless: the projection only removes the normal approach), then the position update
@@ -554,6 +572,8 @@ void Simulation::advance() {
     if (!dual_) throw Error("the problem has contact but no contact rows (enable_contact)");
     coupling = couple_contact();
     contact_bookkeeping();
+    total_qp_ += contact_stats_.qp_iterations;
+    total_applications_ += contact_stats_.operator_applications;
   } else {
     for (int b = 0; b < n_bodies(); ++b) coupling = std::max(coupling, couple_body(b));
   }

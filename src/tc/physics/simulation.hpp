@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tc/contact/mortar_pair.hpp"
 #include "tc/core/timer.hpp"
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/constrained_solver.hpp"
@@ -67,6 +68,17 @@ class Simulation {
 
   /// Turns on the contact of problem().contact, with the rows built by `builder` each step.
   void enable_contact(ContactRowsBuilder builder, DualContactSettings settings = {});
+  /// Turns on the contact of problem().contact with the mortar pair of its two surfaces
+  /// (contact::MortarPair), evaluated in the configuration of t^k at every step.
+  void enable_mortar_contact(DualContactSettings settings = {},
+                             contact::MortarOptions options = {});
+  /// The mortar pair (null unless enable_mortar_contact was called).
+  [[nodiscard]] const contact::MortarPair* mortar() const { return mortar_.get(); }
+  /// B_τ(u^{k+1} − u^k) of the last step, node-major like the multipliers (normal rows 0).
+  [[nodiscard]] const std::vector<double>& contact_slip() const { return slip_; }
+  /// Totals over the run so far (summary.json).
+  [[nodiscard]] long total_qp_iterations() const { return total_qp_; }
+  [[nodiscard]] long total_operator_applications() const { return total_applications_; }
   [[nodiscard]] const ContactStatistics& contact_statistics() const { return contact_stats_; }
   /// The contact multipliers of the last step, node-major [λ_n, λ_τ…] (empty without contact).
   [[nodiscard]] std::vector<double> contact_multipliers() const;
@@ -125,6 +137,7 @@ class Simulation {
   int step_ = 0;
   double external_work_ = 0;
   long total_coupling_ = 0;
+  long total_qp_ = 0, total_applications_ = 0;
   int last_coupling_ = 0;
   core::PhaseTimers timers_;
   std::string factorization_;
@@ -132,6 +145,7 @@ class Simulation {
   std::vector<double> row_;
 
   ContactRowsBuilder contact_rows_;
+  std::unique_ptr<contact::MortarPair> mortar_;
   std::unique_ptr<DualContactSolver> dual_;
   std::unique_ptr<DualContactSolver> stabiliser_;  // the mass projection (contact-stabilised)
   core::Vector lambda_;
