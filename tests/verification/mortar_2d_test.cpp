@@ -11,6 +11,8 @@
 // doubled piece of overlap (≥ 1e-3 of the length in these meshes).
 #include <gtest/gtest.h>
 
+#include <type_traits>
+
 #include "mortar_fixtures.hpp"
 #include "support/contact_rows.hpp"
 #include "tc/core/error.hpp"
@@ -169,6 +171,12 @@ TEST(Mortar2dErrors, MissingBoundaryOrWrongSizesAreReported) {
   const std::vector<double> wrong(3, 0.0);
   EXPECT_THROW(pair.update(wrong), Error);
   EXPECT_THROW((void)pair.tangents(1), Error);
+  EXPECT_THROW(MortarPair(slave, "ymin", master, "ymax", {MultiplierBasis::dual, -1.0}), Error);
+  // Movable, so that a simulation can hold pairs in a container and replace them.
+  static_assert(std::is_move_assignable_v<MortarPair> && std::is_move_constructible_v<MortarPair>);
+  MortarPair other(slave, "ymin", master_block(2, 0.5, 1, 2), "ymax");
+  other = std::move(pair);
+  EXPECT_EQ(other.contact_nodes().size(), 5u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Bases, Mortar2d,

@@ -70,8 +70,8 @@ const char* name(MultiplierBasis b) {
 
 MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
                        const mesh::Mesh& master, std::string master_boundary, MortarOptions options)
-    : slave_(slave),
-      master_(master),
+    : slave_(&slave),
+      master_(&master),
       slave_name_(std::move(slave_boundary)),
       master_name_(std::move(master_boundary)),
       options_(options),
@@ -106,8 +106,8 @@ void MortarPair::update(std::span<const double> u_slave, std::span<const double>
 }
 
 void MortarPair::set_positions(std::span<const double> u_slave, std::span<const double> u_master) {
-  positions(slave_, u_slave, "slave", xs_);
-  positions(master_, u_master, "master", xm_);
+  positions(*slave_, u_slave, "slave", xs_);
+  positions(*master_, u_master, "master", xm_);
   slave_points_.resize(slave_facets_.size());
   master_points_.resize(master_facets_.size());
   double largest = 0;
@@ -194,7 +194,7 @@ void MortarPair::for_each_segment(F&& f) const {
 void MortarPair::integrate() {
   using Local = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
   const int n_points = dim_ == 2 ? mortar_points_2d : mortar_points;
-  Triplets dt(slave_.n_nodes()), mt(slave_.n_nodes());
+  Triplets dt(slave_->n_nodes()), mt(slave_->n_nodes());
   overlap_area_ = 0;
   std::vector<int> mnodes;                  // master nodes seen by the current slave face
   std::vector<std::array<double, 4>> mstd;  // ∫ φ_a^s φ_c^m per local master node c
@@ -259,7 +259,7 @@ void MortarPair::integrate() {
 }
 
 void MortarPair::assemble() {
-  const int n_s = slave_.n_nodes();
+  const int n_s = slave_->n_nodes();
   std::vector<double> weight(n_s, 0.0), scale(n_s, 0.0);
   for (int j = 0; j < n_s; ++j)
     for (int i = d_rows_.offsets[j]; i < d_rows_.offsets[j + 1]; ++i) weight[j] += d_rows_.vals[i];
@@ -292,9 +292,9 @@ void MortarPair::assemble() {
     gap_.push_back(dot(n, diff));
   }
   d_ = to_matrix(d_rows_, contact_nodes_, n_s);
-  m_ = to_matrix(m_rows_, contact_nodes_, master_.n_nodes());
+  m_ = to_matrix(m_rows_, contact_nodes_, master_->n_nodes());
   b_slave_ = directional_rows(d_rows_, 1.0, dim_ * n_s);
-  b_master_ = directional_rows(m_rows_, -1.0, dim_ * master_.n_nodes());
+  b_master_ = directional_rows(m_rows_, -1.0, dim_ * master_->n_nodes());
 }
 
 core::SparseMatrix MortarPair::directional_rows(const Csr& csr, double sign,
@@ -348,7 +348,7 @@ const std::vector<std::array<double, 3>>& MortarPair::tangents(int l) const {
 
 ThermalContact MortarPair::thermal_conductance(std::span<const double> gamma, double beta_c) const {
   check_size(gamma, contact_nodes_.size(), "gamma (one per contact node)");
-  const int n_s = slave_.n_nodes(), n_m = master_.n_nodes();
+  const int n_s = slave_->n_nodes(), n_m = master_->n_nodes();
   const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
   Triplets ss(n_s), sm(n_s), ms(n_m), mm(n_m);
   for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
@@ -388,11 +388,11 @@ FrictionalHeat MortarPair::frictional_heat(std::span<const double> gamma, double
                                            std::span<const double> v_master) const {
   check_size(gamma, contact_nodes_.size(), "gamma (one per contact node)");
   const int d = dim_;
-  if (!v_slave.empty()) check_size(v_slave, d * slave_.n_nodes(), "the slave velocity");
-  if (!v_master.empty()) check_size(v_master, d * master_.n_nodes(), "the master velocity");
+  if (!v_slave.empty()) check_size(v_slave, d * slave_->n_nodes(), "the slave velocity");
+  if (!v_master.empty()) check_size(v_master, d * master_->n_nodes(), "the master velocity");
   FrictionalHeat heat;
-  heat.slave.assign(slave_.n_nodes(), 0.0);
-  heat.master.assign(master_.n_nodes(), 0.0);
+  heat.slave.assign(slave_->n_nodes(), 0.0);
+  heat.master.assign(master_->n_nodes(), 0.0);
   const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
   auto velocity = [d](std::span<const double> v, int node) {
     Vec3 out{0, 0, 0};

@@ -14,7 +14,7 @@
 // and the same with the tangents τ_l in the tangential rows.
 //
 // Contract:
-//  - Both meshes must outlive the pair (it keeps references).
+//  - Both meshes must outlive the pair (it keeps pointers to them); the pair is movable.
 //  - The constructor evaluates the reference configuration (an update() with no displacement).
 //  - Every accessor refers to the last update(); references returned by them are invalidated
 //    by the next update().
@@ -137,8 +137,8 @@ class MortarPair {
   template <class F>
   void for_each_segment(F&& f) const;
 
-  const mesh::Mesh& slave_;
-  const mesh::Mesh& master_;
+  const mesh::Mesh* slave_;  // not owned (pointers, so that the pair can be move-assigned)
+  const mesh::Mesh* master_;
   std::string slave_name_, master_name_;
   MortarOptions options_;
   int dim_;
