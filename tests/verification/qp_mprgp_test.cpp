@@ -281,5 +281,22 @@ TEST(Qp, LanczosBracketsTheLargestEigenvalue) {
   EXPECT_EQ(est.applications, 20);
 }
 
+TEST(Qp, LanczosStopsOnceTheBoundIsWithinTolerance) {
+  // diag(1, …, 1000) again: with a 5 % tolerance the estimate stops as soon as the residual
+  // bound is within 5 % of the Ritz value, before the 20 steps, and still brackets: the Ritz
+  // value is below λ_max = 1000 and the bound at most 5 % above it.
+  const PetscInt n = 1000;
+  core::Handle<::Mat, MatDestroy> a;
+  TC_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 1, nullptr, a.out()));
+  for (PetscInt i = 0; i < n; ++i) TC_PETSC(MatSetValue(a.get(), i, i, i + 1.0, INSERT_VALUES));
+  TC_PETSC(MatAssemblyBegin(a.get(), MAT_FINAL_ASSEMBLY));
+  TC_PETSC(MatAssemblyEnd(a.get(), MAT_FINAL_ASSEMBLY));
+  const auto est = qp::estimate_max_eigenvalue(qp::MatrixOperator(a.get()), 20, 0.05);
+  EXPECT_LT(est.applications, 20);
+  EXPECT_LE(est.ritz, 1000.0 * (1 + 1e-12));
+  EXPECT_LE(est.bound, 1.05 * est.ritz);
+  EXPECT_GT(est.bound, est.ritz);
+}
+
 }  // namespace
 }  // namespace tc::test

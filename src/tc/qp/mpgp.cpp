@@ -185,7 +185,8 @@ QpResult Mpgp::solve(const Vector& d, Vector& x) const {
   State s(f_, set_, options_, d, x);
   double lambda_max = options_.max_eigenvalue;
   if (!(lambda_max > 0)) {
-    const auto est = estimate_max_eigenvalue(f_, options_.lanczos_steps);
+    const auto est =
+        estimate_max_eigenvalue(f_, options_.lanczos_steps, options_.lanczos_tolerance);
     s.r.operator_applications += est.applications;
     lambda_max = est.bound;
   }

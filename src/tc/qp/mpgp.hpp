@@ -25,7 +25,10 @@ struct QpOptions {
   double gamma = 1.0;         // proportioning parameter Γ
   double alpha_factor = 1.9;  // ᾱ = alpha_factor / λ_max(F); theory allows (0, 2]
   double max_eigenvalue = 0;  // λ_max(F) if known (e.g. reused across steps); 0 = estimate
-  int lanczos_steps = 20;     // for the estimate
+  int lanczos_steps = 20;     // for the estimate (at most)
+  /// The estimate stops once its bound is within this fraction of the Ritz value: with 0.05,
+  /// ᾱλ_max ≥ 1.9/1.05 ≈ 1.81, still near the edge of (0, 2] (docs/choices.md). 0 = all steps.
+  double lanczos_tolerance = 0.05;
   Expansion expansion = Expansion::free_gradient;
   /// Optional SPD preconditioner applied to the free gradient in the face (masked); null = none.
   const LinearOperator* preconditioner = nullptr;

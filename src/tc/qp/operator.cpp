@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace tc::qp {
@@ -33,7 +34,22 @@ void fill_start_vector(Vector& v) {
 }
 }  // namespace
 
-EigenEstimate estimate_max_eigenvalue(const LinearOperator& f, int steps) {
+namespace {
+/// The largest Ritz value of the Lanczos tridiagonal (alpha, beta) and its residual
+/// ‖F y − θ y‖ = β_k |s_k| (y = Q s): an eigenvalue of F lies within it of θ.
+std::pair<double, double> largest_ritz(const std::vector<double>& alpha,
+                                       const std::vector<double>& beta) {
+  const auto n = static_cast<Eigen::Index>(alpha.size());
+  Eigen::VectorXd diag = Eigen::Map<const Eigen::VectorXd>(alpha.data(), n);
+  Eigen::VectorXd sub =
+      Eigen::Map<const Eigen::VectorXd>(beta.data(), n).head(std::max<Eigen::Index>(n - 1, 0));
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;
+  eig.computeFromTridiagonal(diag, sub, Eigen::ComputeEigenvectors);
+  return {eig.eigenvalues()(n - 1), std::abs(beta.back() * eig.eigenvectors()(n - 1, n - 1))};
+}
+}  // namespace
+
+EigenEstimate estimate_max_eigenvalue(const LinearOperator& f, int steps, double tolerance) {
   Vector q = f.make_vector(), q_prev = f.make_vector(), w = f.make_vector();
   fill_start_vector(q);
   q.scale(1.0 / q.norm());
@@ -52,21 +68,18 @@ EigenEstimate estimate_max_eigenvalue(const LinearOperator& f, int steps) {
     const double b = w.norm();
     beta.push_back(b);
     if (!(b > 1e-12 * std::abs(a))) break;  // an invariant subspace: T_k is exact
+    if (tolerance > 0 && k > 0) {           // the bound is tight enough: stop early
+      const auto [ritz, residual] = largest_ritz(alpha, beta);
+      if (residual <= tolerance * ritz) break;
+    }
     q_prev.copy_from(q);
     q.copy_from(w);
     q.scale(1.0 / b);
     beta_prev = b;
   }
-  const auto n = static_cast<Eigen::Index>(alpha.size());
-  Eigen::VectorXd diag = Eigen::Map<Eigen::VectorXd>(alpha.data(), n);
-  Eigen::VectorXd sub =
-      Eigen::Map<Eigen::VectorXd>(beta.data(), n).head(std::max<Eigen::Index>(n - 1, 0));
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;
-  eig.computeFromTridiagonal(diag, sub, Eigen::ComputeEigenvectors);
-  est.ritz = eig.eigenvalues()(n - 1);
-  // ‖F y − θ y‖ = β_k |s_k| for the Ritz pair (θ, y = Q s): an eigenvalue lies within it.
-  const double residual = std::abs(beta.back() * eig.eigenvectors()(n - 1, n - 1));
-  est.bound = est.ritz + residual;
+  const auto [ritz, residual] = largest_ritz(alpha, beta);
+  est.ritz = ritz;
+  est.bound = ritz + residual;
   return est;
 }
 

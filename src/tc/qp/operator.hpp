@@ -47,12 +47,15 @@ class FunctionOperator final : public LinearOperator {
 /// the largest Ritz value plus its residual bound |β_k s_k|, which by the Kahan–Parlett
 /// bound brackets an eigenvalue of F. Lanczos finds the extreme eigenvalue in far fewer
 /// applications than the power method (a 1.9/λ step taken on an underestimate could break
-/// the descent guarantee of the fixed-step expansion). Costs `steps` applications.
+/// the descent guarantee of the fixed-step expansion). Costs `steps` applications, fewer when
+/// `tolerance` > 0: it stops as soon as the residual bound is within tolerance·ritz, since a
+/// tighter estimate changes ᾱ = c/bound by less than that fraction.
 struct EigenEstimate {
   double ritz = 0;   // the largest Ritz value (≤ λ_max)
   double bound = 0;  // ritz + residual: the value to divide by
   int applications = 0;
 };
-[[nodiscard]] EigenEstimate estimate_max_eigenvalue(const LinearOperator& f, int steps = 20);
+[[nodiscard]] EigenEstimate estimate_max_eigenvalue(const LinearOperator& f, int steps = 20,
+                                                    double tolerance = 0);
 
 }  // namespace tc::qp
