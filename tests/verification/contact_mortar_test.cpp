@@ -8,7 +8,8 @@
 //    change it.
 //  - Sliding (3D, quasistatic): the top pressed down, then pulled along x. Past the stick limit
 //    Σ‖λ_τ‖w = 𝔉 Σλ_n w to the fixed-point tolerance, the dissipation of a step is 𝔉 λ_n times
-//    the slip; below it, nothing slips.
+//    the slip, node by node; below it, nothing slips. The Tresca → Coulomb fixed point takes
+//    at most 10 iterations.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -130,6 +131,81 @@ INSTANTIATE_TEST_SUITE_P(SlaveAboveOrBelow, MortarPatch,
                            return std::to_string(std::get<0>(info.param)) + "d_" +
                                   (std::get<1>(info.param) ? "upper_slave" : "lower_slave");
                          });
+
+/// Records, per step, the contact history and Σ_k 𝔉 λ_n,k ‖(B_τΔu)_k‖ from the multipliers.
+struct SlidingRecorder : physics::Observer {
+  double friction = 0;
+  std::vector<double> normal, tangential, dissipation, coulomb_work, slip;
+  std::vector<int> active, slipping;
+  int max_coupling = 0;
+  void step(const physics::Simulation& sim) override {
+    if (sim.step() == 0) return;
+    max_coupling = std::max(max_coupling, static_cast<int>(sim.history("coupling_iterations")));
+    normal.push_back(sim.history("contact_normal_force"));
+    tangential.push_back(sim.history("contact_tangential_force"));
+    dissipation.push_back(sim.history("frictional_dissipation"));
+    active.push_back(static_cast<int>(sim.history("active_nodes")));
+    slipping.push_back(static_cast<int>(sim.history("slip_nodes")));
+    const auto lambda = sim.contact_multipliers();
+    const auto& inc = sim.contact_slip();
+    const int dim = sim.dual_solver()->rows().dim;
+    double work = 0, total_slip = 0;
+    for (size_t k = 0; k < lambda.size() / dim; ++k) {
+      const double s = std::hypot(inc[dim * k + 1], dim == 3 ? inc[dim * k + 2] : 0.0);
+      work += friction * std::max(lambda[dim * k], 0.0) * s;
+      total_slip += s;
+    }
+    coulomb_work.push_back(work);
+    slip.push_back(total_slip);
+  }
+};
+
+TEST(MortarSliding3d, CoulombPastTheStickLimitNoSlipBelowIt) {
+  // 3×3 faces on 5×7, 𝔉 = 0.3; step 1 presses by δ, then the top moves along x by `shift` per
+  // step. The stick limit of the top's motion is about 𝔉 times the normal compliance (a few
+  // δ here): 1e-6 m per step stays far below it; 1e-4 m per step slides after the first step.
+  const double friction = 0.3;
+  for (const double shift : {1e-6, 1e-4}) {
+    auto p = pressed_blocks(3, {3, 3, 2}, {5, 7, 3}, true, friction, 4);
+    p.boundaries[0].displacement[2] = core::TimeTable({0, 1}, {0, -kDelta});
+    physics::BoundaryCondition pull;
+    pull.body = 0;
+    pull.where = "zmax";
+    pull.displacement[0] = core::TimeTable({0, 1, 4}, {0, 0, 3 * shift});
+    p.boundaries.push_back(pull);
+    physics::Simulation sim(p);
+    sim.enable_mortar_contact();
+    SlidingRecorder rec;
+    rec.friction = friction;
+    const auto status = sim.run(rec);
+    ASSERT_TRUE(status.completed) << status.message;
+    const size_t last = rec.normal.size() - 1;
+    EXPECT_GT(rec.normal[last], 0);
+    EXPECT_GT(rec.active[last], 0);
+    EXPECT_LE(rec.max_coupling, 10);  // Tresca → Coulomb within the 10 iterations
+    if (shift > 1e-5) {
+      // Gross sliding: every active node on its Coulomb disc, so Σw‖λ_τ‖ = 𝔉Σwλ_n. 1e-6: the
+      // fixed point stops at a relative change of 1e-10 of λ and the QP at 1e-12.
+      EXPECT_EQ(rec.slipping[last], rec.active[last]);
+      EXPECT_NEAR(rec.tangential[last] / rec.normal[last], friction, 1e-6 * friction);
+      // The dissipation of a sliding step is 𝔉 λ_n times the slip, node by node: λ_τ is
+      // opposite to the slip increment (to the QP tolerance, hence 1e-8 relative).
+      for (size_t i = 1; i < rec.dissipation.size(); ++i) {
+        const double step_work = std::abs(rec.dissipation[i] - rec.dissipation[i - 1]);
+        EXPECT_NEAR(step_work, rec.coulomb_work[i], 1e-8 * rec.coulomb_work[i]) << "step " << i;
+        EXPECT_GT(rec.coulomb_work[i], 0);
+      }
+      std::printf("sliding: F_t/F_n = %.9f (𝔉 = %.1f), dissipation %.6e J, %d/%d nodes slip\n",
+                  rec.tangential[last] / rec.normal[last], friction, rec.dissipation[last],
+                  rec.slipping[last], rec.active[last]);
+    } else {
+      // Stick: nothing slips; the slip increments are round-off of the shift (≤ 1e-9 of it).
+      EXPECT_EQ(rec.slipping[last], 0);
+      EXPECT_LT(rec.tangential[last], friction * rec.normal[last]);
+      for (size_t i = 1; i < rec.slip.size(); ++i) EXPECT_LT(rec.slip[i], 1e-9 * shift) << i;
+    }
+  }
+}
 
 }  // namespace
 }  // namespace tc::test
