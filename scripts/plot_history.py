@@ -28,7 +28,8 @@ def main():
     args = ap.parse_args()
     h = read_history(os.path.join(args.outdir, "history.csv"))
     t = h["time"]
-    fig, ax = plt.subplots(2, 2, figsize=(11, 7))
+    contact = max(abs(v) for v in h.get("contact_normal_force", [0.0])) > 0
+    fig, ax = plt.subplots(3 if contact else 2, 2, figsize=(11, 10.5 if contact else 7))
     a = ax[0][0]
     for k in ("kinetic_energy", "strain_energy", "external_work"):
         a.plot(t, h[k], label=k.replace("_", " "))
@@ -50,6 +51,23 @@ def main():
     a = ax[1][1]
     a.plot(t, h["thermal_energy"], label="thermal energy [J]")
     a.set_title("thermal energy Σ∫ρc_p(θ−θ₀) [J]")
+    if contact:  # forces and their ratio (= 𝔉 while sliding), iterations per step
+        a = ax[2][0]
+        a.plot(t, h["contact_normal_force"], label="normal")
+        a.plot(t, h["contact_tangential_force"], label="tangential")
+        a.set_title("contact forces [N]")
+        a.legend()
+        r = a.twinx()
+        ratio = [ft / fn if fn > 0 else float("nan")
+                 for ft, fn in zip(h["contact_tangential_force"], h["contact_normal_force"])]
+        r.plot(t, ratio, "k:", label="tangential / normal")
+        r.set_ylabel("tangential / normal")
+        a = ax[2][1]
+        a.plot(t, h["qp_iterations"], label="QP iterations")
+        a.plot(t, h["coupling_iterations"], label="coupling iterations")
+        a.set_yscale("log")
+        a.set_title("iterations per step")
+        a.legend()
     for a in ax.flat:
         a.set_xlabel("time [s]")
         a.grid(alpha=0.3)

@@ -193,8 +193,8 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
   const auto& p = sim.problem();
   const auto& t = sim.timers();
   std::string phases;
-  for (const char* ph :
-       {"assembly", "mortar", "factorization", "heat_solve", "qp", "mechanical_solve"})
+  for (const char* ph : {"assembly", "mortar", "dual_setup", "factorization", "heat_solve", "qp",
+                         "mechanical_solve"})
     phases += fmt::format("    {}: {},\n", json_string(ph), json_number(t[ph]));
   phases += fmt::format("    \"output\": {}\n", json_number(output_seconds_));
   std::string last;

@@ -450,8 +450,13 @@ int Simulation::couple_contact() {
   contact_stats_.qp_iterations = 0;
   contact_stats_.operator_applications = 0;
   {
-    auto scope = timers_.scope("mortar");
-    dual_->set_rows(contact_rows_(sts.u, stm.u));
+    ContactRows rows;
+    {
+      auto scope = timers_.scope("mortar");
+      rows = contact_rows_(sts.u, stm.u);
+    }
+    auto scope = timers_.scope("dual_setup");  // F formed explicitly here when it is small
+    dual_->set_rows(std::move(rows));
   }
   const auto& rows = dual_->rows();
   const int dim = rows.dim;

@@ -1,0 +1,31 @@
+// The steel block [-1.5, 1.5] × [-1.5, 0] m under the cylinder; refined like cylinder.geo.
+// Regenerate: gmsh -2 -format msh41 block.geo -o block.msh
+Point(1) = {-1.5, -1.5, 0};
+Point(2) = {1.5, -1.5, 0};
+Point(3) = {1.5, 0, 0};
+Point(4) = {0, 0, 0};
+Point(5) = {-1.5, 0, 0};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 5};
+Line(5) = {5, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5};
+Plane Surface(1) = {1};
+Physical Curve("top") = {3, 4};
+Physical Curve("bottom") = {1};
+Physical Surface("block") = {1};
+Field[1] = Distance;
+Field[1].NodesList = {4};
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = 0.0018;
+Field[2].SizeMax = 0.2;
+Field[2].DistMin = 0.032;
+Field[2].DistMax = 0.8;
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
+Mesh.Algorithm = 6;
+Mesh.RecombineAll = 1;
