@@ -155,3 +155,22 @@ TEST(Cli, AContactCaseRunsWithTheMortarPairAndWritesContactOutput) {
   for (const char* field : {"contact_pressure", "tangential_traction", "slip_velocity"})
     EXPECT_NE(vtu.find(field), std::string::npos) << field;
 }
+
+TEST(Cli, AContactQpThatDoesNotConvergeStopsTheRunWithExitOne) {
+  // The contact patch case allowed one QP iteration: the run must stop at step 1 with exit
+  // code 1, name the step, the coupling iteration and the residual, and leave valid output.
+  const auto dir = tc::test::fresh_dir("contact-qp-failure");
+  auto text =
+      tc::test::read_file(fs::path(TC_SOURCE_DIR) / "tests/cases/valid/contact-patch-2d.toml");
+  text += "max_qp_iterations = 1\n";  // the [solver] table is the file's last
+  std::ofstream(dir / "case.toml") << text;
+  const auto r =
+      thermocontact("run " + (dir / "case.toml").string() + " --output " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("contact QP"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("step 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("iteration 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("residual"), std::string::npos) << r.output;
+  const auto summary = tc::test::read_file(dir / "out/summary.json");
+  EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
+}

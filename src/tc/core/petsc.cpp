@@ -293,4 +293,8 @@ void CholeskySolver::solve(const Vector& b, Vector& x) const {
   TC_PETSC(KSPSolve(ksp_.get(), b.get(), x.get()));
 }
 
+void CholeskySolver::solve_many(::Mat b, ::Mat x) const {
+  TC_PETSC(KSPMatSolve(ksp_.get(), b, x));
+}
+
 }  // namespace tc::core

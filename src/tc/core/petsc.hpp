@@ -167,6 +167,9 @@ class CholeskySolver {
   CholeskySolver() = default;
   explicit CholeskySolver(const SparseMatrix& a, const std::string& package = "");
   void solve(const Vector& b, Vector& x) const;
+  /// X = A⁻¹B for dense B and X (n × k, column-major, PETSc MATSEQDENSE): one multi-right-hand
+  /// side solve, which the factorisation packages do with level-3 BLAS.
+  void solve_many(::Mat b, ::Mat x) const;
   [[nodiscard]] const std::string& package() const { return package_; }
 
  private:

@@ -20,6 +20,13 @@ ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<Pe
   rhs_ = core::Vector(a.rows());
 }
 
+void ConstrainedSolver::solve_homogeneous_many(::Mat b, ::Mat x) const {
+  if (!dofs_.empty())
+    TC_PETSC(
+        MatZeroRows(b, static_cast<PetscInt>(dofs_.size()), dofs_.data(), 0.0, nullptr, nullptr));
+  factor_.solve_many(b, x);
+}
+
 void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
   if (dofs_.empty()) {
     factor_.solve(b, x);

@@ -17,6 +17,9 @@ class ConstrainedSolver {
   /// On entry x holds the prescribed values at the constrained dofs (other entries are
   /// ignored); on exit x solves the equations of the free dofs.
   void solve(const core::Vector& b, core::Vector& x) const;
+  /// X = A⁻¹B with zero prescribed values, for k right-hand sides at once (dense n × k; the
+  /// constrained rows of B are zeroed in place).
+  void solve_homogeneous_many(::Mat b, ::Mat x) const;
   [[nodiscard]] const std::string& package() const { return factor_.package(); }
 
  private:

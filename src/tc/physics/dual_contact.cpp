@@ -1,6 +1,8 @@
 #include "tc/physics/dual_contact.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <utility>
 
 namespace tc::physics {
 
@@ -47,26 +49,61 @@ void DualContactSolver::set_rows(ContactRows rows) {
 }
 
 void DualContactSolver::form_explicit() {
-  // Column j of F is F e_j: one application per multiplier, i.e. two solves.
+  // F = Σ_i B_i A_i⁻¹ B_iᵀ, `block` columns at a time: the rows of B_i as the columns of a
+  // dense right-hand side, one multi-right-hand-side solve per body (level-3 BLAS in the
+  // factorisation package, several times faster than as many single solves), then B_i times
+  // the solutions. Blocks bound the dense work space to n × block per body.
+  using Dense = core::Handle<::Mat, MatDestroy>;
   const PetscInt m = rows_.n_rows();
+  constexpr PetscInt block = 64;
   TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_dense_.out()));
-  core::Vector e(m), col(m);
-  PetscScalar* data = nullptr;
-  TC_PETSC(MatDenseGetArray(f_dense_.get(), &data));
-  for (PetscInt j = 0; j < m; ++j) {
-    e.zero();
-    {
-      auto ev = e.view();
-      ev[j] = 1.0;
+  PetscScalar* f = nullptr;
+  TC_PETSC(MatDenseGetArray(f_dense_.get(), &f));
+  PetscInt ldf = m;
+  TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ldf));
+  for (PetscInt j = 0; j < m; ++j) std::fill(f + j * ldf, f + j * ldf + m, 0.0);
+  const std::pair<const core::SparseMatrix*, const ConstrainedSolver*> bodies[] = {
+      {&rows_.slave, &slave_}, {&rows_.master, &master_}};
+  for (const auto& [b, solver] : bodies) {
+    const PetscInt n = b->cols();
+    for (PetscInt j0 = 0; j0 < m; j0 += block) {
+      const PetscInt k = std::min(block, m - j0);
+      Dense rhs, sol, prod;
+      TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, k, nullptr, rhs.out()));
+      TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, k, nullptr, sol.out()));
+      PetscScalar* r = nullptr;
+      TC_PETSC(MatDenseGetArray(rhs.get(), &r));
+      PetscInt ldr = n;
+      TC_PETSC(MatDenseGetLDA(rhs.get(), &ldr));
+      for (PetscInt c = 0; c < k; ++c) {
+        std::fill(r + c * ldr, r + c * ldr + n, 0.0);
+        PetscInt nz = 0;
+        const PetscInt* cols = nullptr;
+        const PetscScalar* vals = nullptr;
+        TC_PETSC(MatGetRow(b->get(), j0 + c, &nz, &cols, &vals));
+        for (PetscInt q = 0; q < nz; ++q) r[c * ldr + cols[q]] = vals[q];
+        TC_PETSC(MatRestoreRow(b->get(), j0 + c, &nz, &cols, &vals));
+      }
+      TC_PETSC(MatDenseRestoreArray(rhs.get(), &r));
+      for (::Mat x : {rhs.get(), sol.get()}) {
+        TC_PETSC(MatAssemblyBegin(x, MAT_FINAL_ASSEMBLY));
+        TC_PETSC(MatAssemblyEnd(x, MAT_FINAL_ASSEMBLY));
+      }
+      solver->solve_homogeneous_many(rhs.get(), sol.get());
+      TC_PETSC(MatMatMult(b->get(), sol.get(), MAT_INITIAL_MATRIX, PETSC_DEFAULT, prod.out()));
+      const PetscScalar* p = nullptr;
+      TC_PETSC(MatDenseGetArrayRead(prod.get(), &p));
+      PetscInt ldp = m;
+      TC_PETSC(MatDenseGetLDA(prod.get(), &ldp));
+      for (PetscInt c = 0; c < k; ++c)
+        for (PetscInt i = 0; i < m; ++i) f[(j0 + c) * ldf + i] += p[c * ldp + i];
+      TC_PETSC(MatDenseRestoreArrayRead(prod.get(), &p));
     }
-    apply_f(e, col);
-    setup_solves_ += 2;
-    const auto cv = col.read();
-    std::copy(cv.span().begin(), cv.span().end(), data + j * m);  // column-major
   }
-  TC_PETSC(MatDenseRestoreArray(f_dense_.get(), &data));
+  TC_PETSC(MatDenseRestoreArray(f_dense_.get(), &f));
   TC_PETSC(MatAssemblyBegin(f_dense_.get(), MAT_FINAL_ASSEMBLY));
   TC_PETSC(MatAssemblyEnd(f_dense_.get(), MAT_FINAL_ASSEMBLY));
+  setup_solves_ = 2 * m;  // right-hand sides solved (in 2⌈m/block⌉ block solves)
 }
 
 std::vector<double> DualContactSolver::targets(const core::Vector& ref_slave,
