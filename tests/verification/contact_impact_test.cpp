@@ -15,7 +15,9 @@ namespace {
 struct Recorder : physics::Observer {
   std::vector<double> energy, normal_force, min_gap;
   std::vector<int> active;
+  int max_coupling = 0;
   void step(const physics::Simulation& sim) override {
+    max_coupling = std::max(max_coupling, static_cast<int>(sim.history("coupling_iterations")));
     energy.push_back(sim.kinetic_energy() + sim.strain_energy());
     normal_force.push_back(sim.history("contact_normal_force"));
     active.push_back(static_cast<int>(sim.history("active_nodes")));
@@ -93,6 +95,7 @@ TEST_P(ContactImpact, NoPenetrationForceThenRelease) {
       "%d–%d\n",
       stabilised ? "stabilised" : "plain", e0, e_max, e_end, 100 * (e_end / e0 - 1), first, last);
   EXPECT_NEAR(e0, 0.5 * 7850 * 0.1 * 0.1 * 0.05 * v0 * v0, 1e-9 * e0);
+  EXPECT_LE(rec.max_coupling, 10);  // the staggered fixed point within the bound
   if (stabilised) {
     // Deuflhard–Krause–Ertel: the energy never grows (up to the QP tolerance, relative 1e-10,
     // and round-off: 1e-8 relative is far above both). It loses what the mass projection takes
