@@ -45,6 +45,7 @@ struct [[nodiscard]] QpResult {
   double tolerance = 0;           // the ‖g^P‖ required
   double max_eigenvalue = 0;      // the λ_max used (to reuse)
   int cg_steps = 0, expansion_steps = 0, proportioning_steps = 0;
+  int cauchy_steps = 0;   // proportioning steps taken as projected Cauchy steps along an arc
   int step_halvings = 0;  // ᾱ halved after an expansion that raised f (λ_max underestimated)
   std::string message;    // why it stopped, with the numbers
   [[nodiscard]] bool converged() const { return status == QpStatus::converged; }
