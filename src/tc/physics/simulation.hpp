@@ -102,6 +102,8 @@ class Simulation {
   /// Implicit (default) or lagged conductance; for measurements (docs/choices.md).
   void set_conductance_treatment(ConductanceTreatment t) { conductance_treatment_ = t; }
   [[nodiscard]] const ContactHeat& contact_heat() const { return heat_; }
+  /// Aitken relaxation of the Tresca → Coulomb fixed point (default on; docs/choices.md).
+  void set_coupling_acceleration(bool on) { accelerate_ = on; }
   /// β_C and δ_C of (2.13) from the contact's γ_C^s, γ_C^m (δ_C = ½ when both are 0).
   [[nodiscard]] double beta_c() const { return beta_c_; }
   [[nodiscard]] double delta_c() const { return delta_c_; }
@@ -189,6 +191,7 @@ class Simulation {
 
   // Thermal contact (2.13, §4.4), with the mortar pair only.
   double beta_c_ = 0, delta_c_ = 0.5;
+  bool accelerate_ = true;
   ConductanceTreatment conductance_treatment_ = ConductanceTreatment::Implicit;
   std::unique_ptr<InterfaceHeatSolver> interface_heat_;
   std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step
