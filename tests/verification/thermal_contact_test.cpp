@@ -10,6 +10,8 @@
 //    generated.
 //  - Coupling: a slave heated between the master and a fixed wall: the pressure of the
 //    laterally constrained blocks p = (δ + h_s β ΔT/M_s)/(h_s/M_s + h_m/M_m).
+#include "tc/physics/thermal_contact.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,6 +60,83 @@ double body_energy(const physics::Simulation& sim, int b) {
   double e = 0;
   for (size_t a = 0; a < vol.size(); ++a) e += c * vol[a] * (theta[a] - kTheta0);
   return e;
+}
+
+/// A dense n×m matrix as a PETSc matrix (all entries stored).
+core::SparseMatrix sparse(const Eigen::MatrixXd& d) {
+  const std::vector<PetscInt> nnz(static_cast<size_t>(d.rows()), static_cast<PetscInt>(d.cols()));
+  core::SparseMatrix m(d.rows(), d.cols(), nnz);
+  std::vector<PetscInt> rows(d.rows()), cols(d.cols());
+  for (PetscInt i = 0; i < d.rows(); ++i) rows[i] = i;
+  for (PetscInt j = 0; j < d.cols(); ++j) cols[j] = j;
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> r = d;
+  m.add_values(rows, cols, r.data());
+  m.assemble();
+  return m;
+}
+
+TEST(InterfaceHeatSolver, SolvesTheCoupledSystemExactlyWithDirichletNodesOnTheInterface) {
+  // Two 1D bodies (6 and 5 nodes, A = M/τ + K of linear elements), interface nodes {3, 4, 5}
+  // and {0, 1, 2}, a random symmetric positive semidefinite L_Γ coupling them, Dirichlet data
+  // at slave node 0 and at master node 1, which is on the interface. Reference: the dense
+  // (A + L) with the constrained rows replaced by θ = θ_D. Round-off only: 1e-12.
+  const int ns = 6, nm = 5;
+  auto chain = [](int n, double c, double k) {
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+    for (int e = 0; e + 1 < n; ++e) {
+      a(e, e) += c / 3 + k;
+      a(e + 1, e + 1) += c / 3 + k;
+      a(e, e + 1) += c / 6 - k;
+      a(e + 1, e) += c / 6 - k;
+    }
+    return a;
+  };
+  const Eigen::MatrixXd as = chain(ns, 2.0, 5.0), am = chain(nm, 1.0, 3.0);
+  const std::vector<int> gs = {3, 4, 5}, gm = {0, 1, 2};
+  Eigen::MatrixXd g = Eigen::MatrixXd::Random(6, 6);
+  const Eigen::MatrixXd lg = 40.0 * g * g.transpose();  // over [gs, gm]
+  Eigen::MatrixXd l = Eigen::MatrixXd::Zero(ns + nm, ns + nm);
+  std::vector<int> where = {3, 4, 5, ns + 0, ns + 1, ns + 2};
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) l(where[a], where[b]) = lg(a, b);
+  const physics::ConstrainedSolver solver_s(sparse(as), {0}, ""), solver_m(sparse(am), {1}, "");
+  physics::InterfaceHeatSolver solver(solver_s, ns, gs, solver_m, nm, gm);
+  contact::ThermalContact tc{sparse(l.topLeftCorner(ns, ns)), sparse(l.topRightCorner(ns, nm)),
+                             sparse(l.bottomLeftCorner(nm, ns)),
+                             sparse(l.bottomRightCorner(nm, nm))};
+  solver.set_conductance(tc);
+  EXPECT_EQ(solver.active_nodes(), 6);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(ns + nm);
+  const double theta_s0 = 300.0, theta_m1 = 310.0;
+  core::Vector bs = core::Vector::from(std::vector<double>(b.data(), b.data() + ns));
+  core::Vector bm = core::Vector::from(std::vector<double>(b.data() + ns, b.data() + ns + nm));
+  core::Vector xs(ns), xm(nm);
+  {
+    auto v = xs.view();
+    v[0] = theta_s0;
+  }
+  {
+    auto v = xm.view();
+    v[1] = theta_m1;
+  }
+  solver.solve(bs, bm, xs, xm);
+  Eigen::MatrixXd full = l;
+  full.topLeftCorner(ns, ns) += as;
+  full.bottomRightCorner(nm, nm) += am;
+  Eigen::VectorXd rhs = b;
+  for (const auto& [row, value] : {std::pair{0, theta_s0}, {ns + 1, theta_m1}}) {
+    full.row(row).setZero();
+    full(row, row) = 1.0;
+    rhs(row) = value;
+  }
+  const Eigen::VectorXd ref = full.lu().solve(rhs);
+  const auto s = xs.to_std(), m = xm.to_std();
+  for (int i = 0; i < ns; ++i) EXPECT_NEAR(s[i], ref(i), 1e-12 * ref.cwiseAbs().maxCoeff()) << i;
+  for (int i = 0; i < nm; ++i)
+    EXPECT_NEAR(m[i], ref(ns + i), 1e-12 * ref.cwiseAbs().maxCoeff()) << i;
+  EXPECT_EQ(solver.setup_solves(), 6);  // one column of S per interface node, once
+  solver.set_conductance(tc);
+  EXPECT_EQ(solver.setup_solves(), 6);
 }
 
 // ---------------------------------------------------------------------------------------------
