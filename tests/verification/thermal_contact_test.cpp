@@ -10,6 +10,9 @@
 //    generated.
 //  - Coupling: a slave heated between the master and a fixed wall: the pressure of the
 //    laterally constrained blocks p = (δ + h_s β ΔT/M_s)/(h_s/M_s + h_m/M_m).
+//  - Two half-spaces under constant frictional power: the surface temperatures' closed forms.
+//  - InterfaceHeatSolver against the dense coupled solve (Dirichlet node on the interface).
+//  - Aitken relaxation of the Coulomb fixed point: same answer, no more iterations.
 #include "tc/physics/thermal_contact.hpp"
 
 #include <gtest/gtest.h>
@@ -436,6 +439,93 @@ TEST(ThermalContact, SwitchedOffFrictionalHeatingGeneratesNone) {
       EXPECT_NEAR(r.master_energy, 0.0, 1e-9 * scale);
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+TEST(ThermalContact, TwoHalfSpacesUnderConstantFrictionalPower) {
+  // verification.md: two half-spaces, frictional power D per area from t = 0, conductance
+  // h = β_C p, effusivities e_i = √(κρc_p)_i, H = h(1/e_s + 1/e_m):
+  //   e_s Δθ_s + e_m Δθ_m = 2D√(t/π),
+  //   Δθ_s − Δθ_m = D(δ_C/e_s − (1 − δ_C)/e_m)(1 − e^{H²t} erfc(H√t))/H.
+  // Columns of 1×1×120 Hex8 (6 m tall, diffusion length √(κt/ρc_p) = 1 m at t = 1 s, so the far
+  // ends are 6 lengths away: e^{−9} of the flux reaches them), ρc_p = κ = 1 (e = 1),
+  // ν = 0, α = 0; p = Eδ/(L_s + L_m) = 1, γ_s = 5, γ_m = 1.25 (β_C = 1, δ_C = 0.8), 𝔉 = 0.5,
+  // the slave's top dragged at v = 1e-3 from t = 0 (the elastic shear takes 1e-7 m of it).
+  constexpr double kL = 6, kE = 1.2e8, kPress = 1e-7, kSpeed = 1e-3, kT = 1.0, kStep = 0.005;
+  fem::Material mat;
+  mat.density = 1;
+  mat.young_modulus = kE;
+  mat.poisson_ratio = 0;
+  mat.thermal_expansion = 0;
+  mat.specific_heat = 1;
+  mat.thermal_conductivity = 1;
+  physics::Problem p;
+  p.dimension = 3;
+  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.step = kStep;
+  p.time.end = kT;
+  p.physics.reference_temperature = kTheta0;
+  p.physics.thermoelastic_heating = false;
+  p.bodies.push_back(block("upper", mat, {0, 0, 0}, {1, 1, kL}, {1, 1, 120}, kTheta0));
+  p.bodies.push_back(block("lower", mat, {0, 0, -kL}, {1, 1, 0}, {1, 1, 120}, kTheta0));
+  const core::TimeTable drag({0, kT}, {0, kSpeed * kT});
+  p.boundaries.push_back(fix(0, "zmax", {{0, drag}, {1, 0.0}, {2, -kPress}}));
+  p.boundaries.push_back(fix(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
+  physics::ContactSettings c;
+  c.slave_body = 0;
+  c.master_body = 1;
+  c.slave_where = "zmin";
+  c.master_where = "zmax";
+  c.friction = 0.5;
+  c.conductance_slave = 5;
+  c.conductance_master = 1.25;
+  p.contact = c;
+  p.solver.qp_tolerance = 1e-12;
+  p.solver.coupling_tolerance = 1e-10;
+  p.solver.max_coupling_iterations = 50;
+  physics::Simulation sim(p);
+  sim.enable_mortar_contact();
+  ASSERT_NEAR(sim.beta_c(), 1.0, 1e-14);
+  ASSERT_NEAR(sim.delta_c(), 0.8, 1e-14);
+  double generated_before = 0;
+  while (sim.step() < p.time.n_steps()) {
+    generated_before = sim.history("heat_generated");
+    sim.advance();
+  }
+  const double pressure = kE * kPress / (2 * kL);
+  const double power = (sim.history("heat_generated") - generated_before) / kStep;  // area 1
+  // The power the run makes: 𝔉 N v with the normal force N of the step (N is 0.9 % below
+  // p·area: the friction force bends the tall columns and the overlap shrinks by v t = 1e-3).
+  const double normal = sim.history("contact_normal_force");
+  EXPECT_NEAR(normal, pressure, 0.02 * pressure);
+  EXPECT_NEAR(power, 0.5 * normal * kSpeed, 1e-4 * power);  // measured 6e-5: the slip rate
+  // at the quadrature points vs the nodal multipliers of the step
+  auto surface = [&](int b) {  // mean θ − θ₀ of the body's nodes at z = 0
+    const auto theta = sim.state(b).theta.to_std();
+    const auto& m = p.bodies[b].mesh;
+    double sum = 0;
+    int n = 0;
+    for (int a = 0; a < m.n_nodes(); ++a)
+      if (std::abs(m.point(a)[2]) < 1e-12) {
+        sum += theta[a] - kTheta0;
+        ++n;
+      }
+    return sum / n;
+  };
+  const double ds = surface(0), dm = surface(1);
+  const double h = sim.beta_c() * pressure, H = 2 * h, t = kT;
+  const double sum_expected = 2 * power * std::sqrt(t / M_PI);
+  const double jump_expected =
+      power * (0.8 - 0.2) * (1 - std::exp(H * H * t) * std::erfc(H * std::sqrt(t))) / H;
+  std::cout << "[ measure  ] two half-spaces at t = 1: e_sΔθ_s + e_mΔθ_m = " << ds + dm
+            << " (closed form " << sum_expected << ", relative error "
+            << (ds + dm - sum_expected) / sum_expected << "), jump " << ds - dm << " (closed form "
+            << jump_expected << ", relative error " << (ds - dm - jump_expected) / jump_expected
+            << ")\n";
+  // Backward Euler with τ = 0.005 s on a response ∝ √t and h = 0.05 against a diffusion
+  // length of 1: both errors are O(1e-3) at t = 1; 1 % bounds them.
+  EXPECT_NEAR(ds + dm, sum_expected, 0.01 * sum_expected);
+  EXPECT_NEAR(ds - dm, jump_expected, 0.01 * jump_expected);
 }
 
 // ---------------------------------------------------------------------------------------------
