@@ -152,7 +152,8 @@ TEST(Cli, AContactCaseRunsWithTheMortarPairAndWritesContactOutput) {
   // 1e-8: the QP tolerance of the case is 1e-12 relative; the patch test is exact otherwise.
   EXPECT_NEAR(std::stod(column(last, i)), expected, 1e-8 * expected);
   const auto vtu = tc::test::read_file(out / "upper_000001.vtu");
-  for (const char* field : {"contact_pressure", "tangential_traction", "slip_velocity"})
+  for (const char* field :
+       {"contact_pressure", "tangential_traction", "slip_velocity", "contact_heat_flux"})
     EXPECT_NE(vtu.find(field), std::string::npos) << field;
 }
 

@@ -100,7 +100,8 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
 
 void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data) {
   // On the slave's contact nodes (the multipliers live there), zero elsewhere: λ_n, the
-  // tangential traction Σ_l λ_τl τ_l and the slip velocity Σ_l (B_τlΔu)_k/(w_k τ) τ_l.
+  // tangential traction Σ_l λ_τl τ_l, the slip velocity Σ_l (B_τlΔu)_k/(w_k τ) τ_l and the
+  // conducted heat flux β_C λ_n [θ] out of the slave (Simulation::contact_heat_flux).
   const auto* pair = sim.mortar();
   const auto* dual = sim.dual_solver();
   if (!pair || !dual || body != sim.problem().contact->slave_body) return;
@@ -112,6 +113,8 @@ void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>
   Field pressure{"contact_pressure", 1, std::vector<double>(n, 0.0)};
   Field traction{"tangential_traction", 3, std::vector<double>(3 * n, 0.0)};
   Field slip_velocity{"slip_velocity", 3, std::vector<double>(3 * n, 0.0)};
+  Field heat_flux{"contact_heat_flux", 1, std::vector<double>(n, 0.0)};
+  const auto& flux = sim.contact_heat_flux();
   const bool have_slip = slip.size() == lambda.size() && !lambda.empty();
   if (static_cast<PetscInt>(lambda.size()) == rows.n_rows() &&
       rows.nodes.size() == pair->contact_nodes().size()) {
@@ -119,6 +122,7 @@ void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>
     for (size_t k = 0; k < rows.nodes.size(); ++k) {
       const int a = rows.nodes[k];
       pressure.values[a] = lambda[dim * k];
+      if (flux.size() == rows.nodes.size()) heat_flux.values[a] = flux[k];
       for (int l = 0; l + 1 < dim; ++l) {
         const auto& t = pair->tangents(l)[k];
         const double lt = lambda[dim * k + 1 + l];
@@ -134,6 +138,7 @@ void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>
   point_data.push_back(std::move(pressure));
   point_data.push_back(std::move(traction));
   point_data.push_back(std::move(slip_velocity));
+  point_data.push_back(std::move(heat_flux));
 }
 
 OutputWriter::OutputWriter(std::filesystem::path directory, int every)

@@ -222,30 +222,108 @@ void Simulation::prepare_step(int b) {
   s.theta_new.copy_from(st.theta);
 }
 
-void Simulation::heat_step(int b, int iteration) {
-  // (6.1) with the velocity of the current displacement iterate.
-  auto scope = timers_.scope("heat_solve");
+void Simulation::velocity_iterate(int b) {
+  // The velocity of the current displacement iterate: (5.2) with γ = 1/2,
+  // u̇ = u̇^k + 2/τ(u − u_pred) (dynamic; u_pred projected when contact-stabilised), or
+  // (u − u^k)/τ (quasistatic, where u_pred = u^k).
   const double tau = problem_.time.step;
+  auto& s = *solvers_[b];
+  s.velocity.copy_from(s.u_new);
+  s.velocity.axpy(-1.0, s.u_pred);
+  if (problem_.time.scheme == Scheme::Dynamic) {
+    s.velocity.scale(2.0 / tau);
+    s.velocity.axpy(1.0, states_[b].v);
+  } else {
+    s.velocity.scale(1.0 / tau);
+  }
+}
+
+void Simulation::heat_rhs(int b) {
   const auto& sys = *systems_[b];
-  const auto& st = states_[b];
   auto& s = *solvers_[b];
   s.rhs_theta.copy_from(s.rhs_theta_base);
   if (s.heating) {  // −K_θu u̇ = θ₀ K_uθᵀ u̇ (docs/choices.md)
-    s.velocity.copy_from(s.u_new);
-    s.velocity.axpy(-1.0, s.u_pred);
-    if (problem_.time.scheme == Scheme::Dynamic) {
-      s.velocity.scale(2.0 / tau);  // (5.2) with γ = 1/2: u̇ = u̇^k + 2/τ(u − u_pred)
-      s.velocity.axpy(1.0, st.v);
-    } else {
-      s.velocity.scale(1.0 / tau);
-    }
+    velocity_iterate(b);
     s.work_theta.zero();
     sys.matrices().coupling_u_theta.mult_transpose(s.velocity, s.work_theta);
     s.rhs_theta.axpy(problem_.physics.reference_temperature, s.work_theta);
   }
-  sys.prescribe_theta((step_ + 1) * tau, s.theta_new);
+}
+
+void Simulation::heat_step(int b, int iteration) {
+  // (6.1) with the velocity of the current displacement iterate.
+  auto scope = timers_.scope("heat_solve");
+  const auto& sys = *systems_[b];
+  auto& s = *solvers_[b];
+  heat_rhs(b);
+  sys.prescribe_theta((step_ + 1) * problem_.time.step, s.theta_new);
   s.heat->solve(s.rhs_theta, s.theta_new);
   require_finite(s.theta_new, "temperature", step_ + 1, iteration);
+}
+
+void Simulation::contact_heat_step(int iteration) {
+  // (4.3) for the two bodies of the contact pair, backward Euler:
+  //   (M_θ/τ + K_θ) θ + L_θγ θ = rhs + d_θγ(u̇),
+  // γ = λ_n of the current multiplier iterate (nodal pressures, ≥ 0), u̇ of the current
+  // displacement iterate. L on the left through the interface (InterfaceHeatSolver), or lagged.
+  auto scope = timers_.scope("heat_solve");
+  const auto& c = *problem_.contact;
+  const int sb = c.slave_body, mb = c.master_body;
+  auto& ss = *solvers_[sb];
+  auto& sm = *solvers_[mb];
+  heat_rhs(sb);
+  heat_rhs(mb);
+  frictional_heat_ = {};
+  conductance_.reset();
+  std::vector<double> gamma;
+  if (mortar_) {
+    const auto& rows = dual_->rows();
+    const auto lv = lambda_.read();
+    gamma.resize(static_cast<size_t>(rows.n_nodes()));
+    for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = std::max(lv[rows.dim * k], 0.0);
+    if (static_cast<size_t>(rows.n_nodes()) != mortar_->contact_nodes().size())
+      throw Error("thermal contact: the multipliers do not match the mortar pair's nodes");
+  }
+  if (mortar_ && c.frictional_heating && c.friction > 0) {
+    velocity_iterate(sb);
+    velocity_iterate(mb);
+    frictional_heat_ = mortar_->frictional_heat(gamma, c.friction, delta_c_, ss.velocity.to_std(),
+                                                sm.velocity.to_std());
+    for (auto [s, d] : {std::pair{&ss, &frictional_heat_.slave}, {&sm, &frictional_heat_.master}}) {
+      auto rv = s->rhs_theta.view();
+      for (size_t a = 0; a < d->size(); ++a) rv[static_cast<PetscInt>(a)] += (*d)[a];
+    }
+  }
+  const double t = (step_ + 1) * problem_.time.step;
+  const bool conduct = mortar_ && c.heat_conduction && beta_c_ > 0;
+  if (conduct) conductance_ = mortar_->thermal_conductance(gamma, beta_c_);
+  if (conduct && conductance_treatment_ == ConductanceTreatment::Lagged) {
+    // (6.2): L θ^p of the previous iterate to the right-hand side.
+    const auto& l = *conductance_;
+    l.ss.mult(ss.theta_new, ss.work_theta);
+    l.sm.mult_add(sm.theta_new, ss.work_theta);
+    l.ms.mult(ss.theta_new, sm.work_theta);
+    l.mm.mult_add(sm.theta_new, sm.work_theta);
+    ss.rhs_theta.axpy(-1.0, ss.work_theta);
+    sm.rhs_theta.axpy(-1.0, sm.work_theta);
+  }
+  systems_[sb]->prescribe_theta(t, ss.theta_new);
+  systems_[mb]->prescribe_theta(t, sm.theta_new);
+  if (conduct && conductance_treatment_ == ConductanceTreatment::Implicit) {
+    if (!interface_heat_) {
+      const auto& p = problem_;
+      interface_heat_ = std::make_unique<InterfaceHeatSolver>(
+          *ss.heat, systems_[sb]->n_theta(), p.bodies[sb].mesh.boundary_nodes(c.slave_where),
+          *sm.heat, systems_[mb]->n_theta(), p.bodies[mb].mesh.boundary_nodes(c.master_where));
+    }
+    interface_heat_->set_conductance(*conductance_);
+    interface_heat_->solve(ss.rhs_theta, sm.rhs_theta, ss.theta_new, sm.theta_new);
+  } else {
+    ss.heat->solve(ss.rhs_theta, ss.theta_new);
+    sm.heat->solve(sm.rhs_theta, sm.theta_new);
+  }
+  require_finite(ss.theta_new, "temperature", step_ + 1, iteration);
+  require_finite(sm.theta_new, "temperature", step_ + 1, iteration);
 }
 
 void Simulation::mech_step(int b, int iteration) {
@@ -343,6 +421,9 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   settings.qp.rtol = problem_.solver.qp_tolerance;
   settings.qp.max_iterations = problem_.solver.max_qp_iterations;
   contact_rows_ = std::move(builder);
+  const double gs = c.conductance_slave, gm = c.conductance_master;
+  beta_c_ = gs + gm > 0 ? gs * gm / (gs + gm) : 0.0;  // (2.13)
+  delta_c_ = gs + gm > 0 ? gs / (gs + gm) : 0.5;
   const int sb = c.slave_body, mb = c.master_body;
   dual_ = std::make_unique<DualContactSolver>(*solvers_[sb]->mech, *solvers_[mb]->mech,
                                               systems_[sb]->n_u(), systems_[mb]->n_u(), settings);
@@ -482,6 +563,13 @@ int Simulation::couple_contact() {
     for (PetscInt k = 0; k < nc; ++k) bound[k] = c.friction * std::max(lv[dim * k], 0.0);
   };
   tresca_bound();
+  // Aitken's Δ² (Irons–Tuck, vector form as in Küttler & Wall 2008) on the Tresca → Coulomb
+  // fixed point γ = λ_n(γ): γ ← max(γ + ω r, 0), r = λ_n(γ) − γ, ω from the last two residuals
+  // (ω = 1 at the first iteration: the plain update of 6.3).
+  const bool relax = accelerate_ && c.friction > 0;
+  std::vector<double> gamma(static_cast<size_t>(nc)), residual(gamma.size()), residual_prev;
+  for (PetscInt k = 0; k < nc; ++k) gamma[k] = bound[k] / (c.friction > 0 ? c.friction : 1.0);
+  double omega = 1.0;
   contact_stats_.operator_applications += dual_->setup_solves() / 2;
   core::Vector lambda_prev = lambda_.clone();
   const double tol = problem_.solver.coupling_tolerance;
@@ -492,8 +580,7 @@ int Simulation::couple_contact() {
     lambda_prev.copy_from(lambda_);
     ss.theta_prev.copy_from(ss.theta_new);
     sm.theta_prev.copy_from(sm.theta_new);
-    heat_step(sb, iteration);
-    heat_step(mb, iteration);
+    contact_heat_step(iteration);
     mech_step(sb, iteration);  // u_free = A⁻¹f with the Dirichlet data
     mech_step(mb, iteration);
     {
@@ -510,15 +597,41 @@ int Simulation::couple_contact() {
     }
     require_finite(ss.u_new, "displacement", step, iteration);
     require_finite(sm.u_new, "displacement", step, iteration);
-    tresca_bound();
+    double fixed_residual = 0;  // ‖λ_n(γ) − γ‖ (relaxed: the change of λ alone may mislead)
+    if (relax) {
+      {
+        const auto lv = lambda_.read();
+        for (PetscInt k = 0; k < nc; ++k) residual[k] = std::max(lv[dim * k], 0.0) - gamma[k];
+      }
+      if (!residual_prev.empty()) {
+        double num = 0, den = 0;
+        for (PetscInt k = 0; k < nc; ++k) {
+          const double dr = residual[k] - residual_prev[k];
+          num += residual_prev[k] * dr;
+          den += dr * dr;
+        }
+        if (den > 0) omega = std::clamp(-omega * num / den, 0.5, 1.5);  // kept near the plain
+        // step: once λ is at the QP's accuracy the residuals are noise and so would be ω
+      }
+      for (PetscInt k = 0; k < nc; ++k) {
+        fixed_residual += residual[k] * residual[k];
+        gamma[k] = std::max(gamma[k] + omega * residual[k], 0.0);
+        bound[k] = c.friction * gamma[k];
+      }
+      fixed_residual = std::sqrt(fixed_residual);
+      residual_prev = residual;
+    } else {
+      tresca_bound();
+    }
     lambda_prev.axpy(-1.0, lambda_);
     ss.theta_prev.axpy(-1.0, ss.theta_new);
     sm.theta_prev.axpy(-1.0, sm.theta_new);
     const double dl = lambda_prev.norm(), ln = lambda_.norm();
     const double dth = std::hypot(ss.theta_prev.norm(), sm.theta_prev.norm());
     const double thn = std::hypot(ss.theta_new.norm(), sm.theta_new.norm());
-    change = std::max(ln > 0 ? dl / ln : dl, thn > 0 ? dth / thn : dth);
-    if (dl <= tol * ln && dth <= tol * thn) break;
+    change = std::max({ln > 0 ? dl / ln : dl, thn > 0 ? dth / thn : dth,
+                       ln > 0 ? fixed_residual / ln : fixed_residual});
+    if (dl <= tol * ln && dth <= tol * thn && fixed_residual <= tol * ln) break;
   }
   if (iteration > problem_.solver.max_coupling_iterations)
     throw NumericalError(
@@ -534,6 +647,16 @@ int Simulation::couple_contact() {
   rows.slave.mult(ss.work_u, inc);
   rows.master.mult_add(sm.work_u, inc);
   slip_ = inc.to_std();
+  // Heat through the interface in this step, with the L and d of the last heat step (those
+  // that produced θ^{k+1}): then the thermal energy balance of the pair closes to round-off.
+  heat_.generated += tau * frictional_heat_.total;
+  for (const double q : frictional_heat_.slave) heat_.to_slave += tau * q;
+  for (const double q : frictional_heat_.master) heat_.to_master += tau * q;
+  if (conductance_) {  // 1ᵀ(L_ss θ_s + L_sm θ_m) = β_C ∫ γ (θ_s − θ_m) dS, slave → master
+    conductance_->ss.mult(ss.theta_new, ss.work_theta);
+    conductance_->sm.mult_add(sm.theta_new, ss.work_theta);
+    heat_.conducted += tau * ss.work_theta.sum();
+  }
   update_state(sb);
   update_state(mb);
   for (int b = 0; b < n_bodies(); ++b)
@@ -564,6 +687,26 @@ void Simulation::contact_bookkeeping() {
     if (ln > 0) {
       ++cs.active_nodes;
       if (friction > 0 && lt >= friction * ln * (1 - 1e-6)) ++cs.slip_nodes;
+    }
+  }
+  if (mortar_) {  // q = β_C λ_n [θ] per contact node, θ_m at the node: (Mθ_m)_k / (D1)_k
+    const auto& c = *problem_.contact;
+    heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
+    if (c.heat_conduction && beta_c_ > 0 &&
+        mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {
+      const auto& st_s = states_[c.slave_body];
+      const auto& st_m = states_[c.master_body];
+      core::Vector ones(systems_[c.slave_body]->n_theta()), dsum(rows.n_nodes()),
+          mth(rows.n_nodes());
+      ones.fill(1.0);
+      mortar_->d_matrix().mult(ones, dsum);
+      mortar_->m_matrix().mult(st_m.theta, mth);
+      const auto ds = dsum.to_std(), mt = mth.to_std(), ts = st_s.theta.to_std();
+      for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
+        if (ds[k] <= 0) continue;
+        const double jump = ts[mortar_->contact_nodes()[k]] - mt[k] / ds[k];
+        heat_flux_[k] = beta_c_ * std::max(l[dim * k], 0.0) * jump;
+      }
     }
   }
 }
@@ -664,10 +807,10 @@ void Simulation::fill_row(int coupling, double wall) {
           contact_stats_.normal_force,
           contact_stats_.tangential_force,
           contact_stats_.dissipation,
-          0.0,  // heat_generated
-          0.0,  // heat_to_slave
-          0.0,  // heat_to_master
-          0.0,  // heat_conducted
+          heat_.generated,
+          heat_.to_slave,
+          heat_.to_master,
+          heat_.conducted,
           tmax,
           tmin,
           static_cast<double>(contact_stats_.active_nodes),

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/dual_contact.hpp"
+#include "tc/physics/thermal_contact.hpp"
 
 namespace tc::physics {
 
@@ -49,6 +51,20 @@ struct ContactStatistics {
   double dissipation = 0;       // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
   int active_nodes = 0;         // λ_n,k > 0
   int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − 1e-6))
+};
+
+/// How the contact conductance L_θγ of §4.4 enters the heat step of the fixed point (6.3).
+enum class ConductanceTreatment {
+  Implicit,  // L θ^{p+1} on the left, solved exactly through the interface (default)
+  Lagged     // the thesis' (6.2): L θ^p of the previous iterate on the right-hand side
+};
+
+/// Heat through the contact interface, cumulative from t = 0 [J] (history.csv):
+///  generated = Σ_steps τ ∫ 𝔉 λ_n ‖[u̇]_τ‖ dS, to_slave / to_master its δ_C / 1 − δ_C shares,
+///  conducted = Σ_steps τ β_C ∫ λ_n (θ_s − θ_m) dS: the heat that crossed by conductance from
+///  the slave to the master (negative when it went the other way), θ at t^{k+1}.
+struct ContactHeat {
+  double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
 };
 
 /// Receives the run's progress: output writers, progress lines, tests.
@@ -83,6 +99,23 @@ class Simulation {
   /// The contact multipliers of the last step, node-major [λ_n, λ_τ…] (empty without contact).
   [[nodiscard]] std::vector<double> contact_multipliers() const;
   [[nodiscard]] const DualContactSolver* dual_solver() const { return dual_.get(); }
+  /// Implicit (default) or lagged conductance; for measurements (docs/choices.md).
+  void set_conductance_treatment(ConductanceTreatment t) { conductance_treatment_ = t; }
+  [[nodiscard]] const ContactHeat& contact_heat() const { return heat_; }
+  /// Aitken relaxation of the Tresca → Coulomb fixed point (default on; docs/choices.md).
+  void set_coupling_acceleration(bool on) { accelerate_ = on; }
+  /// β_C and δ_C of (2.13) from the contact's γ_C^s, γ_C^m (δ_C = ½ when both are 0).
+  [[nodiscard]] double beta_c() const { return beta_c_; }
+  [[nodiscard]] double delta_c() const { return delta_c_; }
+  /// Per contact node of the last step (order of the multipliers): q_C^s conduction part
+  /// β_C λ_n [θ], [θ] = θ_s − θ_m (θ_m of the master at the node, (Mθ_m)_k/(D1)_k), in W/m²:
+  /// the heat flux out of the slave into the master (positive when the slave is hotter).
+  /// Zero with heat_conduction = false; empty without the mortar pair.
+  [[nodiscard]] const std::vector<double>& contact_heat_flux() const { return heat_flux_; }
+  /// The solver of the implicit heat step (null until conductance first appears).
+  [[nodiscard]] const InterfaceHeatSolver* interface_heat_solver() const {
+    return interface_heat_.get();
+  }
 
   /// Runs all steps, or until `stop` becomes non-zero (checked between steps).
   RunStatus run(Observer& observer, const std::atomic<int>* stop = nullptr);
@@ -118,9 +151,12 @@ class Simulation {
   void initialise();
   int couple_body(int b);    // the staggered loop of 6.3 for one body; returns iterations
   void prepare_step(int b);  // right-hand sides fixed within the step, predictor
-  void heat_step(int b, int iteration);  // (6.1)/(5.6) with the current u iterate
-  void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
-  void update_state(int b);              // Newmark/backward-difference updates of u̇, ü
+  void heat_step(int b, int iteration);   // (6.1)/(5.6) with the current u iterate
+  void velocity_iterate(int b);           // u̇ of the current displacement iterate → velocity
+  void heat_rhs(int b);                   // right-hand side of (6.1) without contact terms
+  void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
+  void mech_step(int b, int iteration);   // (5.3) with the current θ iterate, no contact
+  void update_state(int b);               // Newmark/backward-difference updates of u̇, ü
   int couple_contact();  // the staggered loop of 6.3 for the contact pair (heat, dual QP)
   void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
   void stabilise_predictor(std::span<const double> normal_targets);
@@ -152,6 +188,16 @@ class Simulation {
   std::vector<int> lambda_nodes_;  // slave mesh node of each contact node of lambda_
   std::vector<double> slip_;       // B_τ Δu of the last step (node-major, normal rows unused)
   ContactStatistics contact_stats_;
+
+  // Thermal contact (2.13, §4.4), with the mortar pair only.
+  double beta_c_ = 0, delta_c_ = 0.5;
+  bool accelerate_ = true;
+  ConductanceTreatment conductance_treatment_ = ConductanceTreatment::Implicit;
+  std::unique_ptr<InterfaceHeatSolver> interface_heat_;
+  std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step
+  contact::FrictionalHeat frictional_heat_;             // d_θγ of the last heat step
+  ContactHeat heat_;
+  std::vector<double> heat_flux_;
 };
 
 }  // namespace tc::physics
