@@ -1,0 +1,71 @@
+// bench/thermal-contact: the thesis' chapter 7 examples (examples/05-thesis-heat-transfer,
+// 06-thesis-frictional-heating) run without output: wall time in total and per phase,
+// coupling iterations, QP iterations and applications of F per step. The goal of issue 7 is
+// each example under 2 s on 2 cores. Prints a Markdown table.
+//
+//   build/bin/bench_thermal-contact [case.toml ...]   (default: the two examples)
+#include <fmt/format.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "tc/core/petsc.hpp"
+#include "tc/io/case_reader.hpp"
+#include "tc/physics/simulation.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Counts : tc::physics::Observer {
+  long qp = 0, applications = 0, coupling = 0;
+  int max_coupling = 0;
+  void step(const tc::physics::Simulation& sim) override {
+    if (sim.step() == 0) return;
+    qp += static_cast<long>(sim.history("qp_iterations"));
+    applications += static_cast<long>(sim.history("operator_applications"));
+    const int c = static_cast<int>(sim.history("coupling_iterations"));
+    coupling += c;
+    max_coupling = std::max(max_coupling, c);
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> cases;
+  for (int i = 1; i < argc; ++i) cases.emplace_back(argv[i]);
+  if (cases.empty())
+    cases = {TC_SOURCE_DIR "/examples/05-thesis-heat-transfer/case.toml",
+             TC_SOURCE_DIR "/examples/06-thesis-frictional-heating/case.toml"};
+  int pargc = 1;
+  tc::core::PetscSession session(&pargc, &argv);
+  fmt::print(
+      "| case | dofs | steps | total [s] | assembly + factorisation | mortar | dual set-up | QP | "
+      "heat | mechanics | coupling it./step (max) | QP it./step | F appl./step |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& file : cases) {
+    const auto problem = tc::io::read_case(file);
+    const auto t0 = Clock::now();
+    tc::physics::Simulation sim(problem);
+    if (problem.contact) sim.enable_mortar_contact();
+    Counts counts;
+    const auto status = sim.run(counts);
+    const double total = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (!status.completed) fmt::print("stopped: {}\n", status.message);
+    const auto& t = sim.timers();
+    const double n = std::max(1, status.steps_done);
+    const auto name =
+        file.substr(file.find("examples/") == std::string::npos ? 0 : file.find("examples/") + 9);
+    fmt::print(
+        "| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.1f} "
+        "({}) | {:.0f} | {:.0f} |\n",
+        name, sim.n_dofs(), status.steps_done, total, t["assembly"] + t["factorization"],
+        t["mortar"], t["dual_setup"], t["qp"], t["heat_solve"], t["mechanical_solve"],
+        static_cast<double>(counts.coupling) / n, counts.max_coupling,
+        static_cast<double>(counts.qp) / n, static_cast<double>(counts.applications) / n);
+    std::fflush(stdout);
+  }
+  return 0;
+}
