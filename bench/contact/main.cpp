@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../../tests/support/problems.hpp"  // steel(): the constants the tests use
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/physics/simulation.hpp"
@@ -24,17 +25,6 @@ using namespace tc;
 
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-fem::Material steel() {
-  fem::Material m;
-  m.density = 7850;
-  m.young_modulus = 2.0e11;
-  m.poisson_ratio = 0.3;
-  m.thermal_expansion = 1.2e-5;
-  m.specific_heat = 450;
-  m.thermal_conductivity = 50;
-  return m;
 }
 
 /// The example's bodies and loads with the given cells; `steps` of 0.1 s: pressed by 0.1 mm
@@ -50,7 +40,7 @@ physics::Problem sliding_block(std::array<int, 3> master, std::array<int, 3> sla
   for (int b = 0; b < 2; ++b) {
     physics::Body body;
     body.name = b == 0 ? "master" : "slave";
-    body.material = steel();
+    body.material = test::steel();
     body.mesh = b == 0 ? mesh::make_box(3, {-0.15, -0.15, -0.2}, {0.15, 0.85, 0.0}, master)
                        : mesh::make_box(3, {-0.1, -0.1, 0.0}, {0.1, 0.1, 0.2}, slave);
     body.initial_temperature = p.physics.reference_temperature;

@@ -154,6 +154,21 @@ inline std::map<std::pair<PetscInt, PetscInt>, double> entries(const core::Spars
   return out;
 }
 
+/// The rows of a mortar pair equal reference rows (gaps, weights and both B blocks) entry by
+/// entry to `tol` absolute.
+inline void expect_same_rows(const contact::ContactRows& rows, const contact::ContactRows& ref,
+                             double tol) {
+  for (size_t k = 0; k < ref.gap.size(); ++k) {
+    EXPECT_NEAR(rows.gap[k], ref.gap[k], tol) << k;
+    EXPECT_NEAR(rows.weights[k], ref.weights[k], tol) << k;
+  }
+  for (const auto which : {&contact::ContactRows::slave, &contact::ContactRows::master}) {
+    const auto a = entries(rows.*which), b = entries(ref.*which);
+    for (const auto& [ij, v] : b) EXPECT_NEAR(a.count(ij) ? a.at(ij) : 0.0, v, tol);
+    for (const auto& [ij, v] : a) EXPECT_NEAR(b.count(ij) ? b.at(ij) : 0.0, v, tol);
+  }
+}
+
 inline double sum_of(const core::SparseMatrix& a) {
   double s = 0;
   for (const auto& [ij, v] : entries(a)) s += v;

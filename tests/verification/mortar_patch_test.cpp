@@ -12,6 +12,7 @@
 
 #include "mortar_fixtures.hpp"
 #include "support/problems.hpp"
+#include "support/roller_blocks.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/physics/dual_contact.hpp"
 
@@ -20,45 +21,6 @@ namespace {
 
 using contact::MultiplierBasis;
 using physics::ConstrainedSolver;
-
-struct Block {
-  mesh::Mesh mesh;
-  fem::BodyMatrices matrices;
-  std::vector<PetscInt> dirichlet;
-  core::Vector u_prescribed;
-  std::unique_ptr<ConstrainedSolver> solver;
-};
-
-/// A box on rollers (x = 0: u_x = 0; y = 0: u_y = 0 in 3D) with the vertical displacement of
-/// `moved_face` prescribed to `moved_by`.
-Block make_block(int dim, const mesh::Point& lo, const mesh::Point& hi, std::array<int, 3> cells,
-                 const std::string& moved_face, double moved_by) {
-  Block b;
-  b.mesh = mesh::make_box(dim, lo, hi, cells);
-  b.matrices = fem::assemble_body(b.mesh, steel());
-  b.u_prescribed = core::Vector(dim * b.mesh.n_nodes());
-  std::map<PetscInt, double> fixed;
-  for (const int a : b.mesh.boundary_nodes("xmin")) fixed[dim * a + 0] = 0;
-  if (dim == 3)
-    for (const int a : b.mesh.boundary_nodes("ymin")) fixed[dim * a + 1] = 0;
-  for (const int a : b.mesh.boundary_nodes(moved_face)) fixed[dim * a + dim - 1] = moved_by;
-  {
-    auto v = b.u_prescribed.view();
-    for (const auto& [dof, value] : fixed) {
-      b.dirichlet.push_back(dof);
-      v[dof] = value;
-    }
-  }
-  b.solver = std::make_unique<ConstrainedSolver>(b.matrices.stiffness_u, b.dirichlet, "");
-  return b;
-}
-
-core::Vector free_solution(const Block& b) {
-  core::Vector f(b.u_prescribed.size());
-  core::Vector u = b.u_prescribed.clone();
-  b.solver->solve(f, u);
-  return u;
-}
 
 struct Case {
   int dim;
@@ -78,8 +40,8 @@ TEST_P(MortarPatch, NonMatchingMeshesCarryTheUniaxialPressure) {
   // 3 × 3 against 5 × 7 in 3D, 5 against 7 in 2D (verification.md).
   const std::array<int, 3> upper_cells = dim == 3 ? std::array{3, 3, 2} : std::array{5, 2, 1};
   const std::array<int, 3> lower_cells = dim == 3 ? std::array{5, 7, 3} : std::array{7, 3, 1};
-  Block upper = make_block(dim, point(0, 1), point(1, 1.5), upper_cells, top, -delta);
-  Block lower = make_block(dim, point(0, 0), point(1, 1), lower_cells, bottom, 0.0);
+  Block upper = make_block(dim, point(0, 1), point(1, 1.5), upper_cells, top, -delta, "");
+  Block lower = make_block(dim, point(0, 0), point(1, 1), lower_cells, bottom, 0.0, "");
   Block& slave = upper_is_slave ? upper : lower;
   Block& master = upper_is_slave ? lower : upper;
   const contact::MortarPair pair(slave.mesh, upper_is_slave ? bottom : top, master.mesh,
