@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/growth.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/mesh/box.hpp"
@@ -44,13 +45,12 @@ struct Row {
 };
 
 double slope(const std::vector<Row>& rows, double Row::*field) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(rows.size());
+  std::vector<double> dofs, cost;
   for (const auto& r : rows) {
-    const double x = std::log(r.dofs), y = std::log(r.*field);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
+    dofs.push_back(r.dofs);
+    cost.push_back(r.*field);
   }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  return tc::bench::growth_exponent(dofs, cost);
 }
 
 }  // namespace

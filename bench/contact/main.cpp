@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../../tests/support/problems.hpp"  // steel(): the constants the tests use
+#include "../support/growth.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/physics/simulation.hpp"
@@ -129,13 +130,12 @@ Row run(const physics::Problem& p, PetscInt explicit_limit, int steps) {
 }
 
 double slope(const std::vector<Row>& rows) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(rows.size());
+  std::vector<double> dofs, time;
   for (const auto& r : rows) {
-    const double x = std::log(static_cast<double>(r.dofs)), y = std::log(r.per_step);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
+    dofs.push_back(static_cast<double>(r.dofs));
+    time.push_back(r.per_step);
   }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  return bench::growth_exponent(dofs, time);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/growth.hpp"
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
@@ -58,13 +59,12 @@ struct Row {
 };
 
 double slope(const std::vector<Row>& rows) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(rows.size());
+  std::vector<double> faces, time;
   for (const auto& r : rows) {
-    const double x = std::log(static_cast<double>(r.faces)), y = std::log(r.time);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
+    faces.push_back(static_cast<double>(r.faces));
+    time.push_back(r.time);
   }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  return tc::bench::growth_exponent(faces, time);
 }
 
 }  // namespace
