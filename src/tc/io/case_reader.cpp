@@ -140,10 +140,12 @@ void CaseReader::read_time(const TableReader& root) {
 }
 
 void CaseReader::read_physics(const TableReader& root) {
-  const auto t =
-      root.sub_table("physics", Need::Optional,
-                     {"reference_temperature", "thermal_expansion", "thermoelastic_heating"});
+  const auto t = root.sub_table(
+      "physics", Need::Optional,
+      {"reference_temperature", "thermal_expansion", "thermoelastic_heating", "heat_capacity"});
   if (!t) return;
+  if (const auto s = t->choice("heat_capacity", Need::Optional, {"consistent", "lumped"}))
+    p_.physics.lumped_heat_capacity = *s == "lumped";
   if (const auto v = t->number("reference_temperature", Need::Optional, kTemperature))
     p_.physics.reference_temperature = *v;
   if (const auto v = t->boolean("thermal_expansion")) p_.physics.thermal_expansion = *v;

@@ -35,6 +35,15 @@ BodySystem::BodySystem(const Problem& problem, int index)
     if (bc.body == index) add_boundary(bc, body_->name);
   u_dofs_ = keys(u_prescribed_);
   th_dofs_ = keys(th_prescribed_);
+  if (problem.physics.lumped_heat_capacity) lump(m_.mass_theta);
+}
+
+void BodySystem::lump(core::SparseMatrix& m) {
+  // Row sums on the diagonal, the pattern kept (so a·M + b·K still shares it with K).
+  core::Vector sums(m.rows());
+  TC_PETSC(MatGetRowSum(m.get(), sums.get()));
+  TC_PETSC(MatZeroEntries(m.get()));
+  TC_PETSC(MatDiagonalSet(m.get(), sums.get(), INSERT_VALUES));
 }
 
 void BodySystem::add_boundary(const BoundaryCondition& bc, const std::string& body_name) {

@@ -53,6 +53,7 @@ class BodySystem {
     std::vector<std::pair<PetscInt, double>> weights;
   };
   void add_boundary(const BoundaryCondition& bc, const std::string& body_name);
+  static void lump(core::SparseMatrix& m);  // row-sum lumping, in place
   static void apply(const std::vector<NodalLoad>& loads, int block, double t, core::Vector& f);
 
   const Body* body_;

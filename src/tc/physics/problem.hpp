@@ -35,6 +35,10 @@ struct PhysicsSettings {
   double reference_temperature = 293.15;  // θ₀ [K], > 0
   bool thermal_expansion = true;          // K_uθ of (2.5)
   bool thermoelastic_heating = true;      // K_θu of (2.8)
+  /// M_θ lumped to its row sums: backward Euler then keeps temperatures between their bounds
+  /// (discrete maximum principle on meshes whose K_θ has no positive off-diagonal entries),
+  /// where the consistent M_θ overshoots at sharp fronts for τ ≪ ρc_p h²/κ.
+  bool lumped_heat_capacity = false;
 };
 
 struct Body {
