@@ -18,18 +18,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from plot_field import arrays  # noqa: E402  (the .vtu DataArray reader)
 
 
 def point_arrays(path):
     root = ET.parse(path).getroot()
     pts = root.find(".//Points/DataArray")
     xyz = np.array(pts.text.split(), dtype=float).reshape(-1, 3)
-    out = {}
-    for da in root.find(".//PointData").findall("DataArray"):
-        n = int(da.get("NumberOfComponents", "1"))
-        v = np.array(da.text.split(), dtype=float)
-        out[da.get("Name")] = v.reshape(-1, n) if n > 1 else v
-    return xyz, out
+    return xyz, arrays(root, "PointData")
 
 
 def last_row(path):

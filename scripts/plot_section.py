@@ -18,17 +18,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from plot_field import arrays  # noqa: E402  (the .vtu DataArray reader)
 
 
 def read(path):
     root = ET.parse(path).getroot()
     pts = np.array(root.find(".//Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
-    point = {}
-    for da in root.find(".//PointData").findall("DataArray"):
-        n = int(da.get("NumberOfComponents", "1"))
-        v = np.array(da.text.split(), dtype=float)
-        point[da.get("Name")] = v.reshape(-1, n) if n > 1 else v
-    return pts, point
+    return pts, arrays(root, "PointData")
 
 
 def section(path, x0, field, scale):

@@ -60,12 +60,7 @@ physics::Problem sliding_block(std::array<int, 3> master, std::array<int, 3> sla
   top.displacement[1] = core::TimeTable({0.0, 0.2, end}, {0.0, 0.0, 0.3 / 35 * (steps - 2)});
   top.displacement[2] = core::TimeTable({0.0, 0.2}, {0.0, -1e-4});
   p.boundaries.push_back(top);
-  physics::ContactSettings c;
-  c.slave_body = 1;
-  c.master_body = 0;
-  c.slave_where = "zmin";
-  c.master_where = "zmax";
-  c.friction = 0.3;
+  auto c = test::contact_pair(1, "zmin", 0, "zmax", 0.3);
   p.contact = c;
   p.solver.qp_tolerance = 1e-10;
   p.solver.coupling_tolerance = 1e-8;

@@ -2,6 +2,7 @@
 // Problems built in code for the physics tests (no case file), and small dense helpers.
 #include <Eigen/Dense>
 #include <optional>
+#include <string>
 
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
@@ -46,6 +47,18 @@ inline physics::BoundaryCondition hold(const std::string& where, std::initialize
   bc.where = where;
   for (const int k : comps) bc.displacement[k] = core::TimeTable(0.0);
   return bc;
+}
+
+/// The [contact] of a two-body problem: slave body and surface, master body and surface, 𝔉.
+inline physics::ContactSettings contact_pair(int slave, std::string slave_where, int master,
+                                             std::string master_where, double friction = 0) {
+  physics::ContactSettings c;
+  c.slave_body = slave;
+  c.master_body = master;
+  c.slave_where = std::move(slave_where);
+  c.master_where = std::move(master_where);
+  c.friction = friction;
+  return c;
 }
 
 /// Dense copy of a (small) PETSc matrix.

@@ -139,12 +139,7 @@ physics::Problem cylinder_on_block(double h, double delta, double shift, double 
   const core::TimeTable uy({0.0, 1.0}, {0.0, -delta});
   p.boundaries.push_back(prescribe(0, "top", ux, uy));
   p.boundaries.push_back(prescribe(1, "bottom", core::TimeTable(0.0), core::TimeTable(0.0)));
-  physics::ContactSettings c;
-  c.slave_body = 0;
-  c.master_body = 1;
-  c.slave_where = "arc";
-  c.master_where = "top";
-  c.friction = friction;
+  auto c = contact_pair(0, "arc", 1, "top", friction);
   p.contact = c;
   p.solver.qp_tolerance = 1e-10;
   p.solver.coupling_tolerance = 1e-8;

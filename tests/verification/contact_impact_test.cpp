@@ -55,11 +55,7 @@ TEST_P(ContactImpact, NoPenetrationForceThenRelease) {
   auto clamp = hold("zmin", {0, 1, 2});
   clamp.body = 1;
   p.boundaries.push_back(clamp);
-  physics::ContactSettings c;
-  c.slave_body = 0;
-  c.master_body = 1;
-  c.slave_where = "zmin";
-  c.master_where = "zmax";
+  auto c = contact_pair(0, "zmin", 1, "zmax");
   p.contact = c;
   p.solver.qp_tolerance = 1e-10;
 

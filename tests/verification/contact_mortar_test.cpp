@@ -70,12 +70,8 @@ physics::Problem pressed_blocks(int dim, std::array<int, 3> upper_cells,
     if (friction == 0 || b == 1) p.boundaries.push_back(roller(b, "xmin", 0));
     if (dim == 3) p.boundaries.push_back(roller(b, "ymin", 1));
   }
-  physics::ContactSettings c;
-  c.slave_body = upper_is_slave ? 0 : 1;
-  c.master_body = upper_is_slave ? 1 : 0;
-  c.slave_where = upper_is_slave ? bottom : top;
-  c.master_where = upper_is_slave ? top : bottom;
-  c.friction = friction;
+  auto c = contact_pair(upper_is_slave ? 0 : 1, upper_is_slave ? bottom : top,
+                        upper_is_slave ? 1 : 0, upper_is_slave ? top : bottom, friction);
   p.contact = c;
   p.solver.qp_tolerance = 1e-12;
   p.solver.coupling_tolerance = 1e-10;

@@ -266,14 +266,20 @@ TEST(Qp, StopsOnAnIndefiniteOperator) {
   EXPECT_FALSE(r.message.empty());
 }
 
-TEST(Qp, LanczosBracketsTheLargestEigenvalue) {
-  // diag(1, …, 1000): λ_max = 1000; 20 Lanczos steps find it to far better than 1 %.
+/// diag(1, 2, …, 1000): λ_max = 1000, a spectrum Lanczos must resolve at its upper end.
+core::Handle<::Mat, MatDestroy> diagonal_1_to_1000() {
   const PetscInt n = 1000;
   core::Handle<::Mat, MatDestroy> a;
   TC_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 1, nullptr, a.out()));
   for (PetscInt i = 0; i < n; ++i) TC_PETSC(MatSetValue(a.get(), i, i, i + 1.0, INSERT_VALUES));
   TC_PETSC(MatAssemblyBegin(a.get(), MAT_FINAL_ASSEMBLY));
   TC_PETSC(MatAssemblyEnd(a.get(), MAT_FINAL_ASSEMBLY));
+  return a;
+}
+
+TEST(Qp, LanczosBracketsTheLargestEigenvalue) {
+  // diag(1, …, 1000): λ_max = 1000; 20 Lanczos steps find it to far better than 1 %.
+  const auto a = diagonal_1_to_1000();
   const auto est = qp::estimate_max_eigenvalue(qp::MatrixOperator(a.get()), 20);
   EXPECT_LE(est.ritz, 1000.0 * (1 + 1e-12));  // a Ritz value never exceeds λ_max
   EXPECT_GE(est.bound, 1000.0 * (1 - 1e-3));
@@ -285,12 +291,7 @@ TEST(Qp, LanczosStopsOnceTheBoundIsWithinTolerance) {
   // diag(1, …, 1000) again: with a 5 % tolerance the estimate stops as soon as the residual
   // bound is within 5 % of the Ritz value, before the 20 steps, and still brackets: the Ritz
   // value is below λ_max = 1000 and the bound at most 5 % above it.
-  const PetscInt n = 1000;
-  core::Handle<::Mat, MatDestroy> a;
-  TC_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 1, nullptr, a.out()));
-  for (PetscInt i = 0; i < n; ++i) TC_PETSC(MatSetValue(a.get(), i, i, i + 1.0, INSERT_VALUES));
-  TC_PETSC(MatAssemblyBegin(a.get(), MAT_FINAL_ASSEMBLY));
-  TC_PETSC(MatAssemblyEnd(a.get(), MAT_FINAL_ASSEMBLY));
+  const auto a = diagonal_1_to_1000();
   const auto est = qp::estimate_max_eigenvalue(qp::MatrixOperator(a.get()), 20, 0.05);
   EXPECT_LT(est.applications, 20);
   EXPECT_LE(est.ritz, 1000.0 * (1 + 1e-12));

@@ -175,11 +175,7 @@ physics::Problem conduction_blocks(double gamma, int steps = 3) {
   }
   p.boundaries.push_back(temperature(0, "zmin", kLow));
   p.boundaries.push_back(temperature(1, "zmax", kHigh));
-  physics::ContactSettings c;
-  c.slave_body = 0;
-  c.master_body = 1;
-  c.slave_where = "zmax";
-  c.master_where = "zmin";
+  auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = c.conductance_master = gamma;
   p.contact = c;
   p.solver.qp_tolerance = 1e-12;
@@ -297,12 +293,7 @@ physics::Problem sliding_blocks(bool conduction, bool frictional_heating, double
   const core::TimeTable drag({0, kTau, kTau * (kSlideSteps + 1)}, {0, 0, kV * kTau * kSlideSteps});
   p.boundaries.push_back(fix(0, "zmax", {{0, drag}, {1, 0.0}, {2, press}}));
   p.boundaries.push_back(fix(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
-  physics::ContactSettings c;
-  c.slave_body = 0;
-  c.master_body = 1;
-  c.slave_where = "zmin";
-  c.master_where = "zmax";
-  c.friction = friction;
+  auto c = contact_pair(0, "zmin", 1, "zmax", friction);
   c.conductance_slave = 1e-4;  // δ_C = 0.2, β_C = 8e-5 W/(m²K Pa)
   c.conductance_master = 4e-4;
   c.heat_conduction = conduction;
@@ -471,12 +462,7 @@ TEST(ThermalContact, TwoHalfSpacesUnderConstantFrictionalPower) {
   const core::TimeTable drag({0, kT}, {0, kSpeed * kT});
   p.boundaries.push_back(fix(0, "zmax", {{0, drag}, {1, 0.0}, {2, -kPress}}));
   p.boundaries.push_back(fix(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
-  physics::ContactSettings c;
-  c.slave_body = 0;
-  c.master_body = 1;
-  c.slave_where = "zmin";
-  c.master_where = "zmax";
-  c.friction = 0.5;
+  auto c = contact_pair(0, "zmin", 1, "zmax", 0.5);
   c.conductance_slave = 5;
   c.conductance_master = 1.25;
   p.contact = c;
@@ -554,11 +540,7 @@ TEST(ThermalContact, HeatedSlaveBetweenMasterAndWallPressesHarder) {
     for (const auto* side : {"xmin", "xmax"}) p.boundaries.push_back(fix(b, side, {{0, 0.0}}));
   for (int b = 0; b < 2; ++b)
     for (const auto* side : {"ymin", "ymax"}) p.boundaries.push_back(fix(b, side, {{1, 0.0}}));
-  physics::ContactSettings c;
-  c.slave_body = 0;
-  c.master_body = 1;
-  c.slave_where = "zmin";
-  c.master_where = "zmax";
+  auto c = contact_pair(0, "zmin", 1, "zmax");
   c.conductance_slave = c.conductance_master = 1e-3;
   c.heat_conduction = false;
   p.contact = c;
