@@ -11,6 +11,7 @@
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/io/case_reader.hpp"
+#include "tc/io/checkpoint.hpp"
 #include "tc/io/output.hpp"
 #include "tc/physics/simulation.hpp"
 
@@ -21,6 +22,19 @@ extern "C" void on_signal(int sig) {
   g_stop.store(sig);
 }
 
+/// --stop-after N (tests, batch jobs): raises the stop flag after step N as SIGTERM would, so
+/// that a run stops at a chosen step deterministically (restart_test).
+class StopAfter : public tc::physics::Observer {
+ public:
+  explicit StopAfter(int steps) : steps_(steps) {}
+  void step(const tc::physics::Simulation& sim) override {
+    if (steps_ >= 0 && sim.step() >= steps_) g_stop.store(SIGTERM);
+  }
+
+ private:
+  int steps_;
+};
+
 int report_input_error(const tc::InputError& e) {
   for (const auto& issue : e.issues()) fmt::print(stderr, "error: {}\n", issue.str());
   fmt::print(stderr, "{} error{} in the case file; nothing was run.\n", e.issues().size(),
@@ -28,8 +42,8 @@ int report_input_error(const tc::InputError& e) {
   return 2;
 }
 
-int run(const std::string& case_file, const std::string& output, std::vector<std::string> extra,
-        const char* program) {
+int run(const std::string& case_file, const std::string& output, const std::string& restart,
+        int stop_after, std::vector<std::string> extra, const char* program) {
   std::vector<char*> args{const_cast<char*>(program)};
   for (auto& a : extra) args.push_back(a.data());
   int argc = static_cast<int>(args.size());
@@ -38,13 +52,31 @@ int run(const std::string& case_file, const std::string& output, std::vector<std
   try {
     auto problem = tc::io::read_case(case_file);
     if (!output.empty()) problem.output.directory = output;
+    if (!restart.empty()) problem.output.directory = restart;  // continued where it stopped
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     tc::physics::Simulation sim(problem);
     if (problem.contact) sim.enable_mortar_contact();
+    const auto case_hash = tc::io::file_hash(case_file);
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
+    if (!restart.empty()) {
+      const auto file = tc::io::checkpoint_file(restart);
+      try {
+        sim.restore(tc::io::read_checkpoint(file, sim, case_hash));
+      } catch (const tc::io::CheckpointError&) {
+        throw;
+      } catch (const tc::Error& e) {  // sizes that passed the header but not the problem
+        throw tc::io::CheckpointError(fmt::format("checkpoint {}: {}", file.string(), e.what()));
+      }
+      writer.resume();
+      if (tc::core::PetscSession::rank() == 0)
+        fmt::print("restarting from step {} (t = {:g} s) of {}\n", sim.step(), sim.time(),
+                   file.string());
+    }
+    tc::io::CheckpointWriter checkpoint(problem.output.directory, case_hash);
     tc::io::ProgressLine progress(isatty(STDERR_FILENO) != 0);
-    tc::io::Observers observers({&writer, &progress});
+    StopAfter stop(stop_after);
+    tc::io::Observers observers({&writer, &checkpoint, &progress, &stop});
     const auto status = sim.run(observers, &g_stop);
     if (tc::core::PetscSession::rank() == 0) {
       if (status.completed)
@@ -58,6 +90,9 @@ int run(const std::string& case_file, const std::string& output, std::vector<std
   } catch (const tc::InputError& e) {
     return report_input_error(e);
   } catch (const tc::MeshError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const tc::io::CheckpointError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
   } catch (const tc::Error& e) {
@@ -103,10 +138,18 @@ int info(const char* program) {
 int main(int argc, char** argv) {
   CLI::App app{"thermocontact: dynamic thermo-mechanical contact with Coulomb friction"};
   app.require_subcommand(1);
-  std::string case_file, output;
+  std::string case_file, output, restart;
   auto* run_cmd = app.add_subcommand("run", "run a case");
   run_cmd->add_option("case", case_file, "case file (TOML)")->required();
-  run_cmd->add_option("--output,-o", output, "output directory (overrides [output].directory)");
+  auto* output_opt =
+      run_cmd->add_option("--output,-o", output, "output directory (overrides [output].directory)");
+  run_cmd
+      ->add_option("--restart", restart,
+                   "continue the run whose output is in this directory from its last checkpoint")
+      ->excludes(output_opt);
+  int stop_after = -1;
+  run_cmd->add_option("--stop-after", stop_after, "stop after this step as SIGTERM would")
+      ->group("");          // for tests and batch jobs: undocumented in --help
   run_cmd->allow_extras();  // PETSc options, e.g. -tc_factor_package mumps
   auto* check_cmd = app.add_subcommand("check", "validate a case file only");
   check_cmd->add_option("case", case_file, "case file (TOML)")->required();
@@ -117,7 +160,8 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
-    if (run_cmd->parsed()) return run(case_file, output, run_cmd->remaining(), argv[0]);
+    if (run_cmd->parsed())
+      return run(case_file, output, restart, stop_after, run_cmd->remaining(), argv[0]);
     if (check_cmd->parsed()) return check(case_file);
     return info(argv[0]);
   } catch (const std::exception& e) {

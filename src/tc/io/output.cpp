@@ -1,10 +1,16 @@
 #include "tc/io/output.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <fmt/os.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
 
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
@@ -145,7 +151,7 @@ OutputWriter::OutputWriter(std::filesystem::path directory, int every)
     : dir_(std::move(directory)), every_(every), root_(core::PetscSession::rank() == 0) {}
 
 OutputWriter::~OutputWriter() {
-  if (history_) std::fclose(history_);
+  if (history_fd_ >= 0) ::close(history_fd_);
 }
 
 void OutputWriter::start(const physics::Simulation& sim) {
@@ -155,12 +161,53 @@ void OutputWriter::start(const physics::Simulation& sim) {
   if (ec)
     throw Error(fmt::format("cannot create output directory {}: {}", dir_.string(), ec.message()));
   pvd_ = std::make_unique<PvdCollection>(dir_ / "result.pvd");
-  history_ = std::fopen((dir_ / "history.csv").c_str(), "w");
-  if (!history_) throw Error("cannot write " + (dir_ / "history.csv").string());
+  if (resume_) {
+    resumed_step_ = sim.step();
+    // Data sets up to the restored step stay (half a step of slack for the printed times).
+    pvd_->load(sim.time() + 0.5 * sim.problem().time.step);
+  }
+  open_history(sim);
+  write_summary(sim, "running", "");
+}
+
+void OutputWriter::open_history(const physics::Simulation& sim) {
+  const auto file = dir_ / "history.csv";
   std::string header;
   for (const auto& c : sim.history_columns()) header += (header.empty() ? "" : ",") + c;
-  std::fprintf(history_, "%s\n", header.c_str());
-  write_summary(sim, "running", "");
+  header += '\n';
+  std::string kept = header;
+  if (resume_) {  // the header must match; rows of steps before the restored one stay
+    std::ifstream in(file);
+    std::string line;
+    if (!std::getline(in, line) || line + '\n' != header)
+      throw Error(fmt::format("cannot continue {}: its header is not this case's", file.string()));
+    while (std::getline(in, line) && !in.eof()) {  // a last line without '\n' is dropped
+      char* end = nullptr;
+      const double step = std::strtod(line.c_str(), &end);
+      if (end == line.c_str() || step >= resumed_step_) break;
+      kept += line + '\n';
+    }
+  }
+  const auto tmp = std::filesystem::path(file.string() + ".tmp");
+  {
+    auto out = fmt::output_file(tmp.string());
+    out.print("{}", kept);
+  }
+  std::filesystem::rename(tmp, file);
+  history_fd_ = ::open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (history_fd_ < 0) throw Error("cannot write " + file.string());
+}
+
+void OutputWriter::append_history(const std::string& line) {
+  // One write() per row: a kill between two rows leaves whole rows only (a regular file's
+  // write is not split by a signal once it has started).
+  size_t done = 0;
+  while (done < line.size()) {
+    const auto n = ::write(history_fd_, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw Error(fmt::format("cannot write history.csv: {}", std::strerror(errno)));
+    done += static_cast<size_t>(n);
+  }
 }
 
 void OutputWriter::step(const physics::Simulation& sim) {
@@ -169,9 +216,9 @@ void OutputWriter::step(const physics::Simulation& sim) {
   std::string line;
   for (const double v : sim.history_row())
     line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
-  std::fprintf(history_, "%s\n", line.c_str());
-  std::fflush(history_);  // a run killed later still leaves every completed row
-  if (sim.step() % every_ == 0) write_fields(sim);
+  append_history(line + '\n');  // a run killed later still leaves every completed row
+  // The restored step's fields are those the first run wrote (its contact rows are gone).
+  if (sim.step() % every_ == 0 && sim.step() != resumed_step_) write_fields(sim);
   output_seconds_ += now_seconds() - t0;
 }
 
@@ -187,9 +234,8 @@ void OutputWriter::write_fields(const physics::Simulation& sim) {
 
 void OutputWriter::finish(const physics::Simulation& sim, const physics::RunStatus& status) {
   if (!root_) return;
-  if (history_) std::fflush(history_);
   // The last state is always written, even when `every` skipped it.
-  if (sim.step() % every_ != 0) write_fields(sim);
+  if (sim.step() % every_ != 0 && sim.step() != resumed_step_) write_fields(sim);
   write_summary(sim, status.completed ? "completed" : "stopped", status.message);
 }
 

@@ -2,7 +2,9 @@
 // What a run leaves in its output directory (case-format.md): result.pvd with one .vtu per
 // body and written step, history.csv (one row per step), summary.json (rewritten at start,
 // "running", and at the end, "completed" or "stopped"). Only MPI rank 0 writes.
-#include <cstdio>
+// Every file is whole whenever the run stops, even by SIGKILL: history.csv gets one write()
+// per row (a row is there or not, never half), result.pvd and summary.json are replaced by
+// a rename, and a .vtu is listed in result.pvd only once it is written.
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -15,6 +17,11 @@ namespace tc::io {
 class OutputWriter : public physics::Observer {
  public:
   explicit OutputWriter(std::filesystem::path directory, int every = 1);
+  /// Continue the output of a run restarted from a checkpoint (io/checkpoint.hpp) instead of
+  /// starting afresh: at start(), history.csv keeps its rows before the restored step and
+  /// result.pvd its data sets up to it; the restored step's row is written again (the same
+  /// values) and its fields, written by the first run, are kept.
+  void resume() { resume_ = true; }
   ~OutputWriter() override;
   void start(const physics::Simulation& sim) override;
   void step(const physics::Simulation& sim) override;
@@ -29,7 +36,12 @@ class OutputWriter : public physics::Observer {
   int every_;
   bool root_;
   std::unique_ptr<PvdCollection> pvd_;
-  std::FILE* history_ = nullptr;
+  void open_history(const physics::Simulation& sim);
+  void append_history(const std::string& line);
+
+  int history_fd_ = -1;
+  bool resume_ = false;
+  int resumed_step_ = -1;
   double output_seconds_ = 0;
 };
 

@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+
 #include "tc/core/error.hpp"
 
 namespace tc::io {
@@ -73,6 +77,24 @@ void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
 
 void PvdCollection::add(double time, int part, const std::string& relative_file) {
   entries_.push_back({time, part, relative_file});
+  write();
+}
+
+void PvdCollection::load(double until) {
+  entries_.clear();
+  std::ifstream in(file_);
+  std::string line;
+  const std::regex data_set(R"re(<DataSet timestep="([^"]*)" part="([^"]*)" file="([^"]*)"/>)re");
+  std::smatch m;
+  while (std::getline(in, line)) {
+    if (!std::regex_search(line, m, data_set)) continue;
+    const double time = std::strtod(m[1].str().c_str(), nullptr);
+    if (time <= until) entries_.push_back({time, std::atoi(m[2].str().c_str()), m[3].str()});
+  }
+  write();
+}
+
+void PvdCollection::write() const {
   const auto tmp = std::filesystem::path(file_.string() + ".tmp");
   {
     auto out = fmt::output_file(tmp.string());

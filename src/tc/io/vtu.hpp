@@ -25,8 +25,12 @@ class PvdCollection {
  public:
   explicit PvdCollection(std::filesystem::path file) : file_(std::move(file)) {}
   void add(double time, int part, const std::string& relative_file);
+  /// Reads the entries of an existing collection file (a restart) and keeps those with
+  /// time ≤ `until`, rewriting the file with them (none if there is no file yet).
+  void load(double until);
 
  private:
+  void write() const;
   struct Entry {
     double time;
     int part;

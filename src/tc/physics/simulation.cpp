@@ -833,6 +833,76 @@ double Simulation::history(const std::string& column) const {
   return row_[it - columns_.begin()];
 }
 
+Checkpoint Simulation::checkpoint() const {
+  Checkpoint c;
+  c.step = step_;
+  for (int b = 0; b < n_bodies(); ++b) {
+    const auto& st = states_[b];
+    const auto& g = solvers_[b]->g_free;
+    c.bodies.push_back({st.u.to_std(), st.v.to_std(), st.a.to_std(), st.theta.to_std(),
+                        forces_[b].to_std(), g.get() ? g.to_std() : std::vector<double>{}});
+  }
+  c.lambda = contact_multipliers();
+  c.lambda_nodes = lambda_nodes_;
+  c.slip = slip_;
+  c.heat_flux = heat_flux_;
+  c.row = row_;
+  c.external_work = external_work_;
+  c.total_coupling = total_coupling_;
+  c.total_qp = total_qp_;
+  c.total_applications = total_applications_;
+  c.last_coupling = last_coupling_;
+  c.contact = contact_stats_;
+  c.heat = heat_;
+  return c;
+}
+
+void Simulation::restore(const Checkpoint& c) {
+  // Copies into the existing vectors (their layout stays): the same bits as the run that wrote
+  // the checkpoint, so the steps after it repeat that run's arithmetic exactly.
+  auto fill = [](core::Vector& v, const std::vector<double>& x, const char* what) {
+    if (!v.get() && x.empty()) return;
+    if (!v.get() || static_cast<size_t>(v.size()) != x.size())
+      throw Error(fmt::format("checkpoint: {} has {} entries, this problem {}", what, x.size(),
+                              v.get() ? v.size() : 0));
+    auto view = v.view();
+    std::copy(x.begin(), x.end(), view.span().begin());
+  };
+  if (static_cast<int>(c.bodies.size()) != n_bodies())
+    throw Error(fmt::format("checkpoint: {} bodies, this problem {}", c.bodies.size(), n_bodies()));
+  if (c.step < 0 || c.step > problem_.time.n_steps())
+    throw Error(fmt::format("checkpoint: step {} outside 0…{}", c.step, problem_.time.n_steps()));
+  if (c.row.size() != columns_.size())
+    throw Error(fmt::format("checkpoint: {} history columns, this problem {}", c.row.size(),
+                            columns_.size()));
+  for (int b = 0; b < n_bodies(); ++b) {
+    auto& st = states_[b];
+    const auto& cb = c.bodies[b];
+    fill(st.u, cb.u, "u");
+    fill(st.v, cb.v, "u̇");
+    fill(st.a, cb.a, "ü");
+    fill(st.theta, cb.theta, "θ");
+    fill(forces_[b], cb.force, "the force");
+    fill(solvers_[b]->g_free, cb.g_free, "g");
+  }
+  if (c.lambda.size() != c.lambda_nodes.size() * static_cast<size_t>(problem_.dimension) &&
+      !c.lambda_nodes.empty())
+    throw Error("checkpoint: the multipliers do not match their contact nodes");
+  lambda_ = c.lambda.empty() ? core::Vector() : core::Vector::from(c.lambda);
+  lambda_nodes_ = c.lambda_nodes;
+  slip_ = c.slip;
+  heat_flux_ = c.heat_flux;
+  row_ = c.row;
+  step_ = c.step;
+  external_work_ = c.external_work;
+  total_coupling_ = c.total_coupling;
+  total_qp_ = c.total_qp;
+  total_applications_ = c.total_applications;
+  last_coupling_ = c.last_coupling;
+  contact_stats_ = c.contact;
+  heat_ = c.heat;
+}
+
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {
   RunStatus status;
   observer.start(*this);

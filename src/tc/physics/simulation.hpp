@@ -67,6 +67,28 @@ struct ContactHeat {
   double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
 };
 
+/// Everything the steps after `step` depend on, for a restart (io/checkpoint.hpp writes it):
+/// the state of every body, the multipliers and their slave nodes (the next step's warm
+/// start), and the cumulative ledger behind the history.csv columns.
+struct Checkpoint {
+  struct Body {
+    std::vector<double> u, v, a, theta;
+    std::vector<double> force;  // f_ext + reactions at t^step (trapezoidal external work)
+    std::vector<double> g_free;  // f − K u − K_uθ(θ − θ₀) (dynamic runs; contact-stabilised)
+  };
+  int step = 0;
+  std::vector<Body> bodies;
+  std::vector<double> lambda;     // node-major multipliers of the last step
+  std::vector<int> lambda_nodes;  // slave mesh node of each contact node of lambda
+  std::vector<double> slip, heat_flux;
+  std::vector<double> row;  // the history row of `step`
+  double external_work = 0;
+  long total_coupling = 0, total_qp = 0, total_applications = 0;
+  int last_coupling = 0;
+  ContactStatistics contact;
+  ContactHeat heat;
+};
+
 /// Receives the run's progress: output writers, progress lines, tests.
 class Observer {
  public:
@@ -116,6 +138,11 @@ class Simulation {
   [[nodiscard]] const InterfaceHeatSolver* interface_heat_solver() const {
     return interface_heat_.get();
   }
+
+  /// The state after the current step (restart: io/checkpoint.hpp).
+  [[nodiscard]] Checkpoint checkpoint() const;
+  /// Continues from a checkpoint of the same problem (sizes checked: throws Error).
+  void restore(const Checkpoint& c);
 
   /// Runs all steps, or until `stop` becomes non-zero (checked between steps).
   RunStatus run(Observer& observer, const std::atomic<int>* stop = nullptr);

@@ -1,0 +1,236 @@
+#include "tc/io/checkpoint.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <type_traits>
+
+#include "tc/core/petsc.hpp"
+
+namespace tc::io {
+
+namespace {
+
+constexpr char magic[8] = {'T', 'C', 'C', 'H', 'K', 'P', 'T', '\0'};
+
+std::uint64_t fnv1a(const char* data, size_t n) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+class Encoder {
+ public:
+  template <class T>
+  void put(T v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  template <class T>
+  void put(const std::vector<T>& v) {
+    put(static_cast<std::uint64_t>(v.size()));
+    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  std::string finish() {
+    put(fnv1a(bytes_.data(), bytes_.size()));
+    return std::move(bytes_);
+  }
+
+ private:
+  std::string bytes_;
+};
+
+/// Reads what Encoder wrote, refusing to run past the end (a damaged file is an error, not a
+/// crash).
+class Decoder {
+ public:
+  Decoder(const std::string& bytes, std::string where) : b_(bytes), where_(std::move(where)) {}
+  template <class T>
+  T get() {
+    T v;
+    need(sizeof v);
+    std::memcpy(&v, b_.data() + pos_, sizeof v);
+    pos_ += sizeof v;
+    return v;
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    const auto n = get<std::uint64_t>();
+    if (n > (b_.size() - pos_) / sizeof(T)) fail("a vector runs past the end of the file");
+    std::vector<T> v(n);
+    std::memcpy(v.data(), b_.data() + pos_, n * sizeof(T));
+    pos_ += n * sizeof(T);
+    return v;
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw CheckpointError(fmt::format("checkpoint {}: {}", where_, what));
+  }
+  [[nodiscard]] size_t position() const { return pos_; }
+
+ private:
+  void need(size_t n) const {
+    if (n > b_.size() - pos_) fail("the file is truncated");
+  }
+  const std::string& b_;
+  std::string where_;
+  size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::filesystem::path checkpoint_file(const std::filesystem::path& directory) {
+  return directory / "checkpoint.bin";
+}
+
+std::uint64_t file_hash(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return 0;
+  std::stringstream s;
+  s << in.rdbuf();
+  const auto text = s.str();
+  return fnv1a(text.data(), text.size());
+}
+
+std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case_hash) {
+  const auto c = sim.checkpoint();
+  Encoder e;
+  for (const char ch : magic) e.put(ch);
+  e.put(checkpoint_version);
+  e.put(case_hash);
+  e.put(sim.problem().time.step);
+  e.put(static_cast<std::int32_t>(sim.problem().dimension));
+  e.put(static_cast<std::int32_t>(sim.n_bodies()));
+  for (int b = 0; b < sim.n_bodies(); ++b) {
+    e.put(static_cast<std::int64_t>(sim.system(b).n_u()));
+    e.put(static_cast<std::int64_t>(sim.system(b).n_theta()));
+  }
+  e.put(static_cast<std::int32_t>(c.step));
+  for (const auto& b : c.bodies)
+    for (const auto* v : {&b.u, &b.v, &b.a, &b.theta, &b.force, &b.g_free}) e.put(*v);
+  e.put(c.lambda);
+  e.put(std::vector<std::int32_t>(c.lambda_nodes.begin(), c.lambda_nodes.end()));
+  e.put(c.slip);
+  e.put(c.heat_flux);
+  e.put(c.row);
+  e.put(c.external_work);
+  e.put(static_cast<std::int64_t>(c.total_coupling));
+  e.put(static_cast<std::int64_t>(c.total_qp));
+  e.put(static_cast<std::int64_t>(c.total_applications));
+  e.put(static_cast<std::int32_t>(c.last_coupling));
+  const auto& s = c.contact;
+  for (const int i : {s.qp_iterations, s.operator_applications, s.active_nodes, s.slip_nodes})
+    e.put(static_cast<std::int32_t>(i));
+  for (const double d : {s.normal_force, s.tangential_force, s.dissipation}) e.put(d);
+  for (const double d : {c.heat.generated, c.heat.to_slave, c.heat.to_master, c.heat.conducted})
+    e.put(d);
+  return e.finish();
+}
+
+physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::Simulation& sim,
+                                      std::uint64_t case_hash, const std::string& where) {
+  Decoder d(bytes, where);
+  if (bytes.size() < sizeof magic + sizeof(std::uint64_t) ||
+      std::memcmp(bytes.data(), magic, sizeof magic) != 0)
+    d.fail("not a thermocontact checkpoint");
+  const auto body_size = bytes.size() - sizeof(std::uint64_t);
+  std::uint64_t stored_sum = 0;
+  std::memcpy(&stored_sum, bytes.data() + body_size, sizeof stored_sum);
+  if (stored_sum != fnv1a(bytes.data(), body_size))
+    d.fail("damaged (its checksum does not match its contents)");
+  for (size_t i = 0; i < sizeof magic; ++i) (void)d.get<char>();
+  if (const auto v = d.get<std::uint32_t>(); v != checkpoint_version)
+    d.fail(fmt::format("format version {}, this program reads version {}", v, checkpoint_version));
+  // What makes a checkpoint belong to a case: the same file, time step and discretisation.
+  if (d.get<std::uint64_t>() != case_hash)
+    d.fail("written for a different case file (its contents changed since the checkpoint)");
+  const auto& p = sim.problem();
+  if (const auto tau = d.get<double>(); tau != p.time.step)
+    d.fail(fmt::format("time step {:g} s, the case has {:g} s", tau, p.time.step));
+  if (const auto dim = d.get<std::int32_t>(); dim != p.dimension)
+    d.fail(fmt::format("dimension {}, the case has {}", dim, p.dimension));
+  if (const auto n = d.get<std::int32_t>(); n != sim.n_bodies())
+    d.fail(fmt::format("{} bodies, the case has {}", n, sim.n_bodies()));
+  for (int b = 0; b < sim.n_bodies(); ++b) {
+    const auto nu = d.get<std::int64_t>(), nt = d.get<std::int64_t>();
+    if (nu != sim.system(b).n_u() || nt != sim.system(b).n_theta())
+      d.fail(fmt::format("body '{}' has {} + {} dofs, the case {} + {}", sim.system(b).body().name,
+                         nu, nt, sim.system(b).n_u(), sim.system(b).n_theta()));
+  }
+  physics::Checkpoint c;
+  c.step = d.get<std::int32_t>();
+  c.bodies.resize(static_cast<size_t>(sim.n_bodies()));
+  for (auto& b : c.bodies)
+    for (auto* v : {&b.u, &b.v, &b.a, &b.theta, &b.force, &b.g_free}) *v = d.get_vector<double>();
+  c.lambda = d.get_vector<double>();
+  const auto nodes = d.get_vector<std::int32_t>();
+  c.lambda_nodes.assign(nodes.begin(), nodes.end());
+  c.slip = d.get_vector<double>();
+  c.heat_flux = d.get_vector<double>();
+  c.row = d.get_vector<double>();
+  c.external_work = d.get<double>();
+  c.total_coupling = d.get<std::int64_t>();
+  c.total_qp = d.get<std::int64_t>();
+  c.total_applications = d.get<std::int64_t>();
+  c.last_coupling = d.get<std::int32_t>();
+  auto& s = c.contact;
+  for (int* i : {&s.qp_iterations, &s.operator_applications, &s.active_nodes, &s.slip_nodes})
+    *i = d.get<std::int32_t>();
+  for (double* x : {&s.normal_force, &s.tangential_force, &s.dissipation}) *x = d.get<double>();
+  for (double* x : {&c.heat.generated, &c.heat.to_slave, &c.heat.to_master, &c.heat.conducted})
+    *x = d.get<double>();
+  if (d.position() != body_size) d.fail("unexpected bytes after the data");
+  return c;
+}
+
+void write_checkpoint(const std::filesystem::path& file, const physics::Simulation& sim,
+                      std::uint64_t case_hash) {
+  const auto bytes = encode_checkpoint(sim, case_hash);
+  const auto tmp = std::filesystem::path(file.string() + ".tmp");
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw Error(fmt::format("cannot write {}: {}", tmp.string(), std::strerror(errno)));
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const auto n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = errno;
+      ::close(fd);
+      throw Error(fmt::format("cannot write {}: {}", tmp.string(), std::strerror(err)));
+    }
+    done += static_cast<size_t>(n);
+  }
+  ::close(fd);
+  std::filesystem::rename(tmp, file);  // atomic: the old checkpoint or the new, never half
+}
+
+physics::Checkpoint read_checkpoint(const std::filesystem::path& file,
+                                    const physics::Simulation& sim, std::uint64_t case_hash) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw CheckpointError(
+        fmt::format("no checkpoint {} to restart from (a run writes it after "
+                    "every step into its output directory)",
+                    file.string()));
+  std::stringstream s;
+  s << in.rdbuf();
+  return decode_checkpoint(s.str(), sim, case_hash, file.string());
+}
+
+CheckpointWriter::CheckpointWriter(std::filesystem::path directory, std::uint64_t case_hash)
+    : file_(checkpoint_file(directory)),
+      case_hash_(case_hash),
+      root_(core::PetscSession::rank() == 0) {}
+
+void CheckpointWriter::step(const physics::Simulation& sim) {
+  if (root_) write_checkpoint(file_, sim, case_hash_);
+}
+
+}  // namespace tc::io

@@ -1,0 +1,66 @@
+#pragma once
+// Restart files (case-format.md, "Restart"): OUTDIR/checkpoint.bin holds the
+// physics::Checkpoint of the last completed step, rewritten after every step through a
+// temporary file and a rename, so that whenever the run stops the file is a whole checkpoint.
+//
+// Layout (native byte order, for a restart on the same kind of machine): the magic
+// "TCCHKPT\0", format version (u32), FNV-1a hash of the case file's bytes (u64), τ (f64),
+// dimension and number of bodies (i32), n_u and n_θ of every body (i64), the step (i32);
+// then the checkpoint's vectors (u64 length, values) and scalars; last an FNV-1a hash of all
+// the bytes before it, so that a damaged file is refused instead of read.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "tc/core/error.hpp"
+#include "tc/physics/simulation.hpp"
+
+namespace tc::io {
+
+/// A checkpoint that cannot be used with this case: missing, damaged, or written for another
+/// case. Invalid input: exit code 2.
+class CheckpointError : public Error {
+ public:
+  using Error::Error;
+};
+
+inline constexpr std::uint32_t checkpoint_version = 1;
+
+/// The file name of the checkpoint in an output directory.
+[[nodiscard]] std::filesystem::path checkpoint_file(const std::filesystem::path& directory);
+
+/// FNV-1a (64 bit) of a file's bytes (0 when it cannot be read).
+[[nodiscard]] std::uint64_t file_hash(const std::filesystem::path& file);
+
+/// The checkpoint of `sim`'s current step as bytes (header, data, checksum).
+[[nodiscard]] std::string encode_checkpoint(const physics::Simulation& sim,
+                                            std::uint64_t case_hash);
+/// Reads bytes written by encode_checkpoint for the problem of `sim`; throws CheckpointError
+/// naming `where` when they are damaged or were written for a different case.
+[[nodiscard]] physics::Checkpoint decode_checkpoint(const std::string& bytes,
+                                                    const physics::Simulation& sim,
+                                                    std::uint64_t case_hash,
+                                                    const std::string& where);
+
+/// Writes `sim`'s checkpoint to `file` atomically (temporary file, then rename).
+void write_checkpoint(const std::filesystem::path& file, const physics::Simulation& sim,
+                      std::uint64_t case_hash);
+/// Reads and checks a checkpoint file for `sim`'s problem (CheckpointError if unusable).
+[[nodiscard]] physics::Checkpoint read_checkpoint(const std::filesystem::path& file,
+                                                  const physics::Simulation& sim,
+                                                  std::uint64_t case_hash);
+
+/// Writes the checkpoint after every completed step (MPI rank 0 only; every rank holds every
+/// body). Put it after the OutputWriter: a checkpoint then never runs ahead of history.csv.
+class CheckpointWriter : public physics::Observer {
+ public:
+  CheckpointWriter(std::filesystem::path directory, std::uint64_t case_hash);
+  void step(const physics::Simulation& sim) override;
+
+ private:
+  std::filesystem::path file_;
+  std::uint64_t case_hash_;
+  bool root_;
+};
+
+}  // namespace tc::io

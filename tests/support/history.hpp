@@ -1,0 +1,101 @@
+#pragma once
+// history.csv and result.pvd as the restart and kill tests read them.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace tc::test {
+
+struct History {
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> rows;
+  bool whole = true;  // every row has one value per column and ends with '\n'
+};
+
+inline std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> out;
+  std::istringstream s(line);
+  std::string cell;
+  while (std::getline(s, cell, ',')) out.push_back(cell);
+  return out;
+}
+
+inline History read_history(const std::filesystem::path& file) {
+  History h;
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  if (!text.empty() && text.back() != '\n') h.whole = false;
+  std::istringstream lines(text);
+  std::string line;
+  if (!std::getline(lines, line)) return h;
+  h.columns = split_csv(line);
+  while (std::getline(lines, line)) {
+    const auto cells = split_csv(line);
+    if (cells.size() != h.columns.size()) h.whole = false;
+    std::vector<double> row;
+    for (const auto& c : cells) {
+      char* end = nullptr;
+      row.push_back(std::strtod(c.c_str(), &end));
+      if (end == c.c_str() || *end != '\0') h.whole = false;
+    }
+    h.rows.push_back(std::move(row));
+  }
+  return h;
+}
+
+/// The largest relative difference |a − b| / max(|a|, |b|) over all cells of the rows both
+/// have, except the columns named in `skip` (0 when equal, also for a = b = 0).
+inline double max_relative_difference(const History& a, const History& b,
+                                      const std::vector<std::string>& skip) {
+  double worst = 0;
+  for (size_t r = 0; r < std::min(a.rows.size(), b.rows.size()); ++r)
+    for (size_t c = 0; c < a.columns.size(); ++c) {
+      if (std::find(skip.begin(), skip.end(), a.columns[c]) != skip.end()) continue;
+      const double x = a.rows[r][c], y = b.rows[r][c];
+      const double scale = std::max(std::abs(x), std::abs(y));
+      if (x != y) worst = std::max(worst, scale > 0 ? std::abs(x - y) / scale : INFINITY);
+    }
+  return worst;
+}
+
+/// The .vtu files a result.pvd lists, and whether it is a whole collection document.
+struct Collection {
+  bool whole = false;
+  std::vector<std::string> files;
+  std::vector<double> times;
+};
+
+inline Collection read_collection(const std::filesystem::path& file) {
+  Collection c;
+  std::ifstream in(file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const auto text = ss.str();
+  c.whole = text.rfind("<?xml", 0) == 0 && text.find("<Collection>") != std::string::npos &&
+            text.find("</Collection>\n</VTKFile>\n") != std::string::npos;
+  const std::regex data_set(R"re(<DataSet timestep="([^"]*)" part="[0-9]+" file="([^"]*)"/>)re");
+  for (std::sregex_iterator it(text.begin(), text.end(), data_set), end; it != end; ++it) {
+    c.times.push_back(std::stod((*it)[1]));
+    c.files.push_back((*it)[2]);
+  }
+  return c;
+}
+
+/// A .vtu that an XML reader would accept: it ends with the closing tag of the document.
+inline bool whole_vtu(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const auto text = ss.str();
+  const std::string tail = "</UnstructuredGrid>\n</VTKFile>\n";
+  return text.rfind("<?xml", 0) == 0 && text.size() > tail.size() &&
+         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+}  // namespace tc::test

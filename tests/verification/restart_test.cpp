@@ -1,0 +1,134 @@
+// Restart (case-format.md, "Restart"): a run stopped after step k and continued with
+// `--restart OUTDIR` leaves the history.csv of an uninterrupted run, and a checkpoint that
+// does not belong to the case is refused with exit code 2.
+#include <gtest/gtest.h>
+
+#include "support/cli.hpp"
+#include "support/history.hpp"
+
+namespace fs = std::filesystem;
+using tc::test::thermocontact;
+
+namespace {
+
+const fs::path sliding = fs::path(TC_SOURCE_DIR) / "tests/cases/restart/sliding-2d.toml";
+
+std::string run_args(const fs::path& c, const fs::path& out) {
+  return "run " + c.string() + " --output " + out.string();
+}
+
+/// Runs `c` uninterrupted and stopped after `k` then restarted; compares the histories.
+void expect_restart_reproduces(const fs::path& c, int k, const std::string& name) {
+  const auto full = tc::test::fresh_dir(name + "-full");
+  const auto split = tc::test::fresh_dir(name + "-split");
+  auto r = thermocontact(run_args(c, full));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = thermocontact(run_args(c, split) + " --stop-after " + std::to_string(k));
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(tc::test::read_file(split / "summary.json").find("\"status\": \"stopped\""),
+            std::string::npos);
+  const auto stopped = tc::test::read_history(split / "history.csv");
+  ASSERT_EQ(stopped.rows.size(), static_cast<size_t>(k + 1));  // t = 0 and k steps
+  ASSERT_TRUE(fs::exists(split / "checkpoint.bin"));
+
+  r = thermocontact("run " + c.string() + " --restart " + split.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("restarting from step " + std::to_string(k)), std::string::npos)
+      << r.output;
+  const auto a = tc::test::read_history(full / "history.csv");
+  const auto b = tc::test::read_history(split / "history.csv");
+  ASSERT_TRUE(a.whole && b.whole);
+  ASSERT_EQ(a.columns, b.columns);
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  for (size_t i = 0; i < b.rows.size(); ++i) EXPECT_EQ(b.rows[i][0], static_cast<double>(i));
+  // 1e-12: the bar of round-off. The restart restores the bits of every vector and sum the
+  // later steps read, so the arithmetic is the same and the difference is in fact 0; the
+  // wall-clock column is the one that differs by nature.
+  EXPECT_LE(tc::test::max_relative_difference(a, b, {"wall_seconds"}), 1e-12) << name;
+  // Every listed data set exists and is whole; those of the uninterrupted run are all there.
+  const auto pa = tc::test::read_collection(full / "result.pvd");
+  const auto pb = tc::test::read_collection(split / "result.pvd");
+  ASSERT_TRUE(pb.whole);
+  for (const auto& f : pb.files) EXPECT_TRUE(tc::test::whole_vtu(split / f)) << f;
+  for (const auto& f : pa.files)
+    EXPECT_NE(std::find(pb.files.begin(), pb.files.end(), f), pb.files.end()) << f;
+  const auto summary = tc::test::read_file(split / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps_done\": " + std::to_string(a.rows.size() - 1)), std::string::npos)
+      << summary;
+}
+
+TEST(Restart, ASlidingHeatedContactContinuesAsIfNeverStopped) {
+  // Dynamic, contact-stabilised, friction, frictional heating and conductance (the case's
+  // header): stopped at step 17 of 40, between two outputs (every = 3).
+  expect_restart_reproduces(sliding, 17, "restart-sliding");
+}
+
+TEST(Restart, RunsWithoutContactContinueToo) {
+  // Newmark without contact (u̇, ü restored) and the quasistatic scheme (no g).
+  expect_restart_reproduces(fs::path(TC_SOURCE_DIR) / "tests/cases/valid/plane-strain-2d.toml", 4,
+                            "restart-newmark");
+  expect_restart_reproduces(fs::path(TC_SOURCE_DIR) / "tests/cases/valid/quasistatic.toml", 1,
+                            "restart-quasistatic");
+}
+
+TEST(Restart, ACheckpointOfAnotherCaseIsRefusedWithExitTwo) {
+  const auto dir = tc::test::fresh_dir("restart-refused");
+  const auto out = dir / "out";
+  auto r = thermocontact(run_args(sliding, out) + " --stop-after 3");
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  const auto before = tc::test::read_file(out / "history.csv");
+
+  // The same case with another time step: the checkpoint belongs to the first file only.
+  auto text = tc::test::read_file(sliding);
+  text.replace(text.find("step = 2.0e-4"), 13, "step = 1.0e-4");
+  std::ofstream(dir / "other.toml") << text;
+  r = thermocontact("run " + (dir / "other.toml").string() + " --restart " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("different case file"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("checkpoint.bin"), std::string::npos) << r.output;
+
+  // A damaged checkpoint: one byte changed in the middle.
+  auto bytes = tc::test::read_file(out / "checkpoint.bin");
+  bytes[bytes.size() / 2] ^= 0x5a;
+  std::ofstream(dir / "damaged.bin", std::ios::binary) << bytes;
+  fs::copy_file(out / "checkpoint.bin", dir / "good.bin");
+  fs::copy_file(dir / "damaged.bin", out / "checkpoint.bin", fs::copy_options::overwrite_existing);
+  r = thermocontact("run " + sliding.string() + " --restart " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("damaged"), std::string::npos) << r.output;
+
+  // Cut short.
+  fs::resize_file(out / "checkpoint.bin", bytes.size() / 3);
+  r = thermocontact("run " + sliding.string() + " --restart " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+
+  // No checkpoint at all.
+  fs::remove(out / "checkpoint.bin");
+  r = thermocontact("run " + sliding.string() + " --restart " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("no checkpoint"), std::string::npos) << r.output;
+  // None of the refusals touched the output of the stopped run.
+  EXPECT_EQ(tc::test::read_file(out / "history.csv"), before);
+
+  // --restart and --output together are a usage error.
+  r = thermocontact("run " + sliding.string() + " --restart " + out.string() + " --output " +
+                    (dir / "x").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
+TEST(Restart, ACompletedRunRestartsAsCompletedWithItsHistoryUnchanged) {
+  const auto out = tc::test::fresh_dir("restart-completed");
+  auto r =
+      thermocontact(run_args(fs::path(TC_SOURCE_DIR) / "tests/cases/valid/quasistatic.toml", out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto before = tc::test::read_history(out / "history.csv");
+  r = thermocontact("run " +
+                    (fs::path(TC_SOURCE_DIR) / "tests/cases/valid/quasistatic.toml").string() +
+                    " --restart " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto after = tc::test::read_history(out / "history.csv");
+  EXPECT_EQ(after.rows, before.rows);
+}
+
+}  // namespace
