@@ -1,0 +1,151 @@
+// Kill tests (label `kill`): a run of tests/cases/restart/sliding-2d.toml killed at a random
+// step by SIGTERM or SIGKILL leaves readable output of every step completed before the
+// signal, and --restart from it reproduces the uninterrupted history.csv to 1e-12.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "support/cli.hpp"
+#include "support/history.hpp"
+
+namespace fs = std::filesystem;
+using tc::test::thermocontact;
+
+namespace {
+
+const fs::path sliding = fs::path(TC_SOURCE_DIR) / "tests/cases/restart/sliding-2d.toml";
+constexpr int n_steps = 40;  // the case's end / step
+
+/// The uninterrupted run, once per test program.
+const tc::test::History& uninterrupted() {
+  static const tc::test::History h = [] {
+    const auto out = tc::test::fresh_dir("kill-full");
+    const auto r = thermocontact("run " + sliding.string() + " --output " + out.string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return tc::test::read_history(out / "history.csv");
+  }();
+  return h;
+}
+
+size_t count_newlines(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return static_cast<size_t>(
+      std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n'));
+}
+
+struct Killed {
+  int status = 0;         // from waitpid
+  size_t rows_seen = 0;   // history rows (with t = 0) when the signal was sent
+  bool finished = false;  // the run ended before the signal could be sent
+};
+
+/// Starts the run as a child process and sends `sig` once history.csv holds `rows` rows.
+Killed run_and_kill(const fs::path& out, int sig, size_t rows) {
+  const std::string binary = TC_BINARY, case_file = sliding.string(), dir = out.string();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, STDOUT_FILENO);
+    dup2(null, STDERR_FILENO);
+    execl(binary.c_str(), binary.c_str(), "run", case_file.c_str(), "--output", dir.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  Killed k;
+  const auto history = out / "history.csv";
+  for (;;) {  // poll every 0.2 ms: a step of this case takes several milliseconds
+    if (waitpid(pid, &k.status, WNOHANG) == pid) {
+      k.finished = true;
+      return k;
+    }
+    k.rows_seen = fs::exists(history) ? count_newlines(history) - 1 : 0;  // minus the header
+    if (k.rows_seen >= rows) break;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  kill(pid, sig);
+  waitpid(pid, &k.status, 0);
+  return k;
+}
+
+/// What must hold of the output of a killed run, whatever the signal.
+void expect_readable_output(const fs::path& out, size_t rows_seen) {
+  const auto h = tc::test::read_history(out / "history.csv");
+  EXPECT_TRUE(h.whole) << "a partial row in history.csv";
+  EXPECT_GE(h.rows.size(), rows_seen);  // nothing written before the signal was lost
+  const auto& full = uninterrupted();
+  ASSERT_LE(h.rows.size(), full.rows.size());
+  EXPECT_LE(tc::test::max_relative_difference(full, h, {"wall_seconds"}), 1e-12);
+  const auto pvd = tc::test::read_collection(out / "result.pvd");
+  EXPECT_TRUE(pvd.whole) << tc::test::read_file(out / "result.pvd");
+  EXPECT_FALSE(pvd.files.empty());
+  for (const auto& f : pvd.files) EXPECT_TRUE(tc::test::whole_vtu(out / f)) << f;
+  // every = 3: each step done that is a multiple of 3 has its two data sets listed.
+  const int done = static_cast<int>(h.rows.size()) - 1;
+  for (int k = 0; k <= done - 1; k += 3)
+    for (const char* body : {"upper", "lower"}) {
+      char name[64];
+      std::snprintf(name, sizeof name, "%s_%06d.vtu", body, k);
+      EXPECT_NE(std::find(pvd.files.begin(), pvd.files.end(), name), pvd.files.end()) << name;
+    }
+}
+
+void expect_restart_reproduces(const fs::path& out) {
+  const auto r = thermocontact("run " + sliding.string() + " --restart " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto h = tc::test::read_history(out / "history.csv");
+  const auto& full = uninterrupted();
+  ASSERT_TRUE(h.whole);
+  ASSERT_EQ(h.rows.size(), full.rows.size());
+  // 1e-12: round-off; the restored state has the same bits, so in fact the rows are equal.
+  EXPECT_LE(tc::test::max_relative_difference(full, h, {"wall_seconds"}), 1e-12);
+}
+
+void kill_trials(int sig, int trials) {
+  ASSERT_EQ(uninterrupted().rows.size(), static_cast<size_t>(n_steps + 1));
+  std::random_device device;
+  const unsigned seed = device();
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> step(1, n_steps - 5);
+  for (int t = 0; t < trials; ++t) {
+    const size_t rows = static_cast<size_t>(step(random)) + 1;
+    SCOPED_TRACE("signal " + std::to_string(sig) + ", seed " + std::to_string(seed) +
+                 ", killed once history.csv had " + std::to_string(rows) + " rows");
+    const auto out = tc::test::fresh_dir("kill-" + std::to_string(sig) + "-" + std::to_string(t));
+    const auto k = run_and_kill(out, sig, rows);
+    if (k.finished) {  // the machine was fast enough to finish first: nothing to test
+      ADD_FAILURE() << "the run ended before the signal";
+      continue;
+    }
+    if (sig == SIGTERM) {  // handled: the step under way is finished, then a clean stop
+      ASSERT_TRUE(WIFEXITED(k.status)) << k.status;
+      EXPECT_EQ(WEXITSTATUS(k.status), 1);
+      const auto summary = tc::test::read_file(out / "summary.json");
+      EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
+      EXPECT_NE(summary.find("interrupted by signal 15"), std::string::npos) << summary;
+      const auto h = tc::test::read_history(out / "history.csv");
+      EXPECT_NE(summary.find("\"steps_done\": " + std::to_string(h.rows.size() - 1)),
+                std::string::npos)
+          << summary;
+    } else {
+      ASSERT_TRUE(WIFSIGNALED(k.status) && WTERMSIG(k.status) == SIGKILL) << k.status;
+    }
+    expect_readable_output(out, k.rows_seen);
+    expect_restart_reproduces(out);
+  }
+}
+
+TEST(Kill, SigtermAtARandomStepStopsCleanlyAndRestarts) {
+  kill_trials(SIGTERM, 2);
+}
+
+TEST(Kill, SigkillAtARandomStepLeavesWholeFilesAndRestarts) {
+  kill_trials(SIGKILL, 3);
+}
+
+}  // namespace
