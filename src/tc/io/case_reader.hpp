@@ -3,6 +3,10 @@
 // work. Every problem found is collected and thrown together as one InputError whose
 // issues read `FILE:LINE: KEY: what was found, what was expected`.
 #include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
 
 #include "tc/physics/problem.hpp"
 
@@ -10,5 +14,9 @@ namespace tc::io {
 
 /// Reads, validates and builds the meshes of a case. Throws InputError (all issues).
 [[nodiscard]] physics::Problem read_case(const std::filesystem::path& file);
+
+/// The line and bytes (as \xNN) of the first non-ASCII character outside TOML strings and
+/// comments, where TOML has no use for one (read_case refuses the file: see its comment).
+[[nodiscard]] std::optional<std::pair<int, std::string>> stray_non_ascii(std::string_view text);
 
 }  // namespace tc::io

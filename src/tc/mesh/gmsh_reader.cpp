@@ -26,25 +26,11 @@
 namespace tc::mesh {
 namespace {
 
-// ---- Raw data copied out of gmsh --------------------------------------------------------
+// ---- Raw data copied out of gmsh (gmsh_reader.hpp, detail) --------------------------------
 
-struct RawBlock {
-  int type = 0;                    // gmsh element type
-  std::vector<std::size_t> nodes;  // gmsh node tags, n_nodes(type) per element
-};
-
-struct RawGroup {
-  std::string name;
-  std::vector<RawBlock> blocks;
-};
-
-struct RawMesh {
-  std::vector<std::size_t> node_tags;
-  std::vector<double> coords;  // 3 per node tag
-  std::vector<RawBlock> cells;
-  std::vector<RawGroup> groups;                     // named groups of dimension dim − 1
-  std::unordered_map<int, std::string> type_names;  // gmsh's name of every type seen
-};
+using detail::RawBlock;
+using detail::RawGroup;
+using detail::RawMesh;
 
 /// One gmsh session: libgmsh is a global singleton, so read_gmsh must not be called while the
 /// caller holds a gmsh session of its own (this one would finalize it).
@@ -402,7 +388,16 @@ Mesh read_gmsh(const std::filesystem::path& file, int dim) {
   if (!std::filesystem::is_regular_file(file, ec))
     throw MeshError("cannot read " + where + ": no such file");
 
-  const RawMesh raw = read_raw_safely(file, dim);
+  return detail::build_mesh(read_raw_safely(file, dim), dim, file.string());
+}
+
+Mesh detail::build_mesh(const RawMesh& raw, int dim, const std::string& file) {
+  const std::string where = "mesh file '" + file + "'";
+  if (dim != 2 && dim != 3)
+    throw MeshError(where + ": dimension must be 2 or 3, not " + std::to_string(dim));
+  if (raw.coords.size() != 3 * raw.node_tags.size())
+    throw MeshError(where + ": " + std::to_string(raw.node_tags.size()) + " nodes but " +
+                    std::to_string(raw.coords.size()) + " coordinates");
   if (raw.cells.empty())
     throw MeshError(where + ": no cells of dimension " + std::to_string(dim) +
                     " (when a file has physical groups, gmsh saves only the elements in them: "
@@ -412,7 +407,7 @@ Mesh read_gmsh(const std::filesystem::path& file, int dim) {
   const TagMap ids = add_used_nodes(raw, m, where);
   if (dim == 2) check_plane(m, where);
   add_cells(raw, ids, m, where);
-  check_cells(m, file.string());  // before boundaries: their orientation relies on the cells'
+  check_cells(m, file);  // before boundaries: their orientation relies on the cells'
   add_boundaries(raw, ids, m, where);
   return m;
 }

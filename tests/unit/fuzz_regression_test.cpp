@@ -1,0 +1,68 @@
+// The inputs the fuzzers found (tests/fuzz/regressions, docs/robustness.md), in the default
+// suite: each must be read or refused with a tc::Error, as the fuzz targets demand.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tc/core/error.hpp"
+#include "tc/io/case_reader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<fs::path> files(const std::string& dir) {
+  std::vector<fs::path> out;
+  for (const auto& e :
+       fs::directory_iterator(fs::path(TC_SOURCE_DIR) / "tests/fuzz/regressions" / dir))
+    out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(FuzzRegression, EveryCaseFileFoundIsReadOrRefusedWithAnInputError) {
+  const auto found = files("case");
+  ASSERT_FALSE(found.empty());
+  for (const auto& f : found) {
+    try {
+      (void)tc::io::read_case(f);
+    } catch (const tc::Error&) {
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << f << ": " << e.what();
+    }
+  }
+}
+
+TEST(FuzzRegression, NonAsciiOutsideStringsAndCommentsIsRefusedBeforeTomlpp) {
+  // toml++ 3.3.0 reaches __builtin_unreachable on these (fuzz_case_reader, UBSan).
+  const auto f =
+      fs::path(TC_SOURCE_DIR) / "tests/fuzz/regressions/case/toml-unreachable-whitespace.toml";
+  try {
+    (void)tc::io::read_case(f);
+    ADD_FAILURE() << "read";
+  } catch (const tc::InputError& e) {
+    ASSERT_EQ(e.issues().size(), 1u);
+    EXPECT_EQ(e.issues()[0].line, 23);
+    EXPECT_NE(e.issues()[0].message.find("\\xCE\\xB4"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FuzzRegression, StrayNonAsciiFindsOnlyTextOutsideStringsAndComments) {
+  using tc::io::stray_non_ascii;
+  // Allowed: comments, basic and literal strings, multi-line ones, escaped quotes in them.
+  EXPECT_FALSE(stray_non_ascii("# ν θ₀\na = \"ν\"\nb = 'θ'\n"));
+  EXPECT_FALSE(stray_non_ascii("a = \"\"\"\nν \\\"\"\" still\n\"\"\"\nb = '''\nθ\n'''\n"));
+  EXPECT_FALSE(stray_non_ascii("a = \"x\\\"ν\" # ν\n"));
+  // Refused, with the line: a value, a key, after a closed string, after a multi-line string.
+  EXPECT_EQ(stray_non_ascii("a = 1\nb = 2ν\n")->first, 2);
+  EXPECT_EQ(stray_non_ascii("aν = 1\n")->first, 1);
+  EXPECT_EQ(stray_non_ascii("a = \"x\"ν\n")->first, 1);
+  EXPECT_EQ(stray_non_ascii("a = \"\"\"\n\n\"\"\"ν\n")->first, 3);
+  EXPECT_EQ(stray_non_ascii("a = 1 \xE3\x80\x80\n")->second, "\\xE3\\x80\\x80");
+  // An unterminated single-line string ends at its line (toml++ reports it).
+  EXPECT_EQ(stray_non_ascii("a = \"x\nν = 1\n")->first, 2);
+}
+
+}  // namespace
