@@ -28,10 +28,18 @@ core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
   return out;
 }
 
+/// The phase that produced a quantity, for the message (docs/robustness.md).
+const char* phase_of(std::string_view what) {
+  if (what == "temperature") return "heat step (5.6)";
+  if (what == "displacement") return "mechanical step (5.3)";
+  if (what.starts_with("u =")) return "contact QP (6.9)";
+  return "bookkeeping";
+}
+
 void require_finite(const core::Vector& v, const char* what, int step, int iteration) {
   if (!v.all_finite())
-    throw NumericalError(fmt::format("{} is not finite (NaN or Inf)", what), step, iteration,
-                         std::nan(""));
+    throw NumericalError(fmt::format("{}: {} is not finite (NaN or Inf)", phase_of(what), what),
+                         step, iteration, std::nan(""));
 }
 
 }  // namespace
@@ -86,6 +94,7 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
     solvers_.push_back(std::move(s));
   }
   initialise();
+  check_setup_finite();
 }
 
 Simulation::~Simulation() = default;
@@ -420,7 +429,7 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   const auto& c = *problem_.contact;
   settings.qp.rtol = problem_.solver.qp_tolerance;
   settings.qp.max_iterations = problem_.solver.max_qp_iterations;
-  contact_rows_ = std::move(builder);
+  contact_rows_ = finite_rows(std::move(builder));
   const double gs = c.conductance_slave, gm = c.conductance_master;
   beta_c_ = gs + gm > 0 ? gs * gm / (gs + gm) : 0.0;  // (2.13)
   delta_c_ = gs + gm > 0 ? gs / (gs + gm) : 0.5;
@@ -595,8 +604,8 @@ int Simulation::couple_contact() {
         throw NumericalError(fmt::format("the contact QP (6.9) did not converge: {}", r.message),
                              step, iteration, r.projected_gradient);
     }
-    require_finite(ss.u_new, "displacement", step, iteration);
-    require_finite(sm.u_new, "displacement", step, iteration);
+    require_finite(ss.u_new, "u = u_free − A⁻¹Bᵀλ", step, iteration);
+    require_finite(sm.u_new, "u = u_free − A⁻¹Bᵀλ", step, iteration);
     double fixed_residual = 0;  // ‖λ_n(γ) − γ‖ (relaxed: the change of λ alone may mislead)
     if (relax) {
       {
@@ -831,6 +840,64 @@ double Simulation::history(const std::string& column) const {
   const auto it = std::find(columns_.begin(), columns_.end(), column);
   if (it == columns_.end()) throw Error("no history column named '" + column + "'");
   return row_[it - columns_.begin()];
+}
+
+void Simulation::check_setup_finite() const {
+  // NaN/Inf out of the assembly (material values at the ends of double's range) or the initial
+  // state: refused before the first step, where they would otherwise surface as a failed solve.
+  auto finite = [](const core::SparseMatrix& m) {
+    PetscReal norm = 0;
+    TC_PETSC(MatNorm(m.get(), NORM_FROBENIUS, &norm));
+    return std::isfinite(norm);
+  };
+  for (int b = 0; b < n_bodies(); ++b) {
+    const auto& m = systems_[b]->matrices();
+    const auto& name = systems_[b]->body().name;
+    for (const auto& [matrix, what] : {std::pair{&m.mass_u, "M_u"},
+                                       {&m.stiffness_u, "K_u"},
+                                       {&m.coupling_u_theta, "K_uθ"},
+                                       {&m.mass_theta, "M_θ"},
+                                       {&m.stiffness_theta, "K_θ"}})
+      if (!finite(*matrix))
+        throw NumericalError(
+            fmt::format("assembly: {} of body '{}' is not finite (NaN or Inf)", what, name), 0, 0,
+            std::nan(""));
+    const auto& st = states_[b];
+    for (const auto& [v, what] :
+         {std::pair{&st.u, "u"}, {&st.v, "u̇"}, {&st.a, "ü"}, {&st.theta, "θ"}})
+      if (!v->all_finite())
+        throw NumericalError(
+            fmt::format("initial state: {} of body '{}' is not finite (NaN or Inf)", what, name), 0,
+            0, std::nan(""));
+  }
+}
+
+ContactRowsBuilder Simulation::finite_rows(ContactRowsBuilder builder) const {
+  // The contact phase: the rows of the mortar pair (or of a test's builder) in the configuration
+  // of t^k. A NaN there would reach the QP as a NaN operator and be reported as a failure to
+  // converge; named here instead.
+  return [this, builder = std::move(builder)](const core::Vector& us, const core::Vector& um) {
+    // A NaN position makes the mortar search find no overlap, not a NaN: checked before.
+    if (!us.all_finite() || !um.all_finite())
+      throw NumericalError(
+          "contact: the configuration of t^k (u of the contact pair) is not finite (NaN or Inf)",
+          step_ + 1, 0, std::nan(""));
+    auto rows = builder(us, um);
+    PetscReal ns = 0, nm = 0;
+    if (rows.n_rows() > 0) {
+      TC_PETSC(MatNorm(rows.slave.get(), NORM_FROBENIUS, &ns));
+      TC_PETSC(MatNorm(rows.master.get(), NORM_FROBENIUS, &nm));
+    }
+    const auto finite = [](const std::vector<double>& x) {
+      return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+    };
+    if (!finite(rows.gap) || !finite(rows.weights) || !std::isfinite(ns) || !std::isfinite(nm))
+      throw NumericalError(
+          "contact: the mortar rows (B, gap, weights) in the configuration of t^k are not finite "
+          "(NaN or Inf)",
+          step_ + 1, 0, std::nan(""));
+    return rows;
+  };
 }
 
 Checkpoint Simulation::checkpoint() const {

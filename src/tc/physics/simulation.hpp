@@ -191,6 +191,8 @@ class Simulation {
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void support_forces(int b, core::Vector& r) const;  // reactions at constrained dofs
   void fill_row(int coupling, double wall);
+  void check_setup_finite() const;  // NaN/Inf of the assembly and the initial state
+  [[nodiscard]] ContactRowsBuilder finite_rows(ContactRowsBuilder builder) const;
 
   const Problem& problem_;
   std::vector<std::unique_ptr<BodySystem>> systems_;
