@@ -42,9 +42,9 @@ for t in $targets; do
   [ "$t" = fuzz_gmsh_reader ] &&
     keep_going="-fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1"
   # -rss_limit_mb/-malloc_limit_mb: a case may legally ask for a big mesh; 2 GiB is the
-  # budget of one input here. -timeout 10: an input that takes longer is reported as a hang.
+  # budget of one input here. -timeout 60: an input that takes longer is a hang (generous: the machine is shared).
   (cd "$build/findings/$t" && nice -n 19 "$build/bin/$t" "$build/corpus/$t" \
-    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
+    -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
     -max_len=100000 -print_final_stats=1 $keep_going -artifact_prefix="$build/findings/$t/" \
     2>&1 | tee "$build/findings/$t/log.txt" | tail -n 30)
 done

@@ -12,6 +12,7 @@
 #include "tc/core/petsc.hpp"
 #include "tc/io/case_reader.hpp"
 #include "tc/io/checkpoint.hpp"
+#include "tc/io/geometry_checks.hpp"
 #include "tc/io/output.hpp"
 #include "tc/physics/simulation.hpp"
 
@@ -53,6 +54,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     auto problem = tc::io::read_case(case_file);
     if (!output.empty()) problem.output.directory = output;
     if (!restart.empty()) problem.output.directory = restart;  // continued where it stopped
+    const auto warnings = tc::io::check_geometry(problem);
+    if (tc::core::PetscSession::rank() == 0)
+      for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     tc::physics::Simulation sim(problem);
@@ -101,9 +105,14 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   }
 }
 
-int check(const std::string& case_file) {
+int check(const std::string& case_file, const char* program) {
+  int argc = 1;
+  char* args[] = {const_cast<char*>(program), nullptr};
+  char** argv = args;
+  tc::core::PetscSession session(&argc, &argv);  // the contact check builds the mortar rows
   try {
     const auto problem = tc::io::read_case(case_file);
+    for (const auto& w : tc::io::check_geometry(problem)) fmt::print(stderr, "warning: {}\n", w);
     int nodes = 0, cells = 0;
     for (const auto& b : problem.bodies) nodes += b.mesh.n_nodes(), cells += b.mesh.n_cells();
     fmt::print("{}: valid ({}D, {} bod{}, {} nodes, {} cells, {} steps)\n", case_file,
@@ -112,6 +121,9 @@ int check(const std::string& case_file) {
     return 0;
   } catch (const tc::InputError& e) {
     return report_input_error(e);
+  } catch (const tc::MeshError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
   }
 }
 
@@ -162,7 +174,7 @@ int main(int argc, char** argv) {
   try {
     if (run_cmd->parsed())
       return run(case_file, output, restart, stop_after, run_cmd->remaining(), argv[0]);
-    if (check_cmd->parsed()) return check(case_file);
+    if (check_cmd->parsed()) return check(case_file, argv[0]);
     return info(argv[0]);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

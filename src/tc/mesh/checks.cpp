@@ -160,6 +160,9 @@ std::vector<std::pair<int, int>> find_duplicate_nodes(const Mesh& m) {
     }
   const Vec d = sub(hi, lo);
   const double tol = 1e-12 * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  // A bounding box beyond double's range (or a NaN) has no tolerance to bin by; the binning
+  // below would convert NaN/Inf to integers. Such a mesh fails check_cells anyway.
+  if (!std::isfinite(tol)) return out;
   // Bin the points on a grid of spacing h ≫ tol and sort by bin: two points within tol are in
   // the same bin or in adjacent ones, and a point's neighbour bins are found by binary search.
   // h = 1000 tol keeps most points away from bin faces, so usually one bin is searched.

@@ -1,0 +1,30 @@
+#pragma once
+// Geometric checks of a read case that need more than one mesh or PETSc (the case reader does
+// without both): coincident nodes inside a body, and the contact pair in the initial
+// configuration: surfaces that overlap (an error), or that do not face each other (a warning).
+#include <string>
+#include <vector>
+
+#include "tc/physics/problem.hpp"
+
+namespace tc::io {
+
+/// The deepest point of the slave contact surface inside the master in the configuration of
+/// t = 0, measured by the mortar pair (gap g_k / ∫ψ_k along the slave node's normal, < 0 when
+/// inside), and the tolerance below which such a depth is taken as touching.
+struct InitialContact {
+  int contact_nodes = 0;  // slave nodes facing the master within the search radius
+  int deepest_node = -1;  // slave mesh node of the smallest gap (−1 without contact nodes)
+  double smallest_gap = 0;
+  double tolerance = 0;  // 1e-6 × the largest facet of the two surfaces
+};
+
+/// The contact pair at t = 0 (needs PETSc: the mortar rows are PETSc matrices).
+[[nodiscard]] InitialContact initial_contact(const physics::Problem& p);
+
+/// Throws MeshError (exit code 2) naming the case file when the contact surfaces overlap at
+/// t = 0 deeper than the tolerance; returns the warnings: coincident nodes in a body, contact
+/// surfaces that do not face each other at t = 0. Needs PETSc when the case has contact.
+[[nodiscard]] std::vector<std::string> check_geometry(const physics::Problem& p);
+
+}  // namespace tc::io
