@@ -8,6 +8,7 @@
 
 #include "tc/core/error.hpp"
 #include "tc/io/case_reader.hpp"
+#include "tc/mesh/gmsh_reader.hpp"
 
 namespace fs = std::filesystem;
 
@@ -32,6 +33,45 @@ TEST(FuzzRegression, EveryCaseFileFoundIsReadOrRefusedWithAnInputError) {
     } catch (const std::exception& e) {
       ADD_FAILURE() << f << ": " << e.what();
     }
+  }
+}
+
+TEST(FuzzRegression, EveryMeshFileFoundIsReadOrRefusedWithAMeshError) {
+  // First byte: the dimension (0 → 2D, 1 → 3D), as fuzz_gmsh_reader reads them.
+  const auto found = files("msh");
+  ASSERT_FALSE(found.empty());
+  const auto tmp = fs::temp_directory_path() / "tc-fuzz-regression.msh";
+  for (const auto& f : found) {
+    std::ifstream in(f, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    const auto bytes = s.str();
+    ASSERT_FALSE(bytes.empty());
+    std::ofstream(tmp, std::ios::binary) << bytes.substr(1);
+    try {
+      (void)tc::mesh::read_gmsh(tmp, (bytes[0] & 1) ? 3 : 2);
+    } catch (const tc::MeshError&) {
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << f << ": " << e.what();
+    }
+  }
+}
+
+TEST(FuzzRegression, AFileOnWhichLibgmshCrashesIsAMeshError) {
+  // libgmsh 4.8 frees an invalid pointer in gmsh::finalize after reading this file (glibc
+  // aborts): the reader's child process dies, the solver reports it (gmsh_reader.cpp).
+  const auto f = fs::path(TC_SOURCE_DIR) / "tests/fuzz/regressions/msh/gmsh-invalid-free-2d.msh";
+  std::ifstream in(f, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  const auto tmp = fs::temp_directory_path() / "tc-gmsh-crash.msh";
+  std::ofstream(tmp, std::ios::binary) << s.str().substr(1);
+  try {
+    (void)tc::mesh::read_gmsh(tmp, 2);
+    ADD_FAILURE() << "read";
+  } catch (const tc::MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("crashed on it (signal 6)"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -14,11 +14,20 @@
 //   strongly distorted cells. The unit tests check the normals geometrically.
 #include "tc/mesh/gmsh_reader.hpp"
 
+#include <fcntl.h>
 #include <gmsh.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <sstream>
+#include <type_traits>
 #include <unordered_map>
 
 #include "tc/core/error.hpp"
@@ -111,6 +120,188 @@ RawMesh read_raw_safely(const std::filesystem::path& file, int dim) {
   } catch (...) {
     throw MeshError("cannot read " + where + ": unknown gmsh error");
   }
+}
+
+// ---- libgmsh in a child process ---------------------------------------------------------
+//
+// libgmsh 4.8 is not memory-safe on malformed files: tests/fuzz/fuzz_gmsh_reader found files
+// on which it frees an invalid pointer in gmsh::finalize (glibc aborts the process) or
+// corrupts its heap (docs/robustness.md). So the file is parsed by a forked child that sends
+// the RawMesh back through a pipe and exits; a crash of libgmsh kills only the child and
+// becomes a MeshError here. Forking an MPI process is safe for this: the child touches no
+// MPI state and leaves by _exit (no atexit handlers, no MPI_Finalize).
+
+class Bytes {
+ public:
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    s_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  template <class T>
+  void put_vector(const std::vector<T>& v) {
+    put(static_cast<std::uint64_t>(v.size()));
+    s_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void put_string(const std::string& v) {
+    put(static_cast<std::uint64_t>(v.size()));
+    s_ += v;
+  }
+  std::string& str() { return s_; }
+
+ private:
+  std::string s_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::string& s) : s_(s) {}
+  template <class T>
+  T get() {
+    T v;
+    need(sizeof v);
+    std::memcpy(&v, s_.data() + pos_, sizeof v);
+    pos_ += sizeof v;
+    return v;
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    const auto n = get<std::uint64_t>();
+    if (n > (s_.size() - pos_) / sizeof(T)) throw MeshError("mesh reader: truncated data");
+    std::vector<T> v(n);
+    std::memcpy(v.data(), s_.data() + pos_, n * sizeof(T));
+    pos_ += n * sizeof(T);
+    return v;
+  }
+  std::string get_string() {
+    const auto n = get<std::uint64_t>();
+    need(n);
+    std::string v = s_.substr(pos_, n);
+    pos_ += n;
+    return v;
+  }
+
+ private:
+  void need(std::size_t n) const {
+    if (n > s_.size() - pos_) throw MeshError("mesh reader: truncated data");
+  }
+  const std::string& s_;
+  std::size_t pos_ = 0;
+};
+
+void put_block(Bytes& b, const RawBlock& block) {
+  b.put(static_cast<std::int32_t>(block.type));
+  b.put_vector(block.nodes);
+}
+
+RawBlock get_block(Reader& r) {
+  RawBlock block;
+  block.type = r.get<std::int32_t>();
+  block.nodes = r.get_vector<std::size_t>();
+  return block;
+}
+
+std::string encode(const RawMesh& raw) {
+  Bytes b;
+  b.put_vector(raw.node_tags);
+  b.put_vector(raw.coords);
+  b.put(static_cast<std::uint64_t>(raw.cells.size()));
+  for (const auto& c : raw.cells) put_block(b, c);
+  b.put(static_cast<std::uint64_t>(raw.groups.size()));
+  for (const auto& g : raw.groups) {
+    b.put_string(g.name);
+    b.put(static_cast<std::uint64_t>(g.blocks.size()));
+    for (const auto& c : g.blocks) put_block(b, c);
+  }
+  b.put(static_cast<std::uint64_t>(raw.type_names.size()));
+  for (const auto& [type, name] : raw.type_names) {
+    b.put(static_cast<std::int32_t>(type));
+    b.put_string(name);
+  }
+  return std::move(b.str());
+}
+
+RawMesh decode(const std::string& bytes) {
+  Reader r(bytes);
+  RawMesh raw;
+  raw.node_tags = r.get_vector<std::size_t>();
+  raw.coords = r.get_vector<double>();
+  for (auto n = r.get<std::uint64_t>(); n > 0; --n) raw.cells.push_back(get_block(r));
+  for (auto n = r.get<std::uint64_t>(); n > 0; --n) {
+    RawGroup g;
+    g.name = r.get_string();
+    for (auto m = r.get<std::uint64_t>(); m > 0; --m) g.blocks.push_back(get_block(r));
+    raw.groups.push_back(std::move(g));
+  }
+  for (auto n = r.get<std::uint64_t>(); n > 0; --n) {
+    const int type = r.get<std::int32_t>();
+    raw.type_names[type] = r.get_string();
+  }
+  return raw;
+}
+
+void write_all(int fd, const std::string& s) {
+  std::size_t done = 0;
+  while (done < s.size()) {
+    const auto n = ::write(fd, s.data() + done, s.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;  // the parent sees a short message and reports it
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+RawMesh read_raw_isolated(const std::filesystem::path& file, int dim) {
+  const std::string where = "mesh file '" + file.string() + "'";
+  int fds[2];
+  if (::pipe(fds) != 0) return read_raw_safely(file, dim);  // no pipe: parse in-process
+  std::fflush(nullptr);                                     // nothing buffered is written twice
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    return read_raw_safely(file, dim);
+  }
+  if (pid == 0) {  // the child: parse, send 'R' + data or 'E' + message, leave without cleanup
+    ::close(fds[0]);
+    // A crash is reported by the parent: not by the handlers MPI/PETSc installed, nor by
+    // glibc's heap messages on stderr.
+    for (const int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
+    if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, STDERR_FILENO);
+    std::string out;
+    try {
+      out = 'R' + encode(read_raw_safely(file, dim));
+    } catch (const std::exception& e) {
+      out = std::string("E") + e.what();
+    } catch (...) {
+      out = "Eunknown error";
+    }
+    write_all(fds[1], out);
+    ::close(fds[1]);
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string in;
+  char buf[65536];
+  for (;;) {
+    const auto n = ::read(fds[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    in.append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw MeshError("cannot read " + where + ": the Gmsh library crashed on it (signal " +
+                    std::to_string(WTERMSIG(status)) + "); the file is malformed");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || in.empty())
+    throw MeshError("cannot read " + where + ": the Gmsh library failed on it (exit status " +
+                    std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                    "); the file is malformed");
+  if (in[0] == 'E') throw MeshError(in.substr(1));
+  if (in[0] != 'R') throw MeshError("cannot read " + where + ": garbled reply from the reader");
+  return decode(in.substr(1));
 }
 
 // ---- Element types -------------------------------------------------------------------------
@@ -388,7 +579,7 @@ Mesh read_gmsh(const std::filesystem::path& file, int dim) {
   if (!std::filesystem::is_regular_file(file, ec))
     throw MeshError("cannot read " + where + ": no such file");
 
-  return detail::build_mesh(read_raw_safely(file, dim), dim, file.string());
+  return detail::build_mesh(read_raw_isolated(file, dim), dim, file.string());
 }
 
 Mesh detail::build_mesh(const RawMesh& raw, int dim, const std::string& file) {
