@@ -48,6 +48,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   std::vector<char*> args{const_cast<char*>(program)};
   for (auto& a : extra) args.push_back(a.data());
   int argc = static_cast<int>(args.size());
+  args.push_back(nullptr);  // argv[argc] == nullptr: MPI_Init walks argv to it (it crashed)
   char** argv = args.data();
   tc::core::PetscSession session(&argc, &argv);
   try {
@@ -154,7 +155,7 @@ int main(int argc, char** argv) {
   auto* run_cmd = app.add_subcommand("run", "run a case");
   run_cmd->add_option("case", case_file, "case file (TOML)")->required();
   auto* output_opt =
-      run_cmd->add_option("--output,-o", output, "output directory (overrides [output].directory)");
+      run_cmd->add_option("--output", output, "output directory (overrides [output].directory)");
   run_cmd
       ->add_option("--restart", restart,
                    "continue the run whose output is in this directory from its last checkpoint")

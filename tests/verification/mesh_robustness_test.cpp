@@ -81,9 +81,9 @@ TEST(MeshRobustness, ANonConvexCellIsAnErrorNamingTheFileAndTheCell) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   for (const char* part : {"plate.msh", "non-convex or inverted", "cell 1"})
     EXPECT_NE(r.output.find(part), std::string::npos) << part << "\n" << r.output;
-  EXPECT_EQ(
-      thermocontact("run " + w.case_file.string() + " -o " + (w.dir / "out").string()).exit_code,
-      2);
+  EXPECT_EQ(thermocontact("run " + w.case_file.string() + " --output " + (w.dir / "out").string())
+                .exit_code,
+            2);
 }
 
 TEST(MeshRobustness, AZeroAreaCellIsAnErrorNamingTheFile) {
@@ -133,7 +133,7 @@ TEST(MeshRobustness, ContactSurfacesOverlappingAtTheStartAreAnError) {
   for (const char* part : {"case.toml", "overlap", "body 'upper'", "body 'lower'", "0.01 m inside"})
     EXPECT_NE(r.output.find(part), std::string::npos) << part << "\n" << r.output;
   const auto run =
-      thermocontact("run " + (dir / "case.toml").string() + " -o " + (dir / "out").string());
+      thermocontact("run " + (dir / "case.toml").string() + " --output " + (dir / "out").string());
   EXPECT_EQ(run.exit_code, 2) << run.output;
 }
 
