@@ -179,7 +179,7 @@ struct Friction {
   int qp_iterations = 0;
 };
 
-Friction slide(double shift, double friction) {
+Friction slide(double shift, double friction, bool scale = true) {
   const int dim = 3;
   const double delta = 1e-4;
   Block slave, master;
@@ -205,6 +205,7 @@ Friction slide(double shift, double friction) {
   }
   physics::DualContactSettings settings;
   settings.qp.rtol = 1e-12;
+  settings.scale = scale;
   physics::DualContactSolver solver(*slave.solver, *master.solver, slave.u_prescribed.size(),
                                     master.u_prescribed.size(), settings);
   solver.set_rows(node_to_node(dim, slave, master));
@@ -252,6 +253,22 @@ TEST(Friction3d, PastTheStickLimitTheForceRatioIsTheFrictionCoefficient) {
   }
   // The force on the slave −B_τᵀλ_τ opposes the slip (+x): λ_τ,x > 0 along +x slip.
   EXPECT_NEAR(std::abs(tangential_x) / normal, friction, 1e-6);
+}
+
+TEST(Friction3d, ScalingTheDualVariablesKeepsTheSolution) {
+  // Σ changes the metric of MPGP, not the QP: the same λ from both, in stick (0.9) and in
+  // slip (0.3), to what the stopping tests allow (‖g^P‖ ≤ 1e-12‖d‖ in either norm, the
+  // fixed point to 1e-10 relative, with the conditioning of F on top).
+  for (const auto& [shift, friction] : {std::pair{1e-6, 0.9}, std::pair{1e-3, 0.3}}) {
+    const auto a = slide(shift, friction, true), b = slide(shift, friction, false);
+    ASSERT_EQ(a.lambda.size(), b.lambda.size());
+    double scale = 0, diff = 0;
+    for (size_t i = 0; i < a.lambda.size(); ++i) {
+      scale = std::max(scale, std::abs(b.lambda[i]));
+      diff = std::max(diff, std::abs(a.lambda[i] - b.lambda[i]));
+    }
+    EXPECT_LE(diff, 1e-8 * scale) << "shift " << shift;
+  }
 }
 
 TEST(Friction3d, BelowTheStickLimitNothingSlips) {

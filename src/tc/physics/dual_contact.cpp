@@ -3,6 +3,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <utility>
 
 namespace tc::physics {
@@ -150,8 +151,42 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
 
 void DualContactSolver::form_explicit() {
   setup_solves_ = 0;
-  if (settings_.compliance_limit > 0 && form_from_compliance()) return;
-  form_by_solves();
+  if (settings_.compliance_limit <= 0 || !form_from_compliance()) form_by_solves();
+  if (settings_.scale) form_scaled();
+}
+
+void DualContactSolver::form_scaled() {
+  // Σ from the diagonal of F, node by node: σ_n = F_nn^{-1/2}, σ_τ = (mean of the tangent
+  // diagonals)^{-1/2}. The diagonal of F spreads over the nodal weights squared (a corner node
+  // of the dual basis carries a quarter of an inner node's area) and the normal/tangential
+  // compliances; the fixed-step projected gradient moves of MPGP (ᾱ = 1.9/λ_max) crawl on the
+  // small-diagonal nodes, which scaling removes. A zero diagonal (a row on constrained dofs
+  // only) keeps σ = 1.
+  const PetscInt m = rows_.n_rows();
+  const int dim = rows_.dim;
+  const PetscScalar* f = nullptr;
+  TC_PETSC(MatDenseGetArrayRead(f_dense_.get(), &f));
+  PetscInt ld = m;
+  TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ld));
+  sigma_.assign(static_cast<size_t>(m), 1.0);
+  for (PetscInt k = 0; k < rows_.n_nodes(); ++k) {
+    const PetscInt n = dim * k;
+    if (f[n * ld + n] > 0) sigma_[n] = 1.0 / std::sqrt(f[n * ld + n]);
+    double t = 0;
+    for (int l = 1; l < dim; ++l) t += f[(n + l) * ld + n + l] / (dim - 1);
+    for (int l = 1; l < dim; ++l)
+      if (t > 0) sigma_[n + l] = 1.0 / std::sqrt(t);
+  }
+  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_scaled_.out()));
+  PetscScalar* g = nullptr;
+  TC_PETSC(MatDenseGetArray(f_scaled_.get(), &g));
+  PetscInt ldg = m;
+  TC_PETSC(MatDenseGetLDA(f_scaled_.get(), &ldg));
+  for (PetscInt j = 0; j < m; ++j)
+    for (PetscInt i = 0; i < m; ++i) g[j * ldg + i] = sigma_[i] * f[j * ld + i] * sigma_[j];
+  TC_PETSC(MatDenseRestoreArray(f_scaled_.get(), &g));
+  TC_PETSC(MatDenseRestoreArrayRead(f_dense_.get(), &f));
+  assemble(f_scaled_.get());
 }
 
 bool DualContactSolver::form_from_compliance() {
@@ -291,10 +326,21 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
     for (PetscInt i = 0; i < m; ++i) dv[i] -= c[i];
   }
 
+  // With Σ: the QP in μ = Σ⁻¹λ, min ½μᵀ(ΣFΣ)μ − μᵀΣd over μ_n ≥ 0, ‖μ_τ‖ ≤ 𝔉γ/σ_τ.
+  const bool scaled = kind_ == DualOperator::explicit_schur && settings_.scale;
+  const auto sigma = [&](PetscInt i) { return scaled ? sigma_[i] : 1.0; };
+  if (scaled) {
+    auto dv = d.view();
+    auto lv = lambda.view();
+    for (PetscInt i = 0; i < m; ++i) {
+      dv[i] *= sigma_[i];
+      lv[i] /= sigma_[i];
+    }
+  }
   qp::FeasibleSet set(d);
   for (PetscInt k = 0; k < rows_.n_nodes(); ++k) {
     set.set_interval(dim * k, {0.0, qp::infinity});  // λ_n ≥ 0
-    const double r = std::max(friction_bound[k], 0.0);
+    const double r = std::max(friction_bound[k], 0.0) / sigma(dim * k + 1);
     if (dim == 2)
       set.set_interval(dim * k + 1, {-r, r});  // |λ_τ| ≤ 𝔉γ
     else
@@ -305,11 +351,15 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
   opt.max_eigenvalue = lambda_max_;
   qp::QpResult r;
   if (kind_ == DualOperator::explicit_schur) {
-    qp::MatrixOperator f(f_dense_.get());
+    qp::MatrixOperator f(scaled ? f_scaled_.get() : f_dense_.get());
     r = qp::Mpgp(f, set, opt).solve(d, lambda);
   } else {
     qp::FunctionOperator f([this](const core::Vector& x, core::Vector& y) { apply_f(x, y); }, d);
     r = qp::Mpgp(f, set, opt).solve(d, lambda);
+  }
+  if (scaled) {
+    auto lv = lambda.view();
+    for (PetscInt i = 0; i < m; ++i) lv[i] *= sigma_[i];
   }
   lambda_max_ = r.max_eigenvalue;
   lambda_max_rows_ = m;

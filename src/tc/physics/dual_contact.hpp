@@ -35,6 +35,10 @@ struct DualContactSettings {
   /// |T| stays at most this per body (|T|² doubles: 4000 → 128 MB); beyond, or with 0, F is
   /// formed by 2m solves at every set_rows.
   PetscInt compliance_limit = 4000;
+  /// Explicit F only: solve the QP in μ = Σ⁻¹λ with Σ diagonal, one scale for the normal row
+  /// and one for the tangent rows of each node (discs stay discs): Σ F Σ has a unit diagonal
+  /// per node (docs/choices.md). Same minimiser; the stopping test is on Σ g^P against Σ d.
+  bool scale = true;
 };
 
 /// S = (A⁻¹)_TT of one body on a growing set T of its dofs (A factorised, homogeneous
@@ -101,6 +105,7 @@ class DualContactSolver {
   void solve_homogeneous(const ConstrainedSolver& s, const core::Vector& rhs,
                          core::Vector& x) const;
   void form_explicit();
+  void form_scaled();           // Σ and Σ F Σ from f_dense_
   void form_by_solves();        // F column blocks by multi-right-hand-side solves
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
 
@@ -110,6 +115,8 @@ class DualContactSolver {
   ContactRows rows_;
   DualOperator kind_ = DualOperator::matrix_free;
   core::Handle<::Mat, MatDestroy> f_dense_;
+  core::Handle<::Mat, MatDestroy> f_scaled_;  // Σ F Σ (explicit and settings_.scale)
+  std::vector<double> sigma_;                 // the diagonal of Σ, per row
   int setup_solves_ = 0;
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
