@@ -34,6 +34,63 @@ void require_finite(const core::Vector& v, const char* what, int step, int itera
                          std::nan(""));
 }
 
+/// The mean contact traction of a step per unit of λ. The contact-stabilised Newmark puts the
+/// whole step's contact impulse on λ^{k+1}: its position update has τ²/4 Bᵀλ^{k+1} where every
+/// other force enters as τ²/4 (F^k + F^{k+1}), so at rest 2(f − K u) = Bᵀλ, and the contact's
+/// work in the discrete energy identity is ½ λᵀB(u^{k+1} − u^k). λ/2 is the traction there
+/// (pressure for the conductance, force and work for the history); plain Newmark and the
+/// quasistatic scheme have λ^{k+1} itself. The QP's bounds 𝔉λ_n are homogeneous: unchanged.
+double traction_per_multiplier(bool stabilised) {
+  return stabilised ? 0.5 : 1.0;
+}
+
+/// The work of friction in a step per contact node [J], W_k = λ_τ,k · (B_τ(u − u^k))_k (λ_τ a
+/// traction, B_τ carries the weights). It is what leaves the mechanical energy: with Newmark's
+/// average acceleration the discrete energy identity holds with λᵀB(u^{k+1} − u^k) as the
+/// contact's work, and B_τ(u^{k+1} − u^k) = τ B_τ(u̇^k + u̇^{k+1})/2 is the slip of the step
+/// (quasistatic: τ B_τu̇^{k+1}). W_k/τ is the step's mean of 𝔉γ‖[u̇]_τ‖ w_k of d_θγ (2.13,
+/// §4.4): on a node sliding steadily λ_τ,k ∥ its slip with ‖λ_τ,k‖ = 𝔉λ_n,k. The power at
+/// t^{k+1} alone, λ_τ·B_τu̇^{k+1}, would follow Newmark's step-to-step oscillation of u̇ (2v, 0,
+/// 2v, … after a sudden start; docs/choices.md). W_k < 0 only where the slip reverses within a
+/// step; it is kept, so that heat = dissipation exactly.
+std::vector<double> friction_work(const ContactRows& rows, std::span<const double> lambda,
+                                  std::span<const double> slip) {
+  const int dim = rows.dim;
+  std::vector<double> work(static_cast<size_t>(rows.n_nodes()), 0.0);
+  for (PetscInt k = 0; k < rows.n_nodes(); ++k)
+    for (int l = 1; l < dim; ++l) work[k] += lambda[dim * k + l] * slip[dim * k + l];
+  return work;
+}
+
+/// B(u_s − u_s^k) + B(u_m − u_m^k), node-major (the normal rows are not used).
+std::vector<double> step_slip(const ContactRows& rows, const core::Vector& du_slave,
+                              const core::Vector& du_master) {
+  core::Vector inc(rows.n_rows());
+  rows.slave.mult(du_slave, inc);
+  rows.master.mult_add(du_master, inc);
+  return inc.to_std();
+}
+
+/// Nodal heat inputs of one body from the contact nodes' powers P_k and the mortar matrix X
+/// (D for the slave, M for the master): q = share · Xᵀ(P_k / Σ_j X_kj). With a flux density
+/// Σ_k (P_k/D_kk) ψ_k this is its integral against the body's shape functions (∫ψ_kφ_j = X_kj,
+/// Σ_j X_kj = D_kk where the master covers ψ_k's support); the row sums make 1ᵀq = share·ΣP
+/// exactly, also where it covers part of it.
+std::vector<double> distribute(std::span<const double> power, double share,
+                               const core::SparseMatrix& x) {
+  core::Vector ones(x.cols()), sums(x.rows());
+  ones.fill(1.0);
+  x.mult(ones, sums);
+  core::Vector scaled(x.rows()), out(x.cols());
+  {
+    const auto sv = sums.read();
+    auto pv = scaled.view();
+    for (PetscInt k = 0; k < x.rows(); ++k) pv[k] = sv[k] > 0 ? share * power[k] / sv[k] : 0.0;
+  }
+  x.mult_transpose(scaled, out);
+  return out.to_std();
+}
+
 }  // namespace
 
 /// Factorised operators and work vectors of one body.
@@ -280,15 +337,26 @@ void Simulation::contact_heat_step(int iteration) {
     const auto& rows = dual_->rows();
     const auto lv = lambda_.read();
     gamma.resize(static_cast<size_t>(rows.n_nodes()));
-    for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = std::max(lv[rows.dim * k], 0.0);
+    const double unit = traction_per_multiplier(stabiliser_ != nullptr);
+    for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = unit * std::max(lv[rows.dim * k], 0.0);
     if (static_cast<size_t>(rows.n_nodes()) != mortar_->contact_nodes().size())
       throw Error("thermal contact: the multipliers do not match the mortar pair's nodes");
   }
   if (mortar_ && c.frictional_heating && c.friction > 0) {
-    velocity_iterate(sb);
-    velocity_iterate(mb);
-    frictional_heat_ = mortar_->frictional_heat(gamma, c.friction, delta_c_, ss.velocity.to_std(),
-                                                sm.velocity.to_std());
+    // d_θγ from the multipliers: the friction work of the step λ_τ,k·(B_τ(u − u^k))_k per
+    // contact node over τ, δ_C of it to the slave through D, 1 − δ_C to the master through M;
+    // contact_bookkeeping sums the same work at u^{k+1}: heat = dissipation by construction.
+    const double tau = problem_.time.step;
+    for (auto [s, st] : {std::pair{&ss, &states_[sb]}, {&sm, &states_[mb]}}) {
+      s->velocity.copy_from(s->u_new);  // (the thermoelastic term of heat_rhs used it above)
+      s->velocity.axpy(-1.0, st->u);
+    }
+    std::vector<double> power = friction_work(dual_->rows(), lambda_.to_std(),
+                                              step_slip(dual_->rows(), ss.velocity, sm.velocity));
+    for (double& p : power) p *= traction_per_multiplier(stabiliser_ != nullptr) / tau;
+    for (const double p : power) frictional_heat_.total += p;
+    frictional_heat_.slave = distribute(power, delta_c_, mortar_->d_matrix());
+    frictional_heat_.master = distribute(power, 1.0 - delta_c_, mortar_->m_matrix());
     for (auto [s, d] : {std::pair{&ss, &frictional_heat_.slave}, {&sm, &frictional_heat_.master}}) {
       auto rv = s->rhs_theta.view();
       for (size_t a = 0; a < d->size(); ++a) rv[static_cast<PetscInt>(a)] += (*d)[a];
@@ -643,10 +711,7 @@ int Simulation::couple_contact() {
   ss.work_u.axpy(-1.0, sts.u);
   sm.work_u.copy_from(sm.u_new);
   sm.work_u.axpy(-1.0, stm.u);
-  core::Vector inc(rows.n_rows());
-  rows.slave.mult(ss.work_u, inc);
-  rows.master.mult_add(sm.work_u, inc);
-  slip_ = inc.to_std();
+  slip_ = step_slip(rows, ss.work_u, sm.work_u);
   // Heat through the interface in this step, with the L and d of the last heat step (those
   // that produced θ^{k+1}): then the thermal energy balance of the pair closes to round-off.
   heat_.generated += tau * frictional_heat_.total;
@@ -672,18 +737,16 @@ void Simulation::contact_bookkeeping() {
   auto& cs = contact_stats_;
   cs.normal_force = cs.tangential_force = 0;
   cs.active_nodes = cs.slip_nodes = 0;
+  const double unit = traction_per_multiplier(stabiliser_ != nullptr);
+  for (const double w : friction_work(rows, l, slip_)) cs.dissipation += unit * w;
   for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
     const double w = rows.weights[k];
     const double ln = l[dim * k];
-    double lt2 = 0, work = 0;
-    for (int i = 1; i < dim; ++i) {
-      lt2 += l[dim * k + i] * l[dim * k + i];
-      work += l[dim * k + i] * slip_[dim * k + i];
-    }
+    double lt2 = 0;
+    for (int i = 1; i < dim; ++i) lt2 += l[dim * k + i] * l[dim * k + i];
     const double lt = std::sqrt(lt2);
-    cs.normal_force += w * ln;
-    cs.tangential_force += w * lt;
-    cs.dissipation += work;  // λ_τ is a traction, B_τ Δu already carries the weights
+    cs.normal_force += unit * w * ln;
+    cs.tangential_force += unit * w * lt;
     if (ln > 0) {
       ++cs.active_nodes;
       if (friction > 0 && lt >= friction * ln * (1 - 1e-6)) ++cs.slip_nodes;
@@ -705,7 +768,7 @@ void Simulation::contact_bookkeeping() {
       for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
         if (ds[k] <= 0) continue;
         const double jump = ts[mortar_->contact_nodes()[k]] - mt[k] / ds[k];
-        heat_flux_[k] = beta_c_ * std::max(l[dim * k], 0.0) * jump;
+        heat_flux_[k] = beta_c_ * unit * std::max(l[dim * k], 0.0) * jump;
       }
     }
   }

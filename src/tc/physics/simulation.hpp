@@ -60,7 +60,8 @@ enum class ConductanceTreatment {
 };
 
 /// Heat through the contact interface, cumulative from t = 0 [J] (history.csv):
-///  generated = Σ_steps τ ∫ 𝔉 λ_n ‖[u̇]_τ‖ dS, to_slave / to_master its δ_C / 1 − δ_C shares,
+///  generated = Σ_steps λ_τᵀB_τΔu (the friction work of the step, the discrete τ∫𝔉λ_n‖[u̇]_τ‖dS;
+///  = frictional_dissipation), to_slave / to_master its δ_C / 1 − δ_C shares,
 ///  conducted = Σ_steps τ β_C ∫ λ_n (θ_s − θ_m) dS: the heat that crossed by conductance from
 ///  the slave to the master (negative when it went the other way), θ at t^{k+1}.
 struct ContactHeat {
