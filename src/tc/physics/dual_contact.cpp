@@ -306,7 +306,7 @@ std::vector<double> DualContactSolver::targets(const core::Vector& ref_slave,
 qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
                                       const core::Vector& u_free_master, std::span<const double> c,
                                       std::span<const double> friction_bound, core::Vector& lambda,
-                                      core::Vector& u_slave, core::Vector& u_master) {
+                                      core::Vector& u_slave, core::Vector& u_master, bool recover) {
   const PetscInt m = rows_.n_rows();
   const int dim = rows_.dim;
   u_slave.copy_from(u_free_slave);
@@ -364,14 +364,35 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
   lambda_max_ = r.max_eigenvalue;
   lambda_max_rows_ = m;
 
-  // u_i = u_free,i − A_i⁻¹ B_iᵀ λ.
-  rows_.slave.mult_transpose(lambda, ws_);
+  if (recover) this->recover(lambda, u_slave, u_master);
+  return r;
+}
+
+void DualContactSolver::recover(const core::Vector& lambda, core::Vector& u_slave,
+                                core::Vector& u_master) const {
+  if (rows_.n_rows() == 0) return;
+  rows_.slave.mult_transpose(lambda, ws_);  // u_i −= A_i⁻¹ B_iᵀ λ
   solve_homogeneous(slave_, ws_, zs_);
   u_slave.axpy(-1.0, zs_);
   rows_.master.mult_transpose(lambda, wm_);
   solve_homogeneous(master_, wm_, zm_);
   u_master.axpy(-1.0, zm_);
-  return r;
+}
+
+void DualContactSolver::constraint_values(const core::Vector& u_free_slave,
+                                          const core::Vector& u_free_master,
+                                          const core::Vector& lambda, core::Vector& bu) const {
+  const PetscInt m = rows_.n_rows();
+  bu = core::Vector(m);
+  if (m == 0) return;
+  core::Vector f_lambda(m);
+  if (kind_ == DualOperator::explicit_schur)
+    TC_PETSC(MatMult(f_dense_.get(), lambda.get(), f_lambda.get()));
+  else
+    apply_f(lambda, f_lambda);
+  rows_.slave.mult(u_free_slave, bu);
+  rows_.master.mult_add(u_free_master, bu);
+  bu.axpy(-1.0, f_lambda);
 }
 
 }  // namespace tc::physics

@@ -93,10 +93,18 @@ class DualContactSolver {
 
   /// Given u_free,i = A_i⁻¹ f_i (with the Dirichlet values), the targets c and the friction
   /// bounds 𝔉γ_k per node, solves for λ (warm-started from its value on entry) and returns
-  /// u_i = u_free,i − A_i⁻¹ B_iᵀ λ.
+  /// u_i = u_free,i − A_i⁻¹ B_iᵀ λ. With `recover` false u_i = u_free,i on return (two solves
+  /// saved: see recover() and constraint_values()).
   qp::QpResult solve(const core::Vector& u_free_slave, const core::Vector& u_free_master,
                      std::span<const double> c, std::span<const double> friction_bound,
-                     core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master);
+                     core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master,
+                     bool recover = true);
+  /// u_i −= A_i⁻¹ B_iᵀ λ (two solves): what solve() skips with recover = false.
+  void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const;
+  /// B u = B u_free − F λ of u = u_free − A⁻¹Bᵀλ without forming u (explicit F: one dense
+  /// product; matrix-free: two solves).
+  void constraint_values(const core::Vector& u_free_slave, const core::Vector& u_free_master,
+                         const core::Vector& lambda, core::Vector& bu) const;
 
   /// y = Σ_i B_i A_i⁻¹ B_iᵀ x (matrix-free application; also used to form F).
   void apply_f(const core::Vector& x, core::Vector& y) const;

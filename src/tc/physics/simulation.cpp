@@ -372,8 +372,10 @@ void Simulation::contact_heat_step(int iteration) {
       s->velocity.copy_from(s->u_new);  // (the thermoelastic term of heat_rhs used it above)
       s->velocity.axpy(-1.0, st->u);
     }
-    std::vector<double> power = nonnegative_heat(friction_work(
-        dual_->rows(), lambda_.to_std(), step_slip(dual_->rows(), ss.velocity, sm.velocity)));
+    std::vector<double> power = nonnegative_heat(
+        friction_work(dual_->rows(), lambda_.to_std(),
+                      iterate_slip_.empty() ? step_slip(dual_->rows(), ss.velocity, sm.velocity)
+                                            : iterate_slip_));
     for (double& p : power) p *= traction_per_multiplier(stabiliser_ != nullptr) / tau;
     for (const double p : power) frictional_heat_.total += p;
     frictional_heat_.slave = distribute(power, delta_c_, mortar_->d_matrix());
@@ -661,6 +663,13 @@ int Simulation::couple_contact() {
   double omega = 1.0;
   contact_stats_.operator_applications += dual_->setup_solves() / 2;
   core::Vector lambda_prev = lambda_.clone();
+  // u = u_free − A⁻¹Bᵀλ costs two solves; inside the fixed point only B u is needed (the
+  // frictional heat's slip, = B u_free − Fλ) unless the thermoelastic term wants u̇ of the
+  // whole body. Then u is formed once, after convergence.
+  const bool defer = !(ss.heating || sm.heating);
+  iterate_slip_.clear();
+  std::vector<double> bu_old;  // B u^k
+  if (defer) bu_old = step_slip(rows, sts.u, stm.u);
   const double tol = problem_.solver.coupling_tolerance;
   const int step = step_ + 1;
   int iteration = 1;
@@ -677,15 +686,20 @@ int Simulation::couple_contact() {
       ss.u_prev.copy_from(ss.u_new);
       sm.u_prev.copy_from(sm.u_new);
       const auto r =
-          dual_->solve(ss.u_prev, sm.u_prev, targets, bound, lambda_, ss.u_new, sm.u_new);
+          dual_->solve(ss.u_prev, sm.u_prev, targets, bound, lambda_, ss.u_new, sm.u_new, !defer);
       contact_stats_.qp_iterations += r.iterations;
       contact_stats_.operator_applications += r.operator_applications;
       if (!r.converged())
         throw NumericalError(fmt::format("the contact QP (6.9) did not converge: {}", r.message),
                              step, iteration, r.projected_gradient);
+      if (defer) {
+        core::Vector bu;
+        dual_->constraint_values(ss.u_prev, sm.u_prev, lambda_, bu);
+        iterate_slip_ = bu.to_std();
+        for (size_t i = 0; i < iterate_slip_.size(); ++i) iterate_slip_[i] -= bu_old[i];
+      }
     }
-    require_finite(ss.u_new, "displacement", step, iteration);
-    require_finite(sm.u_new, "displacement", step, iteration);
+    require_finite(lambda_, "contact multiplier", step, iteration);
     double fixed_residual = 0;  // ‖λ_n(γ) − γ‖ (relaxed: the change of λ alone may mislead)
     if (relax) {
       {
@@ -726,6 +740,13 @@ int Simulation::couple_contact() {
     throw NumericalError(
         fmt::format("the staggered fixed point (6.3) with contact did not converge to {:.1e}", tol),
         step, iteration - 1, change);
+  iterate_slip_.clear();
+  if (defer) {  // u_new holds u_free of the last iteration
+    auto scope = timers_.scope("qp");
+    dual_->recover(lambda_, ss.u_new, sm.u_new);
+  }
+  require_finite(ss.u_new, "displacement", step, iteration);
+  require_finite(sm.u_new, "displacement", step, iteration);
 
   // The slip increment B_τ(u^{k+1} − u^k) for the dissipation, before the state moves on.
   ss.work_u.copy_from(ss.u_new);

@@ -188,6 +188,8 @@ class Simulation {
   core::Vector lambda_;
   std::vector<int> lambda_nodes_;  // slave mesh node of each contact node of lambda_
   std::vector<double> slip_;       // B_τ Δu of the last step (node-major, normal rows unused)
+  // B(u − u^k) of the current iterate while couple_contact defers forming u (empty: from u)
+  std::vector<double> iterate_slip_;
   ContactStatistics contact_stats_;
 
   // Thermal contact (2.13, §4.4), with the mortar pair only.
