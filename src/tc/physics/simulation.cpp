@@ -592,16 +592,33 @@ void Simulation::warm_start(const ContactRows& rows) {
   const std::vector<double> previous = lambda_.get() ? lambda_.to_std() : std::vector<double>{};
   lambda_ = core::Vector(rows.n_rows());
   auto lv = lambda_.view();
+  // The mortar pair's tangents of a node may turn from one step to the next (measured on
+  // example 06: 0.19 rad per step on average, up to π/2, the basis of the tangent plane being
+  // arbitrary): λ_τ is carried over as the traction vector Σ_l λ_τ,l t_l, in the new basis.
+  const bool turn = mortar_ && dim == 3 && !lambda_tangents_[0].empty();
   if (!rows.nodes.empty() && !lambda_nodes_.empty()) {
     std::map<int, size_t> where;
     for (size_t k = 0; k < lambda_nodes_.size(); ++k) where[lambda_nodes_[k]] = k;
     for (size_t k = 0; k < rows.nodes.size(); ++k)
-      if (const auto it = where.find(rows.nodes[k]); it != where.end())
-        for (int i = 0; i < dim; ++i) lv[dim * k + i] = previous[dim * it->second + i];
+      if (const auto it = where.find(rows.nodes[k]); it != where.end()) {
+        const size_t j = it->second;
+        for (int i = 0; i < dim; ++i) lv[dim * k + i] = previous[dim * j + i];
+        if (!turn || k >= mortar_->tangents(0).size()) continue;
+        std::array<double, 3> traction{0, 0, 0};
+        for (int l = 0; l < 2; ++l)
+          for (int x = 0; x < 3; ++x)
+            traction[x] += previous[dim * j + 1 + l] * lambda_tangents_[l][j][x];
+        for (int l = 0; l < 2; ++l) {
+          const auto& t = mortar_->tangents(l)[k];
+          lv[dim * k + 1 + l] = traction[0] * t[0] + traction[1] * t[1] + traction[2] * t[2];
+        }
+      }
   } else if (static_cast<PetscInt>(previous.size()) == rows.n_rows()) {
     for (PetscInt i = 0; i < rows.n_rows(); ++i) lv[i] = previous[i];
   }
   lambda_nodes_ = rows.nodes;
+  if (mortar_ && dim == 3)
+    for (int l = 0; l < 2; ++l) lambda_tangents_[l] = mortar_->tangents(l);
 }
 
 std::vector<double> Simulation::contact_multipliers() const {

@@ -6,6 +6,7 @@
 //
 // Contract of run(): the observer sees start() once, then step() for t = 0 and for every
 // completed step in order, then finish() exactly once, also when the run stops early.
+#include <array>
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -187,7 +188,8 @@ class Simulation {
   std::unique_ptr<DualContactSolver> stabiliser_;  // the mass projection (contact-stabilised)
   core::Vector lambda_;
   std::vector<int> lambda_nodes_;  // slave mesh node of each contact node of lambda_
-  std::vector<double> slip_;       // B_τ Δu of the last step (node-major, normal rows unused)
+  std::vector<std::array<double, 3>> lambda_tangents_[2];  // tangents lambda_'s λ_τ refer to
+  std::vector<double> slip_;  // B_τ Δu of the last step (node-major, normal rows unused)
   // B(u − u^k) of the current iterate while couple_contact defers forming u (empty: from u)
   std::vector<double> iterate_slip_;
   ContactStatistics contact_stats_;
