@@ -64,7 +64,9 @@ enum class ConductanceTreatment {
 ///  generated = Σ_steps λ_τᵀB_τΔu (the friction work of the step, the discrete τ∫𝔉λ_n‖[u̇]_τ‖dS;
 ///  = frictional_dissipation), to_slave / to_master its δ_C / 1 − δ_C shares,
 ///  conducted = Σ_steps τ β_C ∫ λ_n (θ_s − θ_m) dS: the heat that crossed by conductance from
-///  the slave to the master (negative when it went the other way), θ at t^{k+1}.
+///  the slave to the master (negative when it went the other way), θ at t^{k+1}. With the
+///  contact-stabilised Newmark λ/2 is the traction (simulation.cpp, traction_per_multiplier):
+///  these sums, the conductance and the history's forces use it.
 struct ContactHeat {
   double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
 };
@@ -110,9 +112,9 @@ class Simulation {
   [[nodiscard]] double beta_c() const { return beta_c_; }
   [[nodiscard]] double delta_c() const { return delta_c_; }
   /// Per contact node of the last step (order of the multipliers): q_C^s conduction part
-  /// β_C λ_n [θ], [θ] = θ_s − θ_m (θ_m of the master at the node, (Mθ_m)_k/(D1)_k), in W/m²:
-  /// the heat flux out of the slave into the master (positive when the slave is hotter).
-  /// Zero with heat_conduction = false; empty without the mortar pair.
+  /// β_C λ_n [θ] (λ_n/2 with the contact-stabilised scheme), [θ] = θ_s − θ_m (θ_m of the master at
+  /// the node, (Mθ_m)_k/(D1)_k), in W/m²: the heat flux out of the slave into the master (positive
+  /// when the slave is hotter). Zero with heat_conduction = false; empty without the mortar pair.
   [[nodiscard]] const std::vector<double>& contact_heat_flux() const { return heat_flux_; }
   /// The solver of the implicit heat step (null until conductance first appears).
   [[nodiscard]] const InterfaceHeatSolver* interface_heat_solver() const {
