@@ -88,6 +88,85 @@ INSTANTIATE_TEST_SUITE_P(Dual, ContactPatch,
                          ::testing::Combine(::testing::Values(2, 3),
                                             ::testing::Values(PetscInt{0}, PetscInt{1500})));
 
+// ------------------------------------------- explicit F from the compliance on touched dofs
+
+/// Rows with pseudo-random values on chosen dofs of each body (B_s: one dof per row, B_m:
+/// three, like mortar rows), to exercise F = Σ B_i,T S_i B_i,Tᵀ on sets of dofs that grow.
+physics::ContactRows scattered_rows(PetscInt n_s, PetscInt n_m, int nodes, PetscInt first,
+                                    PetscInt stride) {
+  physics::ContactRows rows;
+  rows.dim = 3;
+  const PetscInt m = 3 * nodes;
+  std::vector<PetscInt> nnz(m, 3);
+  rows.slave = core::SparseMatrix(m, n_s, nnz);
+  rows.master = core::SparseMatrix(m, n_m, nnz);
+  for (PetscInt r = 0; r < m; ++r) {
+    const PetscInt cs = (first + stride * r) % n_s;
+    const double vs = 1.0 + 0.1 * static_cast<double>(r % 7);
+    rows.slave.add_values({&r, 1}, {&cs, 1}, &vs);
+    for (PetscInt q = 0; q < 3; ++q) {
+      const PetscInt cm = (first + stride * r + 5 * q) % n_m;
+      const double vm = -0.3 - 0.05 * static_cast<double>((r + q) % 5);
+      rows.master.add_values({&r, 1}, {&cm, 1}, &vm);
+    }
+  }
+  rows.slave.assemble();
+  rows.master.assemble();
+  rows.gap.assign(static_cast<size_t>(nodes), 0.0);
+  rows.weights.assign(static_cast<size_t>(nodes), 1.0);
+  return rows;
+}
+
+TEST(ExplicitF, FromTheComplianceEqualsTheSolvesToRoundOff) {
+  // The slave block has its top face's vertical dofs prescribed: rows that reach them must
+  // see zero compliance there, as the solves do.
+  auto slave = make_block(3, {0, 0, 1}, {1, 1, 1.5}, {3, 3, 2}, "zmax", 0.0, "");
+  auto master = make_block(3, {0, 0, 0}, {1, 1, 1}, {3, 3, 3}, "", 0.0, "zmin");
+  const PetscInt n_s = slave.u_prescribed.size(), n_m = master.u_prescribed.size();
+  physics::DualContactSettings with, without;
+  without.compliance_limit = 0;
+  physics::DualContactSolver a(*slave.solver, *master.solver, n_s, n_m, with);
+  physics::DualContactSolver b(*slave.solver, *master.solver, n_s, n_m, without);
+  // Three sets of rows: the second overlaps the first and reaches new dofs, the third is the
+  // first again (no new dof: no solve).
+  const std::tuple<int, PetscInt, PetscInt> cases[] = {{6, 0, 7}, {8, 11, 5}, {6, 0, 7}};
+  std::vector<int> solves;
+  for (const auto& [nodes, first, stride] : cases) {
+    a.set_rows(scattered_rows(n_s, n_m, nodes, first, stride));
+    b.set_rows(scattered_rows(n_s, n_m, nodes, first, stride));
+    ASSERT_NE(a.explicit_matrix(), nullptr);
+    solves.push_back(a.setup_solves());
+    const PetscInt m = 3 * nodes;
+    EXPECT_EQ(b.setup_solves(), 2 * m);
+    core::Vector e(m), column(m);
+    double scale = 0, worst_solves = 0, worst_apply = 0;
+    for (PetscInt j = 0; j < m; ++j) {
+      e.zero();
+      e.view()[j] = 1.0;
+      a.apply_f(e, column);  // two solves: the definition F e_j = Σ B_i A_i⁻¹ B_iᵀ e_j
+      const auto exact = column.to_std();
+      for (PetscInt i = 0; i < m; ++i) {
+        PetscScalar fa = 0, fb = 0;
+        TC_PETSC(MatGetValue(a.explicit_matrix(), i, j, &fa));
+        TC_PETSC(MatGetValue(b.explicit_matrix(), i, j, &fb));
+        scale = std::max(scale, std::abs(exact[i]));
+        worst_apply = std::max(worst_apply, std::abs(fa - exact[i]));
+        worst_solves = std::max(worst_solves, std::abs(fa - fb));
+      }
+    }
+    // Both are the same sums of products of the direct solver's solutions, in another order:
+    // they agree to the round-off of a few hundred operations on O(scale) numbers.
+    EXPECT_LE(worst_apply, 1e-12 * scale);
+    EXPECT_LE(worst_solves, 1e-12 * scale);
+  }
+  // Solves spent on columns: all dofs of the first rows, the new ones of the second, none on
+  // the third. The first set touches 18 slave dofs and ≤ 54 master dofs.
+  EXPECT_GT(solves[0], 18);
+  EXPECT_GT(solves[1], 0);
+  EXPECT_LT(solves[1], solves[0] + 24 + 72);
+  EXPECT_EQ(solves[2], 0);
+}
+
 // ------------------------------------------------------------------- Coulomb friction, 3D
 
 /// The slave's top face is moved by (s, 0, −δ) (fully prescribed), the master's bottom is
@@ -100,7 +179,7 @@ struct Friction {
   int qp_iterations = 0;
 };
 
-Friction slide(double shift, double friction) {
+Friction slide(double shift, double friction, bool scale = true) {
   const int dim = 3;
   const double delta = 1e-4;
   Block slave, master;
@@ -126,6 +205,7 @@ Friction slide(double shift, double friction) {
   }
   physics::DualContactSettings settings;
   settings.qp.rtol = 1e-12;
+  settings.scale = scale;
   physics::DualContactSolver solver(*slave.solver, *master.solver, slave.u_prescribed.size(),
                                     master.u_prescribed.size(), settings);
   solver.set_rows(node_to_node(dim, slave, master));
@@ -173,6 +253,22 @@ TEST(Friction3d, PastTheStickLimitTheForceRatioIsTheFrictionCoefficient) {
   }
   // The force on the slave −B_τᵀλ_τ opposes the slip (+x): λ_τ,x > 0 along +x slip.
   EXPECT_NEAR(std::abs(tangential_x) / normal, friction, 1e-6);
+}
+
+TEST(Friction3d, ScalingTheDualVariablesKeepsTheSolution) {
+  // Σ changes the metric of MPGP, not the QP: the same λ from both, in stick (0.9) and in
+  // slip (0.3), to what the stopping tests allow (‖g^P‖ ≤ 1e-12‖d‖ in either norm, the
+  // fixed point to 1e-10 relative, with the conditioning of F on top).
+  for (const auto& [shift, friction] : {std::pair{1e-6, 0.9}, std::pair{1e-3, 0.3}}) {
+    const auto a = slide(shift, friction, true), b = slide(shift, friction, false);
+    ASSERT_EQ(a.lambda.size(), b.lambda.size());
+    double scale = 0, diff = 0;
+    for (size_t i = 0; i < a.lambda.size(); ++i) {
+      scale = std::max(scale, std::abs(b.lambda[i]));
+      diff = std::max(diff, std::abs(a.lambda[i] - b.lambda[i]));
+    }
+    EXPECT_LE(diff, 1e-8 * scale) << "shift " << shift;
+  }
 }
 
 TEST(Friction3d, BelowTheStickLimitNothingSlips) {

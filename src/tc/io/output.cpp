@@ -105,8 +105,9 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
 }
 
 void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data) {
-  // On the slave's contact nodes (the multipliers live there), zero elsewhere: λ_n, the
-  // tangential traction Σ_l λ_τl τ_l, the slip velocity Σ_l (B_τlΔu)_k/(w_k τ) τ_l and the
+  // On the slave's contact nodes (the multipliers live there), zero elsewhere: the pressure
+  // and the tangential traction Σ_l λ_τl τ_l (λ times the traction per multiplier: ½ with the
+  // contact-stabilised Newmark), the slip velocity Σ_l (B_τlΔu)_k/(w_k τ) τ_l and the
   // conducted heat flux β_C λ_n [θ] out of the slave (Simulation::contact_heat_flux).
   const auto* pair = sim.mortar();
   const auto* dual = sim.dual_solver();
@@ -125,13 +126,14 @@ void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>
   if (static_cast<PetscInt>(lambda.size()) == rows.n_rows() &&
       rows.nodes.size() == pair->contact_nodes().size()) {
     const double tau = sim.problem().time.step;
+    const double unit = sim.traction_per_multiplier();
     for (size_t k = 0; k < rows.nodes.size(); ++k) {
       const int a = rows.nodes[k];
-      pressure.values[a] = lambda[dim * k];
+      pressure.values[a] = unit * lambda[dim * k];
       if (flux.size() == rows.nodes.size()) heat_flux.values[a] = flux[k];
       for (int l = 0; l + 1 < dim; ++l) {
         const auto& t = pair->tangents(l)[k];
-        const double lt = lambda[dim * k + 1 + l];
+        const double lt = unit * lambda[dim * k + 1 + l];
         const double w = rows.weights[k];
         const double v = have_slip && w > 0 ? slip[dim * k + 1 + l] / (w * tau) : 0.0;
         for (int i = 0; i < 3; ++i) {

@@ -1,7 +1,9 @@
 #include "tc/physics/dual_contact.hpp"
 
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <utility>
 
 namespace tc::physics {
@@ -13,7 +15,10 @@ const char* name(DualOperator k) {
 DualContactSolver::DualContactSolver(const ConstrainedSolver& slave,
                                      const ConstrainedSolver& master, PetscInt n_u_slave,
                                      PetscInt n_u_master, DualContactSettings settings)
-    : slave_(slave), master_(master), settings_(std::move(settings)) {
+    : slave_(slave),
+      master_(master),
+      settings_(std::move(settings)),
+      compliance_{DofCompliance(slave, n_u_slave), DofCompliance(master, n_u_master)} {
   ws_ = core::Vector(n_u_slave);
   ys_ = core::Vector(n_u_slave);
   zs_ = core::Vector(n_u_slave);
@@ -48,12 +53,183 @@ void DualContactSolver::set_rows(ContactRows rows) {
   if (kind_ == DualOperator::explicit_schur || m != lambda_max_rows_) lambda_max_ = 0;
 }
 
+namespace {
+
+using Dense = core::Handle<::Mat, MatDestroy>;
+
+/// A dense n × k matrix, zero; its array through `data` (column-major, leading dimension ld).
+Dense zero_dense(PetscInt n, PetscInt k) {
+  Dense a;
+  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, k, nullptr, a.out()));
+  PetscScalar* v = nullptr;
+  TC_PETSC(MatDenseGetArray(a.get(), &v));
+  PetscInt ld = n;
+  TC_PETSC(MatDenseGetLDA(a.get(), &ld));
+  for (PetscInt c = 0; c < k; ++c) std::fill(v + c * ld, v + c * ld + n, 0.0);
+  TC_PETSC(MatDenseRestoreArray(a.get(), &v));
+  return a;
+}
+
+void assemble(::Mat a) {
+  TC_PETSC(MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY));
+  TC_PETSC(MatAssemblyEnd(a, MAT_FINAL_ASSEMBLY));
+}
+
+/// The nonzeros of a sparse matrix as (row, column, value).
+std::vector<Eigen::Triplet<double, PetscInt>> nonzeros(const core::SparseMatrix& b) {
+  std::vector<Eigen::Triplet<double, PetscInt>> out;
+  for (PetscInt r = 0; r < b.rows(); ++r) {
+    PetscInt nz = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    TC_PETSC(MatGetRow(b.get(), r, &nz, &cols, &vals));
+    for (PetscInt q = 0; q < nz; ++q)
+      if (vals[q] != 0.0) out.emplace_back(r, cols[q], vals[q]);
+    TC_PETSC(MatRestoreRow(b.get(), r, &nz, &cols, &vals));
+  }
+  return out;
+}
+
+}  // namespace
+
+DofCompliance::DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs)
+    : solver_(solver), index_(static_cast<size_t>(n_dofs), -1) {}
+
+PetscInt DofCompliance::missing(std::span<const PetscInt> dofs) const {
+  std::vector<PetscInt> fresh;
+  for (const PetscInt d : dofs)
+    if (index_[d] < 0) fresh.push_back(d);
+  std::sort(fresh.begin(), fresh.end());
+  return static_cast<PetscInt>(std::unique(fresh.begin(), fresh.end()) - fresh.begin());
+}
+
+PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
+  const auto old = static_cast<Eigen::Index>(dofs_.size());
+  for (const PetscInt d : dofs)
+    if (index_[d] < 0) {
+      index_[d] = static_cast<PetscInt>(dofs_.size());
+      dofs_.push_back(d);
+    }
+  const auto t = static_cast<Eigen::Index>(dofs_.size());
+  if (t == old) return 0;
+  s_.conservativeResize(t, t);
+  const auto n = static_cast<PetscInt>(index_.size());
+  constexpr Eigen::Index block = 64;  // bounds the dense work space to n × block
+  for (Eigen::Index j0 = old; j0 < t; j0 += block) {
+    const auto k = std::min(block, t - j0);
+    Dense rhs = zero_dense(n, k), sol = zero_dense(n, k);
+    {
+      PetscScalar* r = nullptr;
+      TC_PETSC(MatDenseGetArray(rhs.get(), &r));
+      PetscInt ld = n;
+      TC_PETSC(MatDenseGetLDA(rhs.get(), &ld));
+      for (Eigen::Index c = 0; c < k; ++c) r[c * ld + dofs_[j0 + c]] = 1.0;
+      TC_PETSC(MatDenseRestoreArray(rhs.get(), &r));
+    }
+    assemble(rhs.get());
+    assemble(sol.get());
+    solver_.solve_homogeneous_many(rhs.get(), sol.get());
+    const PetscScalar* x = nullptr;
+    TC_PETSC(MatDenseGetArrayRead(sol.get(), &x));
+    PetscInt ld = n;
+    TC_PETSC(MatDenseGetLDA(sol.get(), &ld));
+    for (Eigen::Index c = 0; c < k; ++c)
+      for (Eigen::Index a = 0; a < t; ++a) {
+        const double v = x[c * ld + dofs_[a]];
+        s_(a, j0 + c) = v;
+        if (a < old) s_(j0 + c, a) = v;  // the new row of the old dofs: S symmetric
+      }
+    TC_PETSC(MatDenseRestoreArrayRead(sol.get(), &x));
+  }
+  // The block of new dofs with itself was filled from both sides; make it exactly symmetric
+  // (its two halves differ by the solver's round-off only).
+  auto fresh = s_.bottomRightCorner(t - old, t - old);
+  const Eigen::MatrixXd sym = 0.5 * (fresh + fresh.transpose());
+  fresh = sym;
+  return static_cast<PetscInt>(t - old);
+}
+
 void DualContactSolver::form_explicit() {
+  setup_solves_ = 0;
+  if (settings_.compliance_limit <= 0 || !form_from_compliance()) form_by_solves();
+  if (settings_.scale) form_scaled();
+}
+
+void DualContactSolver::form_scaled() {
+  // Σ from the diagonal of F, node by node: σ_n = F_nn^{-1/2}, σ_τ = (mean of the tangent
+  // diagonals)^{-1/2}. The diagonal of F spreads over the nodal weights squared (a corner node
+  // of the dual basis carries a quarter of an inner node's area) and the normal/tangential
+  // compliances; the fixed-step projected gradient moves of MPGP (ᾱ = 1.9/λ_max) crawl on the
+  // small-diagonal nodes, which scaling removes. A zero diagonal (a row on constrained dofs
+  // only) keeps σ = 1.
+  const PetscInt m = rows_.n_rows();
+  const int dim = rows_.dim;
+  const PetscScalar* f = nullptr;
+  TC_PETSC(MatDenseGetArrayRead(f_dense_.get(), &f));
+  PetscInt ld = m;
+  TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ld));
+  sigma_.assign(static_cast<size_t>(m), 1.0);
+  for (PetscInt k = 0; k < rows_.n_nodes(); ++k) {
+    const PetscInt n = dim * k;
+    if (f[n * ld + n] > 0) sigma_[n] = 1.0 / std::sqrt(f[n * ld + n]);
+    double t = 0;
+    for (int l = 1; l < dim; ++l) t += f[(n + l) * ld + n + l] / (dim - 1);
+    for (int l = 1; l < dim; ++l)
+      if (t > 0) sigma_[n + l] = 1.0 / std::sqrt(t);
+  }
+  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_scaled_.out()));
+  PetscScalar* g = nullptr;
+  TC_PETSC(MatDenseGetArray(f_scaled_.get(), &g));
+  PetscInt ldg = m;
+  TC_PETSC(MatDenseGetLDA(f_scaled_.get(), &ldg));
+  for (PetscInt j = 0; j < m; ++j)
+    for (PetscInt i = 0; i < m; ++i) g[j * ldg + i] = sigma_[i] * f[j * ld + i] * sigma_[j];
+  TC_PETSC(MatDenseRestoreArray(f_scaled_.get(), &g));
+  TC_PETSC(MatDenseRestoreArrayRead(f_dense_.get(), &f));
+  assemble(f_scaled_.get());
+}
+
+bool DualContactSolver::form_from_compliance() {
+  // F = Σ_i B_i,T S_i B_i,Tᵀ: W = S_i B_i,Tᵀ (dense × sparse, nnz(B_i)·|T| flops), then
+  // B_i,T W (m · nnz(B_i)); no solve unless the rows reach new dofs.
+  const PetscInt m = rows_.n_rows();
+  const core::SparseMatrix* b[2] = {&rows_.slave, &rows_.master};
+  std::vector<Eigen::Triplet<double, PetscInt>> entries[2];
+  for (int i = 0; i < 2; ++i) {
+    entries[i] = nonzeros(*b[i]);
+    std::vector<PetscInt> cols;
+    cols.reserve(entries[i].size());
+    for (const auto& e : entries[i]) cols.push_back(e.col());
+    if (compliance_[i].size() + compliance_[i].missing(cols) > settings_.compliance_limit)
+      return false;
+    setup_solves_ += static_cast<int>(compliance_[i].cover(cols));
+  }
+  Eigen::MatrixXd f = Eigen::MatrixXd::Zero(m, m);
+  for (int i = 0; i < 2; ++i) {
+    const auto& s = compliance_[i];
+    for (auto& e : entries[i]) e = {s.index(e.col()), e.row(), e.value()};  // B_i,Tᵀ
+    Eigen::SparseMatrix<double, Eigen::ColMajor, PetscInt> bt(s.size(), m);
+    bt.setFromTriplets(entries[i].begin(), entries[i].end());
+    const Eigen::MatrixXd w = s.matrix() * bt;
+    f.noalias() += bt.transpose() * w;
+  }
+  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_dense_.out()));
+  PetscScalar* fv = nullptr;
+  TC_PETSC(MatDenseGetArray(f_dense_.get(), &fv));
+  PetscInt ldf = m;
+  TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ldf));
+  for (PetscInt j = 0; j < m; ++j)  // symmetric to the last bit (S is)
+    for (PetscInt i = 0; i < m; ++i) fv[j * ldf + i] = 0.5 * (f(i, j) + f(j, i));
+  TC_PETSC(MatDenseRestoreArray(f_dense_.get(), &fv));
+  assemble(f_dense_.get());
+  return true;
+}
+
+void DualContactSolver::form_by_solves() {
   // F = Σ_i B_i A_i⁻¹ B_iᵀ, `block` columns at a time: the rows of B_i as the columns of a
   // dense right-hand side, one multi-right-hand-side solve per body (level-3 BLAS in the
   // factorisation package, several times faster than as many single solves), then B_i times
   // the solutions. Blocks bound the dense work space to n × block per body.
-  using Dense = core::Handle<::Mat, MatDestroy>;
   const PetscInt m = rows_.n_rows();
   constexpr PetscInt block = 64;
   TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_dense_.out()));
@@ -130,7 +306,7 @@ std::vector<double> DualContactSolver::targets(const core::Vector& ref_slave,
 qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
                                       const core::Vector& u_free_master, std::span<const double> c,
                                       std::span<const double> friction_bound, core::Vector& lambda,
-                                      core::Vector& u_slave, core::Vector& u_master) {
+                                      core::Vector& u_slave, core::Vector& u_master, bool recover) {
   const PetscInt m = rows_.n_rows();
   const int dim = rows_.dim;
   u_slave.copy_from(u_free_slave);
@@ -150,10 +326,21 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
     for (PetscInt i = 0; i < m; ++i) dv[i] -= c[i];
   }
 
+  // With Σ: the QP in μ = Σ⁻¹λ, min ½μᵀ(ΣFΣ)μ − μᵀΣd over μ_n ≥ 0, ‖μ_τ‖ ≤ 𝔉γ/σ_τ.
+  const bool scaled = kind_ == DualOperator::explicit_schur && settings_.scale;
+  const auto sigma = [&](PetscInt i) { return scaled ? sigma_[i] : 1.0; };
+  if (scaled) {
+    auto dv = d.view();
+    auto lv = lambda.view();
+    for (PetscInt i = 0; i < m; ++i) {
+      dv[i] *= sigma_[i];
+      lv[i] /= sigma_[i];
+    }
+  }
   qp::FeasibleSet set(d);
   for (PetscInt k = 0; k < rows_.n_nodes(); ++k) {
     set.set_interval(dim * k, {0.0, qp::infinity});  // λ_n ≥ 0
-    const double r = std::max(friction_bound[k], 0.0);
+    const double r = std::max(friction_bound[k], 0.0) / sigma(dim * k + 1);
     if (dim == 2)
       set.set_interval(dim * k + 1, {-r, r});  // |λ_τ| ≤ 𝔉γ
     else
@@ -164,23 +351,48 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
   opt.max_eigenvalue = lambda_max_;
   qp::QpResult r;
   if (kind_ == DualOperator::explicit_schur) {
-    qp::MatrixOperator f(f_dense_.get());
+    qp::MatrixOperator f(scaled ? f_scaled_.get() : f_dense_.get());
     r = qp::Mpgp(f, set, opt).solve(d, lambda);
   } else {
     qp::FunctionOperator f([this](const core::Vector& x, core::Vector& y) { apply_f(x, y); }, d);
     r = qp::Mpgp(f, set, opt).solve(d, lambda);
   }
+  if (scaled) {
+    auto lv = lambda.view();
+    for (PetscInt i = 0; i < m; ++i) lv[i] *= sigma_[i];
+  }
   lambda_max_ = r.max_eigenvalue;
   lambda_max_rows_ = m;
 
-  // u_i = u_free,i − A_i⁻¹ B_iᵀ λ.
-  rows_.slave.mult_transpose(lambda, ws_);
+  if (recover) this->recover(lambda, u_slave, u_master);
+  return r;
+}
+
+void DualContactSolver::recover(const core::Vector& lambda, core::Vector& u_slave,
+                                core::Vector& u_master) const {
+  if (rows_.n_rows() == 0) return;
+  rows_.slave.mult_transpose(lambda, ws_);  // u_i −= A_i⁻¹ B_iᵀ λ
   solve_homogeneous(slave_, ws_, zs_);
   u_slave.axpy(-1.0, zs_);
   rows_.master.mult_transpose(lambda, wm_);
   solve_homogeneous(master_, wm_, zm_);
   u_master.axpy(-1.0, zm_);
-  return r;
+}
+
+void DualContactSolver::constraint_values(const core::Vector& u_free_slave,
+                                          const core::Vector& u_free_master,
+                                          const core::Vector& lambda, core::Vector& bu) const {
+  const PetscInt m = rows_.n_rows();
+  bu = core::Vector(m);
+  if (m == 0) return;
+  core::Vector f_lambda(m);
+  if (kind_ == DualOperator::explicit_schur)
+    TC_PETSC(MatMult(f_dense_.get(), lambda.get(), f_lambda.get()));
+  else
+    apply_f(lambda, f_lambda);
+  rows_.slave.mult(u_free_slave, bu);
+  rows_.master.mult_add(u_free_master, bu);
+  bu.axpy(-1.0, f_lambda);
 }
 
 }  // namespace tc::physics

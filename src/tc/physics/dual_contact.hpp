@@ -7,7 +7,10 @@
 //   min ½λᵀFλ − λᵀd,  F = Σ_i B_i A_i⁻¹ B_iᵀ,  d = Σ_i B_i A_i⁻¹ f_i − c,
 // over λ_n,k ≥ 0 and ‖λ_τ,k‖ ≤ 𝔉γ_k (an interval in 2D, a disc in 3D), and then
 // u_i = A_i⁻¹(f_i − B_iᵀλ). F is applied matrix-free (two solves per application) or formed
-// explicitly (m solves per body) when the interface is small; which one is reported.
+// explicitly when the interface is small; which one is reported. Explicitly, F is formed from
+// each body's compliance on the dofs the rows touch (DofCompliance): no solve once the rows
+// stay on dofs seen before, whatever the geometry of the step.
+#include <Eigen/Dense>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,6 +31,39 @@ struct DualContactSettings {
   /// F is formed explicitly when it has at most this many rows (m solves per body and an
   /// m×m dense matrix, against two solves per QP iteration matrix-free); 0 = never.
   PetscInt explicit_limit = 1500;
+  /// Explicit F from the compliance S = (A_i⁻¹)_TT on the dofs T the rows have touched while
+  /// |T| stays at most this per body (|T|² doubles: 4000 → 128 MB); beyond, or with 0, F is
+  /// formed by 2m solves at every set_rows.
+  PetscInt compliance_limit = 4000;
+  /// Explicit F only: solve the QP in μ = Σ⁻¹λ with Σ diagonal, one scale for the normal row
+  /// and one for the tangent rows of each node (discs stay discs): Σ F Σ has a unit diagonal
+  /// per node (docs/choices.md). Same minimiser; the stopping test is on Σ g^P against Σ d.
+  bool scale = true;
+};
+
+/// S = (A⁻¹)_TT of one body on a growing set T of its dofs (A factorised, homogeneous
+/// Dirichlet data: constrained dofs have zero rows and columns). A row b of B vanishes off T,
+/// so bᵀA⁻¹c = b_Tᵀ S c_T exactly (up to the direct solver's round-off): with S, F = B A⁻¹Bᵀ
+/// costs sparse-dense products and no solve for rows on dofs seen before. A new dof costs one
+/// solve (in blocks of right-hand sides); its column's entries on the old T give the new row
+/// too, by the symmetry of A.
+class DofCompliance {
+ public:
+  DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs);
+  /// The dofs of `dofs` not yet in T (each counted once).
+  [[nodiscard]] PetscInt missing(std::span<const PetscInt> dofs) const;
+  /// Adds the dofs not yet in T; returns the number of solves spent.
+  PetscInt cover(std::span<const PetscInt> dofs);
+  /// Position of `dof` in T, or −1.
+  [[nodiscard]] PetscInt index(PetscInt dof) const { return index_[dof]; }
+  [[nodiscard]] PetscInt size() const { return static_cast<PetscInt>(dofs_.size()); }
+  [[nodiscard]] const Eigen::MatrixXd& matrix() const { return s_; }
+
+ private:
+  const ConstrainedSolver& solver_;
+  std::vector<PetscInt> index_;  // dof → position in T, or −1
+  std::vector<PetscInt> dofs_;   // T in the order added
+  Eigen::MatrixXd s_;
 };
 
 class DualContactSolver {
@@ -39,7 +75,12 @@ class DualContactSolver {
   void set_rows(ContactRows rows);
   [[nodiscard]] const ContactRows& rows() const { return rows_; }
   [[nodiscard]] DualOperator kind() const { return kind_; }
-  /// Solves applied while forming F explicitly (0 when matrix-free).
+  /// The explicit F (dense m × m) of the last set_rows; null when matrix-free.
+  [[nodiscard]] ::Mat explicit_matrix() const {
+    return kind_ == DualOperator::explicit_schur ? f_dense_.get() : nullptr;
+  }
+  /// Solves applied while forming F explicitly in the last set_rows (0 when matrix-free; with
+  /// the compliance, only the columns of newly touched dofs).
   [[nodiscard]] int setup_solves() const { return setup_solves_; }
 
   /// c of (5.4): c_n,k = g_k + (B u_ref)_n,k (non-penetration of the increment from the
@@ -52,10 +93,18 @@ class DualContactSolver {
 
   /// Given u_free,i = A_i⁻¹ f_i (with the Dirichlet values), the targets c and the friction
   /// bounds 𝔉γ_k per node, solves for λ (warm-started from its value on entry) and returns
-  /// u_i = u_free,i − A_i⁻¹ B_iᵀ λ.
+  /// u_i = u_free,i − A_i⁻¹ B_iᵀ λ. With `recover` false u_i = u_free,i on return (two solves
+  /// saved: see recover() and constraint_values()).
   qp::QpResult solve(const core::Vector& u_free_slave, const core::Vector& u_free_master,
                      std::span<const double> c, std::span<const double> friction_bound,
-                     core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master);
+                     core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master,
+                     bool recover = true);
+  /// u_i −= A_i⁻¹ B_iᵀ λ (two solves): what solve() skips with recover = false.
+  void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const;
+  /// B u = B u_free − F λ of u = u_free − A⁻¹Bᵀλ without forming u (explicit F: one dense
+  /// product; matrix-free: two solves).
+  void constraint_values(const core::Vector& u_free_slave, const core::Vector& u_free_master,
+                         const core::Vector& lambda, core::Vector& bu) const;
 
   /// y = Σ_i B_i A_i⁻¹ B_iᵀ x (matrix-free application; also used to form F).
   void apply_f(const core::Vector& x, core::Vector& y) const;
@@ -64,6 +113,9 @@ class DualContactSolver {
   void solve_homogeneous(const ConstrainedSolver& s, const core::Vector& rhs,
                          core::Vector& x) const;
   void form_explicit();
+  void form_scaled();           // Σ and Σ F Σ from f_dense_
+  void form_by_solves();        // F column blocks by multi-right-hand-side solves
+  bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
 
   const ConstrainedSolver& slave_;
   const ConstrainedSolver& master_;
@@ -71,9 +123,12 @@ class DualContactSolver {
   ContactRows rows_;
   DualOperator kind_ = DualOperator::matrix_free;
   core::Handle<::Mat, MatDestroy> f_dense_;
+  core::Handle<::Mat, MatDestroy> f_scaled_;  // Σ F Σ (explicit and settings_.scale)
+  std::vector<double> sigma_;                 // the diagonal of Σ, per row
   int setup_solves_ = 0;
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
+  DofCompliance compliance_[2];  // slave, master
   mutable core::Vector ws_, wm_, ys_, ym_, zs_, zm_;
 };
 

@@ -32,7 +32,7 @@ core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
 const char* phase_of(std::string_view what) {
   if (what == "temperature") return "heat step (5.6)";
   if (what == "displacement") return "mechanical step (5.3)";
-  if (what.starts_with("u =")) return "contact QP (6.9)";
+  if (what.starts_with("u =") || what == "contact multiplier") return "contact QP (6.9)";
   return "bookkeeping";
 }
 
@@ -40,6 +40,84 @@ void require_finite(const core::Vector& v, const char* what, int step, int itera
   if (!v.all_finite())
     throw NumericalError(fmt::format("{}: {} is not finite (NaN or Inf)", phase_of(what), what),
                          step, iteration, std::nan(""));
+}
+
+/// The mean contact traction of a step per unit of λ. The contact-stabilised Newmark puts the
+/// whole step's contact impulse on λ^{k+1}: its position update has τ²/4 Bᵀλ^{k+1} where every
+/// other force enters as τ²/4 (F^k + F^{k+1}), so at rest 2(f − K u) = Bᵀλ, and the contact's
+/// work in the discrete energy identity is ½ λᵀB(u^{k+1} − u^k). λ/2 is the traction there
+/// (pressure for the conductance, force and work for the history); plain Newmark and the
+/// quasistatic scheme have λ^{k+1} itself. The QP's bounds 𝔉λ_n are homogeneous: unchanged.
+double traction_per_multiplier(bool stabilised) {
+  return stabilised ? 0.5 : 1.0;
+}
+
+/// The work of friction in a step per contact node [J], W_k = λ_τ,k · (B_τ(u − u^k))_k (λ_τ a
+/// traction, B_τ carries the weights). It is what leaves the mechanical energy: with Newmark's
+/// average acceleration the discrete energy identity holds with λᵀB(u^{k+1} − u^k) as the
+/// contact's work, and B_τ(u^{k+1} − u^k) = τ B_τ(u̇^k + u̇^{k+1})/2 is the slip of the step
+/// (quasistatic: τ B_τu̇^{k+1}). W_k/τ is the step's mean of 𝔉γ‖[u̇]_τ‖ w_k of d_θγ (2.13,
+/// §4.4): on a node sliding steadily λ_τ,k ∥ its slip with ‖λ_τ,k‖ = 𝔉λ_n,k. The power at
+/// t^{k+1} alone, λ_τ·B_τu̇^{k+1}, would follow Newmark's step-to-step oscillation of u̇ (2v, 0,
+/// 2v, … after a sudden start; docs/choices.md). W_k < 0 only where the slip reverses within a
+/// step (nonnegative_heat).
+std::vector<double> friction_work(const ContactRows& rows, std::span<const double> lambda,
+                                  std::span<const double> slip) {
+  const int dim = rows.dim;
+  std::vector<double> work(static_cast<size_t>(rows.n_nodes()), 0.0);
+  for (PetscInt k = 0; k < rows.n_nodes(); ++k)
+    for (int l = 1; l < dim; ++l) work[k] += lambda[dim * k + l] * slip[dim * k + l];
+  return work;
+}
+
+/// B(u_s − u_s^k) + B(u_m − u_m^k), node-major (the normal rows are not used).
+std::vector<double> step_slip(const ContactRows& rows, const core::Vector& du_slave,
+                              const core::Vector& du_master) {
+  core::Vector inc(rows.n_rows());
+  rows.slave.mult(du_slave, inc);
+  rows.master.mult_add(du_master, inc);
+  return inc.to_std();
+}
+
+/// Nodal heat inputs of one body from the contact nodes' powers P_k ≥ 0 and the mortar matrix
+/// X (D for the slave, M for the master): q_j = share Σ_k P_k X⁺_kj / Σ_j' X⁺_kj', X⁺ = max(X, 0).
+/// With a flux density Σ_k (P_k/D_kk) ψ_k this is its integral against the body's shape
+/// functions (∫ψ_kφ_j = X_kj, Σ_j X_kj = D_kk where the master covers ψ_k's support); the
+/// dual basis ψ_k is negative on part of its support, so M has negative entries (measured in
+/// example 06: 7 master nodes, −17 W of 4.9e5 W), which would cool them: X⁺ keeps every input
+/// ≥ 0, and the row sums make 1ᵀq = share·ΣP exactly, also where the master covers part of it.
+std::vector<double> distribute(std::span<const double> power, double share,
+                               const core::SparseMatrix& x) {
+  std::vector<double> out(static_cast<size_t>(x.cols()), 0.0);
+  for (PetscInt k = 0; k < x.rows(); ++k) {
+    PetscInt nz = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    TC_PETSC(MatGetRow(x.get(), k, &nz, &cols, &vals));
+    double sum = 0;
+    for (PetscInt q = 0; q < nz; ++q) sum += std::max(vals[q], 0.0);
+    if (sum > 0)
+      for (PetscInt q = 0; q < nz; ++q)
+        out[cols[q]] += share * power[k] * std::max(vals[q], 0.0) / sum;
+    TC_PETSC(MatRestoreRow(x.get(), k, &nz, &cols, &vals));
+  }
+  return out;
+}
+
+/// The heat of a step per contact node from the friction work W_k: where the slip of the step
+/// opposes λ_τ,k (the slip reverses within the step — the contact nodes' undamped Newmark
+/// chatter; example 06: 5–8 of 42 nodes, −6e4 W against +2e5 W while sliding) W_k < 0 would
+/// be a heat sink. The step's total Σ_k W_k, the mechanical dissipation, is kept and spread
+/// in proportion to the positive parts; a step with Σ W ≤ 0 keeps W as it is.
+std::vector<double> nonnegative_heat(std::vector<double> work) {
+  double total = 0, positive = 0;
+  for (const double w : work) {
+    total += w;
+    positive += std::max(w, 0.0);
+  }
+  if (total > 0 && positive > total)
+    for (double& w : work) w = std::max(w, 0.0) * (total / positive);
+  return work;
 }
 
 }  // namespace
@@ -289,15 +367,28 @@ void Simulation::contact_heat_step(int iteration) {
     const auto& rows = dual_->rows();
     const auto lv = lambda_.read();
     gamma.resize(static_cast<size_t>(rows.n_nodes()));
-    for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = std::max(lv[rows.dim * k], 0.0);
+    const double unit = traction_per_multiplier(stabiliser_ != nullptr);
+    for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = unit * std::max(lv[rows.dim * k], 0.0);
     if (static_cast<size_t>(rows.n_nodes()) != mortar_->contact_nodes().size())
       throw Error("thermal contact: the multipliers do not match the mortar pair's nodes");
   }
   if (mortar_ && c.frictional_heating && c.friction > 0) {
-    velocity_iterate(sb);
-    velocity_iterate(mb);
-    frictional_heat_ = mortar_->frictional_heat(gamma, c.friction, delta_c_, ss.velocity.to_std(),
-                                                sm.velocity.to_std());
+    // d_θγ from the multipliers: the friction work of the step λ_τ,k·(B_τ(u − u^k))_k per
+    // contact node over τ, δ_C of it to the slave through D, 1 − δ_C to the master through M;
+    // contact_bookkeeping sums the same work at u^{k+1}: heat = dissipation by construction.
+    const double tau = problem_.time.step;
+    for (auto [s, st] : {std::pair{&ss, &states_[sb]}, {&sm, &states_[mb]}}) {
+      s->velocity.copy_from(s->u_new);  // (the thermoelastic term of heat_rhs used it above)
+      s->velocity.axpy(-1.0, st->u);
+    }
+    std::vector<double> power = nonnegative_heat(
+        friction_work(dual_->rows(), lambda_.to_std(),
+                      iterate_slip_.empty() ? step_slip(dual_->rows(), ss.velocity, sm.velocity)
+                                            : iterate_slip_));
+    for (double& p : power) p *= traction_per_multiplier(stabiliser_ != nullptr) / tau;
+    for (const double p : power) frictional_heat_.total += p;
+    frictional_heat_.slave = distribute(power, delta_c_, mortar_->d_matrix());
+    frictional_heat_.master = distribute(power, 1.0 - delta_c_, mortar_->m_matrix());
     for (auto [s, d] : {std::pair{&ss, &frictional_heat_.slave}, {&sm, &frictional_heat_.master}}) {
       auto rv = s->rhs_theta.view();
       for (size_t a = 0; a < d->size(); ++a) rv[static_cast<PetscInt>(a)] += (*d)[a];
@@ -510,16 +601,37 @@ void Simulation::warm_start(const ContactRows& rows) {
   const std::vector<double> previous = lambda_.get() ? lambda_.to_std() : std::vector<double>{};
   lambda_ = core::Vector(rows.n_rows());
   auto lv = lambda_.view();
+  // The mortar pair's tangents of a node may turn from one step to the next (measured on
+  // example 06: 0.19 rad per step on average, up to π/2, the basis of the tangent plane being
+  // arbitrary): λ_τ is carried over as the traction vector Σ_l λ_τ,l t_l, in the new basis.
+  const bool turn = mortar_ && dim == 3 && !lambda_tangents_[0].empty();
   if (!rows.nodes.empty() && !lambda_nodes_.empty()) {
     std::map<int, size_t> where;
     for (size_t k = 0; k < lambda_nodes_.size(); ++k) where[lambda_nodes_[k]] = k;
     for (size_t k = 0; k < rows.nodes.size(); ++k)
-      if (const auto it = where.find(rows.nodes[k]); it != where.end())
-        for (int i = 0; i < dim; ++i) lv[dim * k + i] = previous[dim * it->second + i];
+      if (const auto it = where.find(rows.nodes[k]); it != where.end()) {
+        const size_t j = it->second;
+        for (int i = 0; i < dim; ++i) lv[dim * k + i] = previous[dim * j + i];
+        if (!turn || k >= mortar_->tangents(0).size()) continue;
+        std::array<double, 3> traction{0, 0, 0};
+        for (int l = 0; l < 2; ++l)
+          for (int x = 0; x < 3; ++x)
+            traction[x] += previous[dim * j + 1 + l] * lambda_tangents_[l][j][x];
+        for (int l = 0; l < 2; ++l) {
+          const auto& t = mortar_->tangents(l)[k];
+          lv[dim * k + 1 + l] = traction[0] * t[0] + traction[1] * t[1] + traction[2] * t[2];
+        }
+      }
   } else if (static_cast<PetscInt>(previous.size()) == rows.n_rows()) {
     for (PetscInt i = 0; i < rows.n_rows(); ++i) lv[i] = previous[i];
   }
   lambda_nodes_ = rows.nodes;
+  if (mortar_ && dim == 3)
+    for (int l = 0; l < 2; ++l) lambda_tangents_[l] = mortar_->tangents(l);
+}
+
+double Simulation::traction_per_multiplier() const {
+  return physics::traction_per_multiplier(stabiliser_ != nullptr);
 }
 
 std::vector<double> Simulation::contact_multipliers() const {
@@ -581,6 +693,13 @@ int Simulation::couple_contact() {
   double omega = 1.0;
   contact_stats_.operator_applications += dual_->setup_solves() / 2;
   core::Vector lambda_prev = lambda_.clone();
+  // u = u_free − A⁻¹Bᵀλ costs two solves; inside the fixed point only B u is needed (the
+  // frictional heat's slip, = B u_free − Fλ) unless the thermoelastic term wants u̇ of the
+  // whole body. Then u is formed once, after convergence.
+  const bool defer = !(ss.heating || sm.heating);
+  iterate_slip_.clear();
+  std::vector<double> bu_old;  // B u^k
+  if (defer) bu_old = step_slip(rows, sts.u, stm.u);
   const double tol = problem_.solver.coupling_tolerance;
   const int step = step_ + 1;
   int iteration = 1;
@@ -597,15 +716,24 @@ int Simulation::couple_contact() {
       ss.u_prev.copy_from(ss.u_new);
       sm.u_prev.copy_from(sm.u_new);
       const auto r =
-          dual_->solve(ss.u_prev, sm.u_prev, targets, bound, lambda_, ss.u_new, sm.u_new);
+          dual_->solve(ss.u_prev, sm.u_prev, targets, bound, lambda_, ss.u_new, sm.u_new, !defer);
       contact_stats_.qp_iterations += r.iterations;
       contact_stats_.operator_applications += r.operator_applications;
       if (!r.converged())
         throw NumericalError(fmt::format("the contact QP (6.9) did not converge: {}", r.message),
                              step, iteration, r.projected_gradient);
+      if (defer) {
+        core::Vector bu;
+        dual_->constraint_values(ss.u_prev, sm.u_prev, lambda_, bu);
+        iterate_slip_ = bu.to_std();
+        for (size_t i = 0; i < iterate_slip_.size(); ++i) iterate_slip_[i] -= bu_old[i];
+      }
     }
-    require_finite(ss.u_new, "u = u_free − A⁻¹Bᵀλ", step, iteration);
-    require_finite(sm.u_new, "u = u_free − A⁻¹Bᵀλ", step, iteration);
+    require_finite(lambda_, "contact multiplier", step, iteration);
+    if (!defer) {
+      require_finite(ss.u_new, "u = u_free − A⁻¹Bᵀλ", step, iteration);
+      require_finite(sm.u_new, "u = u_free − A⁻¹Bᵀλ", step, iteration);
+    }
     double fixed_residual = 0;  // ‖λ_n(γ) − γ‖ (relaxed: the change of λ alone may mislead)
     if (relax) {
       {
@@ -646,16 +774,20 @@ int Simulation::couple_contact() {
     throw NumericalError(
         fmt::format("the staggered fixed point (6.3) with contact did not converge to {:.1e}", tol),
         step, iteration - 1, change);
+  iterate_slip_.clear();
+  if (defer) {  // u_new holds u_free of the last iteration
+    auto scope = timers_.scope("qp");
+    dual_->recover(lambda_, ss.u_new, sm.u_new);
+  }
+  require_finite(ss.u_new, "displacement", step, iteration);
+  require_finite(sm.u_new, "displacement", step, iteration);
 
   // The slip increment B_τ(u^{k+1} − u^k) for the dissipation, before the state moves on.
   ss.work_u.copy_from(ss.u_new);
   ss.work_u.axpy(-1.0, sts.u);
   sm.work_u.copy_from(sm.u_new);
   sm.work_u.axpy(-1.0, stm.u);
-  core::Vector inc(rows.n_rows());
-  rows.slave.mult(ss.work_u, inc);
-  rows.master.mult_add(sm.work_u, inc);
-  slip_ = inc.to_std();
+  slip_ = step_slip(rows, ss.work_u, sm.work_u);
   // Heat through the interface in this step, with the L and d of the last heat step (those
   // that produced θ^{k+1}): then the thermal energy balance of the pair closes to round-off.
   heat_.generated += tau * frictional_heat_.total;
@@ -681,18 +813,16 @@ void Simulation::contact_bookkeeping() {
   auto& cs = contact_stats_;
   cs.normal_force = cs.tangential_force = 0;
   cs.active_nodes = cs.slip_nodes = 0;
+  const double unit = traction_per_multiplier(stabiliser_ != nullptr);
+  for (const double w : friction_work(rows, l, slip_)) cs.dissipation += unit * w;
   for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
     const double w = rows.weights[k];
     const double ln = l[dim * k];
-    double lt2 = 0, work = 0;
-    for (int i = 1; i < dim; ++i) {
-      lt2 += l[dim * k + i] * l[dim * k + i];
-      work += l[dim * k + i] * slip_[dim * k + i];
-    }
+    double lt2 = 0;
+    for (int i = 1; i < dim; ++i) lt2 += l[dim * k + i] * l[dim * k + i];
     const double lt = std::sqrt(lt2);
-    cs.normal_force += w * ln;
-    cs.tangential_force += w * lt;
-    cs.dissipation += work;  // λ_τ is a traction, B_τ Δu already carries the weights
+    cs.normal_force += unit * w * ln;
+    cs.tangential_force += unit * w * lt;
     if (ln > 0) {
       ++cs.active_nodes;
       if (friction > 0 && lt >= friction * ln * (1 - 1e-6)) ++cs.slip_nodes;
@@ -714,7 +844,7 @@ void Simulation::contact_bookkeeping() {
       for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
         if (ds[k] <= 0) continue;
         const double jump = ts[mortar_->contact_nodes()[k]] - mt[k] / ds[k];
-        heat_flux_[k] = beta_c_ * std::max(l[dim * k], 0.0) * jump;
+        heat_flux_[k] = beta_c_ * unit * std::max(l[dim * k], 0.0) * jump;
       }
     }
   }

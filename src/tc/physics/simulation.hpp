@@ -6,6 +6,7 @@
 //
 // Contract of run(): the observer sees start() once, then step() for t = 0 and for every
 // completed step in order, then finish() exactly once, also when the run stops early.
+#include <array>
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -60,9 +61,12 @@ enum class ConductanceTreatment {
 };
 
 /// Heat through the contact interface, cumulative from t = 0 [J] (history.csv):
-///  generated = Σ_steps τ ∫ 𝔉 λ_n ‖[u̇]_τ‖ dS, to_slave / to_master its δ_C / 1 − δ_C shares,
+///  generated = Σ_steps λ_τᵀB_τΔu (the friction work of the step, the discrete τ∫𝔉λ_n‖[u̇]_τ‖dS;
+///  = frictional_dissipation), to_slave / to_master its δ_C / 1 − δ_C shares,
 ///  conducted = Σ_steps τ β_C ∫ λ_n (θ_s − θ_m) dS: the heat that crossed by conductance from
-///  the slave to the master (negative when it went the other way), θ at t^{k+1}.
+///  the slave to the master (negative when it went the other way), θ at t^{k+1}. With the
+///  contact-stabilised Newmark λ/2 is the traction (simulation.cpp, traction_per_multiplier):
+///  these sums, the conductance and the history's forces use it.
 struct ContactHeat {
   double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
 };
@@ -120,6 +124,9 @@ class Simulation {
   [[nodiscard]] const ContactStatistics& contact_statistics() const { return contact_stats_; }
   /// The contact multipliers of the last step, node-major [λ_n, λ_τ…] (empty without contact).
   [[nodiscard]] std::vector<double> contact_multipliers() const;
+  /// The contact traction per unit multiplier: ½ with the contact-stabilised Newmark (λ is
+  /// twice the step's mean traction there, docs/choices.md), 1 otherwise.
+  [[nodiscard]] double traction_per_multiplier() const;
   [[nodiscard]] const DualContactSolver* dual_solver() const { return dual_.get(); }
   /// Implicit (default) or lagged conductance; for measurements (docs/choices.md).
   void set_conductance_treatment(ConductanceTreatment t) { conductance_treatment_ = t; }
@@ -130,9 +137,9 @@ class Simulation {
   [[nodiscard]] double beta_c() const { return beta_c_; }
   [[nodiscard]] double delta_c() const { return delta_c_; }
   /// Per contact node of the last step (order of the multipliers): q_C^s conduction part
-  /// β_C λ_n [θ], [θ] = θ_s − θ_m (θ_m of the master at the node, (Mθ_m)_k/(D1)_k), in W/m²:
-  /// the heat flux out of the slave into the master (positive when the slave is hotter).
-  /// Zero with heat_conduction = false; empty without the mortar pair.
+  /// β_C λ_n [θ] (λ_n/2 with the contact-stabilised scheme), [θ] = θ_s − θ_m (θ_m of the master at
+  /// the node, (Mθ_m)_k/(D1)_k), in W/m²: the heat flux out of the slave into the master (positive
+  /// when the slave is hotter). Zero with heat_conduction = false; empty without the mortar pair.
   [[nodiscard]] const std::vector<double>& contact_heat_flux() const { return heat_flux_; }
   /// The solver of the implicit heat step (null until conductance first appears).
   [[nodiscard]] const InterfaceHeatSolver* interface_heat_solver() const {
@@ -215,7 +222,10 @@ class Simulation {
   std::unique_ptr<DualContactSolver> stabiliser_;  // the mass projection (contact-stabilised)
   core::Vector lambda_;
   std::vector<int> lambda_nodes_;  // slave mesh node of each contact node of lambda_
-  std::vector<double> slip_;       // B_τ Δu of the last step (node-major, normal rows unused)
+  std::vector<std::array<double, 3>> lambda_tangents_[2];  // tangents lambda_'s λ_τ refer to
+  std::vector<double> slip_;  // B_τ Δu of the last step (node-major, normal rows unused)
+  // B(u − u^k) of the current iterate while couple_contact defers forming u (empty: from u)
+  std::vector<double> iterate_slip_;
   ContactStatistics contact_stats_;
 
   // Thermal contact (2.13, §4.4), with the mortar pair only.
