@@ -18,14 +18,19 @@
 // A solver that does not converge within the budget (applications or seconds) is reported as
 // such, never as a count.
 //
-//   build/bin/bench_qp [--sizes 1000,10000,100000] [--plain-sizes 10000|none]
-//                      [--kappas 1e2,1e4,1e6]
-//                      [--active 0.1,0.5,0.9] [--rtol 1e-6] [--contact 24,24,8]
-//                      [--max-applications N] [--max-seconds S]
+//   build/bin/bench_qp [--sizes 1000,10000,100000|none] [--plain-sizes 10000|none]
+//                      [--disc-sizes NODES,...|none] [--kappas 1e2,1e4,1e6]
+//                      [--active 0.1,0.5,0.9] [--rtol 1e-6] [--contact 24,24,8|none]
+//                      [--max-applications N] [--max-seconds S] [--variants] [--mprgp-only]
 //                      [--lanczos STEPS] [--lanczos-tolerance T] [--alpha C] [--gamma Γ]
-//                      [--full-gradient-expansion]
+//                      [--full-gradient-expansion] [--projected-cg-expansion]
+//                      [--expansion-step fixed|cauchy|bb] [--arc-step fixed|cauchy|bb]
+//                      [--proportioning reduced|free]
 //                      [PETSc options]
-// (the last four change MPRGP's options from the qp layer's defaults, for experiments)
+// (the options from --lanczos on change MPRGP's options from the qp layer's defaults, for
+// experiments; --variants adds a second table with every strategy of strategy_variants() on
+// every instance; --disc-sizes adds 3D contact nodes with friction discs, MPGP only;
+// --mprgp-only skips TAO and CG)
 #include <fmt/format.h>
 
 #include <algorithm>

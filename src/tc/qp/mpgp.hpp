@@ -33,7 +33,7 @@ enum class ExpansionStep {
 
 /// When is x proportional (CG goes on in the face) rather than released by proportioning?
 enum class ProportioningTest {
-  reduced,  // ‖β‖² ≤ Γ² g̃ᵀφ with the reduced free gradient g̃ (Dostál 2009, (5.55))
+  reduced,  // ‖β‖² ≤ Γ² g̃ᵀφ with the reduced free gradient g̃ (Dostál 2009, Alg. 5.8)
   free,  // ‖β‖² ≤ Γ² φᵀφ (PERMON): g̃ᵀφ ≤ φᵀφ, so proportioning happens less often
 };
 
@@ -49,6 +49,7 @@ struct QpOptions {
   /// ᾱλ_max ≥ 1.9/1.05 ≈ 1.81, still near the edge of (0, 2] (docs/choices.md). 0 = all steps.
   double lanczos_tolerance = 0.05;
   Expansion expansion = Expansion::free_gradient;
+  // The defaults below were measured against the alternatives: docs/choices.md, bench/qp.
   ExpansionStep expansion_step = ExpansionStep::fixed;
   /// The same choice for the projected gradient move that replaces a proportioning step when
   /// a disc's tangent leaves its circle at once (MPGP only).
