@@ -71,7 +71,9 @@ struct State {
   /// proportioning step): the Barzilai–Borwein length for the next expansion; 0 = none yet.
   double last_inverse_rayleigh = 0;
   void remember_step(const Vector& s, double sfs) {
-    if (sfs > 0) last_inverse_rayleigh = s.dot(s) / sfs;
+    const bool needed = opt.expansion_step == ExpansionStep::barzilai_borwein ||
+                        opt.arc_step == ExpansionStep::barzilai_borwein;
+    if (needed && sfs > 0) last_inverse_rayleigh = s.dot(s) / sfs;  // the dot only if used
   }
 
   void apply(const Vector& in, Vector& out) {

@@ -49,14 +49,15 @@ struct QpOptions {
   /// ᾱλ_max ≥ 1.9/1.05 ≈ 1.81, still near the edge of (0, 2] (docs/choices.md). 0 = all steps.
   double lanczos_tolerance = 0.05;
   Expansion expansion = Expansion::free_gradient;
-  // The defaults below were measured against the alternatives: docs/choices.md, bench/qp.
+  /// Optional SPD preconditioner applied to the free gradient in the face (masked); null = none.
+  const LinearOperator* preconditioner = nullptr;
+  // Added last, so that existing aggregate initialisations keep their meaning. The defaults
+  // were measured against the alternatives: docs/choices.md, bench/RESULTS.md (bench/qp).
   ExpansionStep expansion_step = ExpansionStep::fixed;
   /// The same choice for the projected gradient move that replaces a proportioning step when
   /// a disc's tangent leaves its circle at once (MPGP only).
   ExpansionStep arc_step = ExpansionStep::fixed;
   ProportioningTest proportioning_test = ProportioningTest::reduced;
-  /// Optional SPD preconditioner applied to the free gradient in the face (masked); null = none.
-  const LinearOperator* preconditioner = nullptr;
 };
 
 enum class QpStatus { converged, max_iterations, breakdown };
@@ -72,9 +73,9 @@ struct [[nodiscard]] QpResult {
   int cg_steps = 0, expansion_steps = 0, proportioning_steps = 0;
   int cauchy_steps = 0;     // proportioning steps taken as projected Cauchy steps along an arc
   int step_halvings = 0;    // ᾱ halved after an expansion that raised f (λ_max underestimated)
+  std::string message;      // why it stopped, with the numbers
   int long_expansions = 0;  // expansion moves longer than ᾱ (ExpansionStep, projected CG) kept
   int fallbacks = 0;        // ... and rejected because f rose (the ᾱ move taken instead)
-  std::string message;      // why it stopped, with the numbers
   [[nodiscard]] bool converged() const { return status == QpStatus::converged; }
 };
 
