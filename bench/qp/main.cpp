@@ -18,14 +18,19 @@
 // A solver that does not converge within the budget (applications or seconds) is reported as
 // such, never as a count.
 //
-//   build/bin/bench_qp [--sizes 1000,10000,100000] [--plain-sizes 10000|none]
-//                      [--kappas 1e2,1e4,1e6]
-//                      [--active 0.1,0.5,0.9] [--rtol 1e-6] [--contact 24,24,8]
-//                      [--max-applications N] [--max-seconds S]
+//   build/bin/bench_qp [--sizes 1000,10000,100000|none] [--plain-sizes 10000|none]
+//                      [--disc-sizes NODES,...|none] [--kappas 1e2,1e4,1e6]
+//                      [--active 0.1,0.5,0.9] [--rtol 1e-6] [--contact 24,24,8|none]
+//                      [--max-applications N] [--max-seconds S] [--variants] [--mprgp-only]
 //                      [--lanczos STEPS] [--lanczos-tolerance T] [--alpha C] [--gamma Γ]
-//                      [--full-gradient-expansion]
+//                      [--full-gradient-expansion] [--projected-cg-expansion]
+//                      [--expansion-step fixed|cauchy|bb] [--arc-step fixed|cauchy|bb]
+//                      [--proportioning reduced|free]
 //                      [PETSc options]
-// (the last four change MPRGP's options from the qp layer's defaults, for experiments)
+// (the options from --lanczos on change MPRGP's options from the qp layer's defaults, for
+// experiments; --variants adds a second table with every strategy of strategy_variants() on
+// every instance; --disc-sizes adds 3D contact nodes with friction discs, MPGP only;
+// --mprgp-only skips TAO and CG)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -55,20 +60,57 @@ double since(Clock::time_point t0) {
 
 std::vector<double> parse_list(const std::string& s) {
   std::vector<double> out;
+  if (s == "none") return out;
   std::stringstream in(s);
   std::string item;
   while (std::getline(in, item, ',')) out.push_back(std::stod(item));
   return out;
 }
 
+/// MPRGP/MPGP strategies measured side by side with --variants (docs/choices.md).
+struct Variant {
+  std::string name;
+  tc::qp::QpOptions options;
+};
+
+std::vector<Variant> strategy_variants() {
+  using tc::qp::Expansion, tc::qp::ExpansionStep, tc::qp::ProportioningTest;
+  std::vector<Variant> v;
+  auto add = [&](std::string name, auto&& change) {
+    tc::qp::QpOptions o;
+    change(o);
+    v.push_back({std::move(name), o});
+  };
+  add("ᾱ fixed, Γ = 1 (default)", [](auto&) {});
+  add("BB length", [](auto& o) {
+    o.expansion_step = ExpansionStep::barzilai_borwein;
+    o.arc_step = ExpansionStep::barzilai_borwein;
+  });
+  add("Cauchy length", [](auto& o) {
+    o.expansion_step = ExpansionStep::cauchy;
+    o.arc_step = ExpansionStep::cauchy;
+  });
+  add("PERMON test ‖β‖ ≤ Γ‖φ‖", [](auto& o) { o.proportioning_test = ProportioningTest::free; });
+  add("Γ = 4", [](auto& o) { o.gamma = 4; });
+  add("proj. CG, Γ = 1", [](auto& o) { o.expansion = Expansion::projected_cg; });
+  add("proj. CG, Γ = 4", [](auto& o) {
+    o.expansion = Expansion::projected_cg;
+    o.gamma = 4;
+  });
+  return v;
+}
+
 struct Settings {
   std::vector<double> sizes{1e3, 1e4, 1e5}, kappas{1e2, 1e4, 1e6}, active{0.1, 0.5, 0.9};
   std::vector<double> plain_sizes{1e4};    // random_qp unscaled, 50 % active
+  std::vector<double> disc_sizes{};        // scaled_disc_qp nodes (MPGP only), 50 % in contact
   std::vector<double> contact{24, 24, 8};  // cells of the block; empty: no contact instance
   double rtol = 1e-6;
   tc::qp::QpOptions mprgp;  // --lanczos, --alpha, --gamma, --full-gradient-expansion
   long max_applications = 200000;
   double max_seconds = 60;
+  bool mprgp_only = false;        // experiments: skip TAO and CG
+  std::vector<Variant> variants;  // --variants: strategy_variants(), a second table
 };
 
 /// One solver's outcome on one instance, as printed.
@@ -79,9 +121,11 @@ struct Cell {
   double seconds = 0;
   double difference = 0;  // ‖x − x_MPRGP‖∞ / ‖x_MPRGP‖∞ (constrained solvers)
 
-  long estimate = 0;  // of which the λ_max estimate (MPRGP)
+  long estimate = 0;     // of which the λ_max estimate (MPRGP)
+  bool skipped = false;  // not run (TAO and CG on the disc instances)
 
   [[nodiscard]] std::string text() const {
+    if (skipped) return "—";
     if (converged && estimate > 0)
       return fmt::format("{} [{}] ({:.2f} s)", applications, applications - estimate, seconds);
     if (converged) return fmt::format("{} ({:.2f} s)", applications, seconds);
@@ -95,6 +139,7 @@ struct Row {
   std::string kappa, active;
   Cell mprgp, mprgp_pc, bqpip, gpcg, blmvm, cg;  // mprgp_pc: preconditioned in face
   int n_active = 0;                              // active bounds at MPRGP's solution
+  std::vector<Cell> variants;                    // Settings::variants, in order
 };
 
 double relative_difference(const Vector& x, const Vector& ref) {
@@ -115,7 +160,7 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
   opt.max_iterations = static_cast<int>(std::min<long>(s.max_applications, 1000000));
   Vector x_m = d.duplicate();
   auto t0 = Clock::now();
-  const auto rm = tc::qp::Mprgp(f, set, opt).solve(d, x_m);
+  const auto rm = tc::qp::Mpgp(f, set, opt).solve(d, x_m);  // = Mprgp without discs
   row.mprgp.seconds = since(t0);
   row.mprgp.applications = rm.operator_applications;
   // The share of the λ_max estimate (deterministic: the same call again, not counted).
@@ -126,15 +171,34 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
   row.mprgp.converged = rm.converged();
   row.mprgp.capped = rm.status == tc::qp::QpStatus::max_iterations;
   row.n_active = static_cast<int>(set.count_active(x_m));
-  fmt::print(stderr, "  MPRGP {} ({} cg, {} expansion, {} proportioning, {} halvings) {:.2f} s\n",
-             rm.operator_applications, rm.cg_steps, rm.expansion_steps, rm.proportioning_steps,
-             rm.step_halvings, row.mprgp.seconds);
+  fmt::print(stderr,
+             "  MPRGP {} ({} cg, {} expansion ({} long, {} fall-backs), {} proportioning, {} "
+             "halvings) {:.2f} s\n",
+             rm.operator_applications, rm.cg_steps, rm.expansion_steps, rm.long_expansions,
+             rm.fallbacks, rm.proportioning_steps, rm.step_halvings, row.mprgp.seconds);
+  for (const auto& v : s.variants) {
+    tc::qp::QpOptions vo = v.options;
+    vo.rtol = opt.rtol;
+    vo.max_iterations = opt.max_iterations;
+    Vector x = d.duplicate();
+    t0 = Clock::now();
+    const auto rv = tc::qp::Mpgp(f, set, vo).solve(d, x);
+    Cell c;
+    c.seconds = since(t0);
+    c.applications = rv.operator_applications;
+    c.converged = rv.converged();
+    c.capped = rv.status == tc::qp::QpStatus::max_iterations;
+    c.difference = relative_difference(x, x_m);
+    row.variants.push_back(c);
+    fmt::print(stderr, "  variant {}: {} ({} long, {} fall-backs) {:.2f} s\n", v.name,
+               c.applications, rv.long_expansions, rv.fallbacks, c.seconds);
+  }
   if (preconditioner) {
     tc::qp::QpOptions pc = opt;
     pc.preconditioner = preconditioner;
     Vector x = d.duplicate();
     t0 = Clock::now();
-    const auto rp = tc::qp::Mprgp(f, set, pc).solve(d, x);
+    const auto rp = tc::qp::Mpgp(f, set, pc).solve(d, x);
     row.mprgp_pc.seconds = since(t0);
     row.mprgp_pc.applications = rp.operator_applications;
     row.mprgp_pc.estimate = row.mprgp.estimate;
@@ -148,6 +212,10 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
         row.mprgp_pc.seconds, row.mprgp_pc.difference);
   }
 
+  // TAO's bound-constrained solvers cannot take discs; CG is left out there as well.
+  if (set.has_discs())
+    for (Cell* c : {&row.bqpip, &row.gpcg, &row.blmvm, &row.cg}) c->skipped = true;
+  if (s.mprgp_only || set.has_discs()) return;
   Vector lower = d.duplicate(), upper = d.duplicate();
   tc::test::interval_bounds(set, lower, upper);
   tc::test::CountingShell shell(f);
@@ -313,6 +381,38 @@ tc::test::QpProblem scaled_qp(long n, double kappa, double active, std::uint64_t
   return p;
 }
 
+/// The 3D contact instance of random_qp (per node: a free multiplier, λ_n ≥ 0 and a friction
+/// disc of radius 0.9 λ_n*) with κ(F₀) ≤ 10, scaled like scaled_qp but with one factor per
+/// node, so that a disc stays a disc (of radius r/D_b) and the bound at 0 stays at 0.
+tc::test::QpProblem scaled_disc_qp(long nodes, double kappa, double active, std::uint64_t seed) {
+  using tc::test::QpKind;
+  auto p = tc::test::random_qp(PETSC_COMM_SELF, nodes, QpKind::contact3d, 10.0, active, 0.0, seed);
+  Vector scale = p.d.duplicate();
+  std::vector<double> node_scale(static_cast<size_t>(nodes));
+  {
+    std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ULL);
+    std::uniform_real_distribution<double> u(0.0, 0.5 * std::log10(kappa / 10.0));
+    auto v = scale.view();
+    for (long b = 0; b < nodes; ++b) {
+      node_scale[b] = std::pow(10.0, u(rng));
+      for (int k = 0; k < 4; ++k) v[4 * b + k] = node_scale[b];
+    }
+  }
+  TC_PETSC(MatDiagonalScale(p.f.get(), scale.get(), scale.get()));
+  TC_PETSC(VecPointwiseDivide(p.x_star.get(), p.x_star.get(), scale.get()));
+  TC_PETSC(VecPointwiseMult(p.g_star.get(), p.g_star.get(), scale.get()));
+  TC_PETSC(MatMult(p.f.get(), p.x_star.get(), p.d.get()));
+  p.d.axpy(-1.0, p.g_star);
+  p.set = tc::qp::FeasibleSet(p.d);
+  for (long b = 0; b < nodes; ++b) {
+    p.set.set_interval(static_cast<PetscInt>(4 * b + 1), {0.0, tc::qp::infinity});
+    const auto i = static_cast<PetscInt>(4 * b);
+    p.set.add_disc({i + 2, i + 3, {p.radius[b] / node_scale[b]}});
+  }
+  p.kappa_bound *= kappa / 10.0;
+  return p;
+}
+
 std::string kappa_text(double k) {
   return fmt::format("1e{}", std::lround(std::log10(k)));
 }
@@ -330,6 +430,9 @@ int main(int argc, char** argv) {
     else if (a == "--plain-sizes") {
       const auto v = value();
       s.plain_sizes = v == "none" ? std::vector<double>{} : parse_list(v);
+    } else if (a == "--disc-sizes") {
+      const auto v = value();
+      s.disc_sizes = v == "none" ? std::vector<double>{} : parse_list(v);
     } else if (a == "--kappas")
       s.kappas = parse_list(value());
     else if (a == "--active")
@@ -351,6 +454,25 @@ int main(int argc, char** argv) {
       s.mprgp.gamma = std::stod(value());
     else if (a == "--full-gradient-expansion")
       s.mprgp.expansion = tc::qp::Expansion::full_gradient;
+    else if (a == "--projected-cg-expansion")
+      s.mprgp.expansion = tc::qp::Expansion::projected_cg;
+    else if (a == "--expansion-step") {
+      const auto v = value();
+      s.mprgp.expansion_step = v == "fixed"    ? tc::qp::ExpansionStep::fixed
+                               : v == "cauchy" ? tc::qp::ExpansionStep::cauchy
+                                               : tc::qp::ExpansionStep::barzilai_borwein;
+    } else if (a == "--arc-step") {
+      const auto v = value();
+      s.mprgp.arc_step = v == "fixed"    ? tc::qp::ExpansionStep::fixed
+                         : v == "cauchy" ? tc::qp::ExpansionStep::cauchy
+                                         : tc::qp::ExpansionStep::barzilai_borwein;
+    } else if (a == "--proportioning")
+      s.mprgp.proportioning_test =
+          value() == "free" ? tc::qp::ProportioningTest::free : tc::qp::ProportioningTest::reduced;
+    else if (a == "--variants")
+      s.variants = strategy_variants();
+    else if (a == "--mprgp-only")
+      s.mprgp_only = true;
     else if (a == "--max-seconds")
       s.max_seconds = std::stod(value());
     else
@@ -367,6 +489,7 @@ int main(int argc, char** argv) {
   struct Instance {
     double n, kappa, active;
     bool scaled;
+    bool discs = false;
   };
   std::vector<Instance> instances;
   for (const double n : s.sizes)
@@ -374,17 +497,23 @@ int main(int argc, char** argv) {
       for (const double active : s.active) instances.push_back({n, kappa, active, true});
   for (const double n : s.plain_sizes)
     for (const double kappa : s.kappas) instances.push_back({n, kappa, 0.5, false});
+  for (const double n : s.disc_sizes)
+    for (const double kappa : s.kappas) instances.push_back({n, kappa, 0.5, true, true});
   for (const auto& in : instances) {
     Row row;
     row.n = static_cast<long>(in.n);
-    row.name = in.scaled ? "random, scaled" : "random, plain";
+    row.name = in.discs    ? "random, 3D contact nodes (discs)"
+               : in.scaled ? "random, scaled"
+                           : "random, plain";
     row.kappa = kappa_text(in.kappa);
     row.active = fmt::format("{:.0f} %", 100 * in.active);
     fmt::print(stderr, "{}: n = {}, κ ≤ {}, active {}\n", row.name, row.n, row.kappa, row.active);
     const auto seed = static_cast<std::uint64_t>(in.n + 7 * std::log10(in.kappa) + 100 * in.active);
-    auto p = in.scaled ? scaled_qp(row.n, in.kappa, in.active, seed)
-                       : tc::test::random_qp(PETSC_COMM_SELF, row.n, tc::test::QpKind::lower,
-                                             in.kappa, in.active, 0.0, seed);
+    auto p = in.discs    ? scaled_disc_qp(row.n, in.kappa, in.active, seed)
+             : in.scaled ? scaled_qp(row.n, in.kappa, in.active, seed)
+                         : tc::test::random_qp(PETSC_COMM_SELF, row.n, tc::test::QpKind::lower,
+                                               in.kappa, in.active, 0.0, seed);
+    if (in.discs) row.n *= 4;  // variables
     const tc::qp::MatrixOperator f(p.f.get());
     // Jacobi: y = diag(F)⁻¹x (F's diagonal is at hand for these explicit instances).
     Vector inverse_diagonal = p.d.duplicate();
@@ -435,6 +564,7 @@ int main(int argc, char** argv) {
   for (const auto& r : rows) {
     double diff = r.mprgp_pc.converged ? r.mprgp_pc.difference : 0;
     auto fewer_than_tao = [&](const Cell& m) {
+      if (r.bqpip.skipped) return std::string("—");
       bool fewer = m.converged;
       for (const Cell* t : {&r.bqpip, &r.gpcg, &r.blmvm})
         // A capped solver needed more than its count; one that stopped unconverged (line
@@ -451,6 +581,27 @@ int main(int argc, char** argv) {
                                                           r.cg.applications)
                               : "—",
                fewer_than_tao(r.mprgp), r.mprgp_pc.text(), fewer_than_tao(r.mprgp_pc), diff);
+  }
+  if (!s.variants.empty()) {
+    fmt::print(
+        "\nMPRGP/MPGP strategies (QpOptions), applications of F including the λ_max estimate; "
+        "bold: fewer than the default.\n\n| instance | n | κ ≤ | active |");
+    for (const auto& v : s.variants) fmt::print(" {} |", v.name);
+    fmt::print(" best TAO |\n|---|---|---|---|");
+    for (size_t k = 0; k <= s.variants.size(); ++k) fmt::print("---|");
+    fmt::print("\n");
+    for (const auto& r : rows) {
+      fmt::print("| {} | {} | {} | {} |", r.name, r.n, r.kappa, r.active);
+      for (const auto& c : r.variants) {
+        const bool better = c.converged && c.applications < r.variants.front().applications;
+        const auto text = c.converged ? std::to_string(c.applications) : c.text();
+        fmt::print(" {} |", better ? "**" + text + "**" : text);
+      }
+      long best = 0;
+      for (const Cell* t : {&r.bqpip, &r.gpcg, &r.blmvm})
+        if (t->converged && (best == 0 || t->applications < best)) best = t->applications;
+      fmt::print(" {} |\n", best > 0 ? std::to_string(best) : "—");
+    }
   }
   return 0;
 }

@@ -14,10 +14,9 @@ struct Solved {
   core::Vector x;
 };
 
-Solved solve(MPI_Comm comm, QpKind kind, PetscInt blocks) {
+Solved solve(MPI_Comm comm, QpKind kind, PetscInt blocks, qp::QpOptions opt = {}) {
   auto p = random_qp(comm, blocks, kind, 1e3, 0.5, 0.1, 2024);
   qp::MatrixOperator f(p.f.get());
-  qp::QpOptions opt;
   opt.rtol = 1e-10;
   opt.max_iterations = 20000;
   Solved s{{}, p.x_star.duplicate()};
@@ -25,13 +24,22 @@ Solved solve(MPI_Comm comm, QpKind kind, PetscInt blocks) {
   return s;
 }
 
-class Distributed : public ::testing::TestWithParam<QpKind> {};
+/// The default strategy, or (second parameter true) the longest-stepping alternatives:
+/// Barzilai–Borwein lengths with projected CG expansions, whose accept/fall-back decisions
+/// compare reductions (Δf) that must agree across ranks to round-off.
+class Distributed : public ::testing::TestWithParam<std::tuple<QpKind, bool>> {};
 
 TEST_P(Distributed, MatchesTheSingleRankSolve) {
-  const auto kind = GetParam();
+  const auto [kind, alternative] = GetParam();
   const PetscInt blocks = 3000 / block_size(kind);
-  const auto world = solve(PETSC_COMM_WORLD, kind, blocks);
-  const auto self = solve(PETSC_COMM_SELF, kind, blocks);
+  qp::QpOptions opt;
+  if (alternative) {
+    opt.expansion = qp::Expansion::projected_cg;
+    opt.expansion_step = qp::ExpansionStep::barzilai_borwein;
+    opt.arc_step = qp::ExpansionStep::barzilai_borwein;
+  }
+  const auto world = solve(PETSC_COMM_WORLD, kind, blocks, opt);
+  const auto self = solve(PETSC_COMM_SELF, kind, blocks, opt);
   ASSERT_TRUE(world.result.converged()) << world.result.message;
   ASSERT_TRUE(self.result.converged()) << self.result.message;
 
@@ -54,14 +62,16 @@ TEST_P(Distributed, MatchesTheSingleRankSolve) {
                 world.result.operator_applications, self.result.iterations);
 }
 
-std::string kind_name(const ::testing::TestParamInfo<QpKind>& info) {
+std::string kind_name(const ::testing::TestParamInfo<std::tuple<QpKind, bool>>& info) {
   static const char* const names[] = {"free", "lower", "box", "disc", "contact3d"};
-  return names[static_cast<int>(info.param)];
+  return std::string(names[static_cast<int>(std::get<0>(info.param))]) +
+         (std::get<1>(info.param) ? "_bb_projected_cg" : "");
 }
 
 INSTANTIATE_TEST_SUITE_P(Qp, Distributed,
-                         ::testing::Values(QpKind::lower, QpKind::box, QpKind::disc,
-                                           QpKind::contact3d),
+                         ::testing::Combine(::testing::Values(QpKind::lower, QpKind::box,
+                                                              QpKind::disc, QpKind::contact3d),
+                                            ::testing::Bool()),
                          kind_name);
 
 }  // namespace

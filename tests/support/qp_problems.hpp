@@ -33,7 +33,8 @@ struct QpProblem {
   core::Handle<::Mat, MatDestroy> f;
   core::Vector d, x_star, g_star;
   qp::FeasibleSet set;
-  double kappa_bound = 0;  // λ_max/λ_min bound from Gershgorin and the shift
+  double kappa_bound = 0;      // λ_max/λ_min bound from Gershgorin and the shift
+  std::vector<double> radius;  // per block of this rank: the interval's or disc's radius
 };
 
 /// n_blocks blocks of `kind`; F = graph Laplacian (random weights, links at fixed strides) +
@@ -127,7 +128,8 @@ inline QpProblem random_qp(MPI_Comm comm, PetscInt n_blocks, QpKind kind, double
   for (const double dg : degree) max_degree = std::max(max_degree, dg);
   const double shift = 2 * max_degree / (kappa - 1);
 
-  QpProblem p{{}, {}, {}, {}, qp::FeasibleSet(core::Vector(0)), 0};
+  QpProblem p{{}, {}, {}, {}, qp::FeasibleSet(core::Vector(0)), 0, {}};
+  p.radius.assign(radius.begin() + blocks_begin, radius.begin() + blocks_end);
   TC_PETSC(MatCreateAIJ(comm, end - begin, end - begin, n, n, 1 + 2 * strides.size(), nullptr,
                         2 * strides.size(), nullptr, p.f.out()));
   for (PetscInt i = begin; i < end; ++i) {

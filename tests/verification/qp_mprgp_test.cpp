@@ -190,6 +190,84 @@ TEST(Qp, FullGradientExpansionReachesTheSameSolution) {
   EXPECT_LT(o.error, 1e-6);  // as in Kkt
 }
 
+// Every strategy of QpOptions (expansion length, the move on circles, the proportioning test,
+// projected-CG expansions) must reach the same known solution with the same KKT quality: the
+// longer moves are safeguarded (kept only if f falls), never trusted.
+struct StrategyCase {
+  const char* name;
+  void (*set)(QpOptions&);
+};
+
+const StrategyCase strategies[] = {
+    {"cauchy_length",
+     [](QpOptions& o) {
+       o.expansion_step = qp::ExpansionStep::cauchy;
+       o.arc_step = qp::ExpansionStep::cauchy;
+     }},
+    {"bb_length",
+     [](QpOptions& o) {
+       o.expansion_step = qp::ExpansionStep::barzilai_borwein;
+       o.arc_step = qp::ExpansionStep::barzilai_borwein;
+     }},
+    {"free_gradient_test",
+     [](QpOptions& o) { o.proportioning_test = qp::ProportioningTest::free; }},
+    {"projected_cg", [](QpOptions& o) { o.expansion = qp::Expansion::projected_cg; }},
+    {"projected_cg_gamma4",
+     [](QpOptions& o) {
+       o.expansion = qp::Expansion::projected_cg;
+       o.gamma = 4;
+     }},
+};
+
+class Strategy : public ::testing::TestWithParam<std::tuple<QpKind, int>> {};
+
+TEST_P(Strategy, ReachesTheKnownSolution) {
+  const auto [kind, which] = GetParam();
+  auto p = random_qp(PETSC_COMM_SELF, 1000 / block_size(kind), kind, 1e3, 0.5, 0.1, 4321);
+  QpOptions opt;
+  opt.rtol = 1e-10;
+  opt.max_iterations = 20000;
+  strategies[which].set(opt);
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  // The same bounds as Kkt (same κ ≤ 1e3 and rtol).
+  EXPECT_LE(o.violation, 1e-14);
+  EXPECT_LE(o.residual, 2 * o.result.tolerance + 1e-13 * p.d.norm());
+  EXPECT_LT(o.error, 1e-6);
+  EXPECT_LT(o.complementarity, 1e-6 * p.d.norm());
+  // Every projected-CG expansion is either kept or undone (then the standard one follows).
+  if (opt.expansion == qp::Expansion::projected_cg && kind == QpKind::lower) {
+    EXPECT_EQ(o.result.long_expansions + o.result.fallbacks, o.result.expansion_steps);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Qp, Strategy,
+    ::testing::Combine(::testing::Values(QpKind::lower, QpKind::box, QpKind::disc,
+                                         QpKind::contact3d),
+                       ::testing::Range(0, static_cast<int>(std::size(strategies)))),
+    [](const auto& info) {
+      return std::string(kind_name(std::get<0>(info.param))) + "_" +
+             strategies[std::get<1>(info.param)].name;
+    });
+
+TEST(Qp, LongExpansionMovesAreTakenAndRejected) {
+  // On an ill-conditioned instance the Barzilai–Borwein length ≫ ᾱ: some moves lower f and
+  // are kept, others raise it and fall back to ᾱ. Both branches must occur here, or the
+  // option is not exercised (a regression to "always ᾱ" would pass the KKT checks above).
+  auto p = random_qp(PETSC_COMM_SELF, 2000, QpKind::contact3d, 1e5, 0.5, 0.0, 17);
+  QpOptions opt;
+  opt.rtol = 1e-8;
+  opt.max_iterations = 50000;
+  opt.expansion_step = qp::ExpansionStep::barzilai_borwein;
+  opt.arc_step = qp::ExpansionStep::barzilai_borwein;
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  EXPECT_GT(o.result.long_expansions, 0);
+  EXPECT_GT(o.result.fallbacks, 0);
+  EXPECT_LT(o.error, 1e-3);  // κ ≤ 1e5, rtol 1e-8: ≲ κ·rtol-scale
+}
+
 /// y = diag(F)⁻¹ x: Jacobi, the simplest preconditioner in face.
 class Jacobi final : public qp::LinearOperator {
  public:

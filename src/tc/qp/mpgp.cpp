@@ -43,7 +43,7 @@ struct State {
   const QpOptions& opt;
   const Vector& d;
   Vector& x;
-  Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save;
+  Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save, e;
   double alpha_bar = 0;
   QpResult r;
 
@@ -63,9 +63,18 @@ struct State {
         z(g.duplicate()),
         work(g.duplicate()),
         x_save(g.duplicate()),
-        g_save(g.duplicate()) {}
+        g_save(g.duplicate()),
+        e(g.duplicate()) {}
 
   int cauchy_rejected = 0;  // Cauchy steps tried and not taken: stop trying when they dominate
+  /// sᵀs / sᵀFs of the last direction s along which a step was taken (CG, feasible or
+  /// proportioning step): the Barzilai–Borwein length for the next expansion; 0 = none yet.
+  double last_inverse_rayleigh = 0;
+  void remember_step(const Vector& s, double sfs) {
+    const bool needed = opt.expansion_step == ExpansionStep::barzilai_borwein ||
+                        opt.arc_step == ExpansionStep::barzilai_borwein;
+    if (needed && sfs > 0) last_inverse_rayleigh = s.dot(s) / sfs;  // the dot only if used
+  }
 
   void apply(const Vector& in, Vector& out) {
     f.apply(in, out);
@@ -88,6 +97,8 @@ struct State {
   /// Dostál's proportioning test ‖β‖² ≤ Γ² g̃ᵀφ with the reduced free gradient
   /// g̃ = (x − P(x − ᾱ φ))/ᾱ, which never lets a step of length ᾱ leave the set.
   bool proportional() {
+    if (opt.proportioning_test == ProportioningTest::free)
+      return beta.dot(beta) <= opt.gamma * opt.gamma * phi.dot(phi);
     work.copy_from(x);
     work.axpy(-alpha_bar, phi);
     set.project(work);
@@ -104,6 +115,7 @@ struct State {
     if (!(pfp > 0)) return false;
     const double a_cg = g.dot(p) / pfp;
     const double a_f = set.max_step(x, p);
+    remember_step(p, pfp);
     if (a_cg <= a_f) {
       ++r.cg_steps;
       x.axpy(-a_cg, p);
@@ -116,32 +128,94 @@ struct State {
       return true;
     }
     ++r.expansion_steps;
+    if (opt.expansion == Expansion::projected_cg && projected_cg_step(a_cg)) return true;
     set.advance(x, p, a_f);  // as far as feasible: components reaching the boundary bind
     g.axpy(-a_f, fp);
     split();
-    expand(opt.expansion == Expansion::free_gradient ? phi : g);
+    expand(opt.expansion == Expansion::full_gradient ? g : phi, opt.expansion_step);
     return true;
   }
 
-  /// The fixed-step projected gradient move that follows the feasible step. f cannot rise
-  /// for ᾱ ≤ 2/λ_max; if it does, λ_max was underestimated: undo, halve ᾱ, go on. The change
-  /// Δf = ½ sᵀ(g_old + g_new), s = x_new − x_old, is exact for a quadratic and avoids
-  /// subtracting two values of f near the minimum.
-  void expand(const Vector& direction) {
-    x_save.copy_from(x);
-    g_save.copy_from(g);
-    x.axpy(-alpha_bar, direction);
-    set.project(x);
-    gradient();
+  /// ½ sᵀ(g_old + g_new) with s = x − x_save: the exact change of f from (x_save, g_save)
+  /// for a quadratic, without subtracting two values of f near the minimum.
+  double change_of_f() {
     work.copy_from(x);
     work.axpy(-1.0, x_save);  // s
-    const double change = 0.5 * (work.dot(g_save) + work.dot(g));
-    // s itself carries the round-off of x − x_old (ε‖x‖ per entry), so Δf is known to
-    // ~ε‖x‖‖g‖ only; an underestimated λ_max raises f by O(ᾱ‖g‖²), far above that.
-    const double noise = 1e3 * std::numeric_limits<double>::epsilon() * x.norm() * g_save.norm();
-    if (change > noise) {
-      x.copy_from(x_save);
-      g.copy_from(g_save);
+    return 0.5 * (work.dot(g_save) + work.dot(g));
+  }
+  /// s itself carries the round-off of x − x_old (ε‖x‖ per entry), so Δf is known to
+  /// ~ε‖x‖‖g‖ only; an underestimated λ_max raises f by O(ᾱ‖g‖²), far above that.
+  double change_noise() const {
+    return 1e3 * std::numeric_limits<double>::epsilon() * x.norm() * g_save.norm();
+  }
+
+  /// x ← P(x − α_cg p) from the point before the feasible step; kept if f falls (one
+  /// application), else undone (the standard expansion follows).
+  bool projected_cg_step(double a_cg) {
+    x_save.copy_from(x);
+    g_save.copy_from(g);
+    x.axpy(-a_cg, p);
+    set.project(x);
+    gradient();
+    if (change_of_f() < -change_noise()) {
+      ++r.long_expansions;
+      split();
+      precondition();
+      p.copy_from(z);
+      return true;
+    }
+    ++r.fallbacks;
+    x.copy_from(x_save);
+    g.copy_from(g_save);
+    return false;
+  }
+
+  /// The length of the expansion move along e (ExpansionStep): never below ᾱ, since ᾱ is
+  /// what the fall-back takes anyway.
+  double expansion_length(ExpansionStep kind) {
+    switch (kind) {
+      case ExpansionStep::fixed:
+        return alpha_bar;
+      case ExpansionStep::barzilai_borwein:
+        return std::max(alpha_bar, last_inverse_rayleigh);
+      case ExpansionStep::cauchy: {
+        apply(e, fp);
+        const double efe = e.dot(fp), eg = e.dot(g);
+        return efe > 0 && eg > 0 ? std::max(alpha_bar, eg / efe) : alpha_bar;
+      }
+    }
+    return alpha_bar;
+  }
+
+  /// x ← P(x_save − α e), its gradient, and whether f fell (rose by no more than round-off
+  /// when `strict` is false); if not, x and g are restored.
+  bool projected_move(double alpha, bool strict) {
+    x.copy_from(x_save);
+    x.axpy(-alpha, e);
+    set.project(x);
+    gradient();
+    const double change = change_of_f(), noise = change_noise();
+    if (strict ? change < -noise : change <= noise) return true;
+    x.copy_from(x_save);
+    g.copy_from(g_save);
+    return false;
+  }
+
+  /// The projected gradient move that follows the feasible step, along `direction` (φ or g).
+  /// A move longer than ᾱ (ExpansionStep) is kept only if f falls; else the fixed step ᾱ.
+  /// f cannot rise for ᾱ ≤ 2/λ_max; if it does, λ_max was underestimated: undo, halve ᾱ, go
+  /// on.
+  void expand(const Vector& direction, ExpansionStep kind) {
+    x_save.copy_from(x);
+    g_save.copy_from(g);
+    e.copy_from(direction);  // direction may be g, which the trial moves overwrite
+    const double length = expansion_length(kind);
+    bool moved = false;
+    if (length > alpha_bar) {
+      moved = projected_move(length, true);
+      ++(moved ? r.long_expansions : r.fallbacks);
+    }
+    if (!moved && !projected_move(alpha_bar, false)) {
       alpha_bar *= 0.5;
       ++r.step_halvings;
     }
@@ -195,7 +269,7 @@ struct State {
       // by the step a line search would take, often many times ᾱ. Kept only if f falls;
       // otherwise the fixed-step projected gradient step, which always does.
       if (cauchy_rejected <= r.cauchy_steps && cauchy_on_circle()) return true;
-      expand(g);  // the active components must move, so the full gradient, not φ
+      expand(g, opt.arc_step);  // the active components must move: the full gradient, not φ
       return true;
     }
     apply(beta, fp);
@@ -204,6 +278,7 @@ struct State {
     // gᵀβ = βᵀβ exactly for the chopped gradient of intervals and discs; computed as gᵀβ
     // it would carry the round-off of β's normal part on a circle (ε‖g‖‖β‖), which for a
     // small β can even change its sign.
+    remember_step(beta, bfb);
     const double a = std::min(beta.dot(beta) / bfb, a_f);
     if (a < a_f)
       x.axpy(-a, beta);

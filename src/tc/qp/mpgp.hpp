@@ -16,6 +16,25 @@ namespace tc::qp {
 enum class Expansion {
   free_gradient,  // x ← P(x − ᾱ φ(x)): the original MPRGP step
   full_gradient,  // x ← P(x − ᾱ g(x)): also moves active components (Kružík et al. 2020)
+  /// x ← P(x − α_cg p): the CG step that would have left the set, projected, then CG restarts
+  /// (Kružík et al. 2020, "projCG"); kept only if f falls, else the free-gradient expansion.
+  projected_cg,
+};
+
+/// The length of the projected gradient move of an expansion step (PERMON's expansion length
+/// types). Anything longer than ᾱ is kept only if f falls; otherwise the fixed ᾱ step follows.
+enum class ExpansionStep {
+  fixed,   // ᾱ = alpha_factor/λ_max: the step of the convergence theory
+  cauchy,  // the minimiser along the direction, eᵀg/eᵀFe: one more application of F
+  /// Barzilai–Borwein from the step just taken, sᵀs/sᵀFs (s the last CG, feasible or
+  /// proportioning direction, whose F s is at hand): no application of F.
+  barzilai_borwein,
+};
+
+/// When is x proportional (CG goes on in the face) rather than released by proportioning?
+enum class ProportioningTest {
+  reduced,  // ‖β‖² ≤ Γ² g̃ᵀφ with the reduced free gradient g̃ (Dostál 2009, Alg. 5.8)
+  free,  // ‖β‖² ≤ Γ² φᵀφ (PERMON): g̃ᵀφ ≤ φᵀφ, so proportioning happens less often
 };
 
 struct QpOptions {
@@ -32,6 +51,13 @@ struct QpOptions {
   Expansion expansion = Expansion::free_gradient;
   /// Optional SPD preconditioner applied to the free gradient in the face (masked); null = none.
   const LinearOperator* preconditioner = nullptr;
+  // Added last, so that existing aggregate initialisations keep their meaning. The defaults
+  // were measured against the alternatives: docs/choices.md, bench/RESULTS.md (bench/qp).
+  ExpansionStep expansion_step = ExpansionStep::fixed;
+  /// The same choice for the projected gradient move that replaces a proportioning step when
+  /// a disc's tangent leaves its circle at once (MPGP only).
+  ExpansionStep arc_step = ExpansionStep::fixed;
+  ProportioningTest proportioning_test = ProportioningTest::reduced;
 };
 
 enum class QpStatus { converged, max_iterations, breakdown };
@@ -45,9 +71,11 @@ struct [[nodiscard]] QpResult {
   double tolerance = 0;           // the ‖g^P‖ required
   double max_eigenvalue = 0;      // the λ_max used (to reuse)
   int cg_steps = 0, expansion_steps = 0, proportioning_steps = 0;
-  int cauchy_steps = 0;   // proportioning steps taken as projected Cauchy steps along an arc
-  int step_halvings = 0;  // ᾱ halved after an expansion that raised f (λ_max underestimated)
-  std::string message;    // why it stopped, with the numbers
+  int cauchy_steps = 0;     // proportioning steps taken as projected Cauchy steps along an arc
+  int step_halvings = 0;    // ᾱ halved after an expansion that raised f (λ_max underestimated)
+  std::string message;      // why it stopped, with the numbers
+  int long_expansions = 0;  // expansion moves longer than ᾱ (ExpansionStep, projected CG) kept
+  int fallbacks = 0;        // ... and rejected because f rose (the ᾱ move taken instead)
   [[nodiscard]] bool converged() const { return status == QpStatus::converged; }
 };
 
