@@ -367,7 +367,7 @@ void Simulation::contact_heat_step(int iteration) {
     const auto& rows = dual_->rows();
     const auto lv = lambda_.read();
     gamma.resize(static_cast<size_t>(rows.n_nodes()));
-    const double unit = traction_per_multiplier(stabiliser_ != nullptr);
+    const double unit = traction_per_multiplier();
     for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = unit * std::max(lv[rows.dim * k], 0.0);
     if (static_cast<size_t>(rows.n_nodes()) != mortar_->contact_nodes().size())
       throw Error("thermal contact: the multipliers do not match the mortar pair's nodes");
@@ -385,7 +385,7 @@ void Simulation::contact_heat_step(int iteration) {
         friction_work(dual_->rows(), lambda_.to_std(),
                       iterate_slip_.empty() ? step_slip(dual_->rows(), ss.velocity, sm.velocity)
                                             : iterate_slip_));
-    for (double& p : power) p *= traction_per_multiplier(stabiliser_ != nullptr) / tau;
+    for (double& p : power) p *= traction_per_multiplier() / tau;
     for (const double p : power) frictional_heat_.total += p;
     frictional_heat_.slave = distribute(power, delta_c_, mortar_->d_matrix());
     frictional_heat_.master = distribute(power, 1.0 - delta_c_, mortar_->m_matrix());
@@ -813,7 +813,7 @@ void Simulation::contact_bookkeeping() {
   auto& cs = contact_stats_;
   cs.normal_force = cs.tangential_force = 0;
   cs.active_nodes = cs.slip_nodes = 0;
-  const double unit = traction_per_multiplier(stabiliser_ != nullptr);
+  const double unit = traction_per_multiplier();
   for (const double w : friction_work(rows, l, slip_)) cs.dissipation += unit * w;
   for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
     const double w = rows.weights[k];
