@@ -35,7 +35,16 @@ BodySystem::BodySystem(const Problem& problem, int index)
     if (bc.body == index) add_boundary(bc, body_->name);
   u_dofs_ = keys(u_prescribed_);
   th_dofs_ = keys(th_prescribed_);
-  if (problem.physics.lumped_heat_capacity) lump(m_.mass_theta);
+  lumped_ = problem.physics.lumped_heat_capacity;
+  if (lumped_) lump(m_.mass_theta);
+  cell_part_ = mesh::partition_cells(body_->mesh, std::max(1, body_->subdomains));
+  if (body_->subdomains > 1) subdomains_ = mesh::split(body_->mesh, cell_part_, body_->subdomains);
+}
+
+fem::BodyMatrices BodySystem::subdomain_matrices(int s) const {
+  auto m = fem::assemble_body(subdomains_.at(static_cast<size_t>(s)).mesh, body_->material);
+  if (lumped_) lump(m.mass_theta);  // row sums are additive over cells: Σ_s lumped = lumped
+  return m;
 }
 
 void BodySystem::lump(core::SparseMatrix& m) {

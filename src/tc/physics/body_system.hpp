@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tc/fem/assembler.hpp"
+#include "tc/mesh/partition.hpp"
 #include "tc/physics/problem.hpp"
 
 namespace tc::physics {
@@ -46,6 +47,14 @@ class BodySystem {
   /// ∫ N_a dx per node: turns nodal fields into integrals (e.g. thermal energy).
   [[nodiscard]] const std::vector<double>& node_volumes() const { return volumes_; }
 
+  /// The FETI subdomains of the body (6.2; empty unless body().subdomains > 1) and the
+  /// subdomain of every cell (all 0 when not decomposed).
+  [[nodiscard]] const std::vector<mesh::SubMesh>& subdomains() const { return subdomains_; }
+  [[nodiscard]] const std::vector<int>& cell_subdomain() const { return cell_part_; }
+  /// The body's matrices assembled on the cells of subdomain s only (Σ_s = matrices()),
+  /// with the same heat-capacity treatment.
+  [[nodiscard]] fem::BodyMatrices subdomain_matrices(int s) const;
+
  private:
   struct NodalLoad {  // value(t) · weights[a] on dof block·a + component
     TimeTable value;
@@ -64,6 +73,9 @@ class BodySystem {
   std::vector<PetscInt> u_dofs_, th_dofs_;
   std::vector<NodalLoad> u_loads_, th_loads_;
   std::vector<ReactionGroup> reactions_;
+  std::vector<int> cell_part_;
+  std::vector<mesh::SubMesh> subdomains_;
+  bool lumped_ = false;
 };
 
 }  // namespace tc::physics

@@ -20,7 +20,15 @@ ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<Pe
   rhs_ = core::Vector(a.rows());
 }
 
+ConstrainedSolver::ConstrainedSolver(std::unique_ptr<feti::Feti> feti) : feti_(std::move(feti)) {}
+ConstrainedSolver::~ConstrainedSolver() = default;
+ConstrainedSolver::ConstrainedSolver(ConstrainedSolver&&) noexcept = default;
+
 void ConstrainedSolver::solve_homogeneous_many(::Mat b, ::Mat x) const {
+  if (feti_) {
+    feti_->solve_homogeneous_many(b, x);
+    return;
+  }
   if (!dofs_.empty())
     TC_PETSC(
         MatZeroRows(b, static_cast<PetscInt>(dofs_.size()), dofs_.data(), 0.0, nullptr, nullptr));
@@ -28,6 +36,10 @@ void ConstrainedSolver::solve_homogeneous_many(::Mat b, ::Mat x) const {
 }
 
 void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
+  if (feti_) {
+    feti_->solve(b, x);
+    return;
+  }
   if (dofs_.empty()) {
     factor_.solve(b, x);
     return;

@@ -3,9 +3,13 @@
 // symmetric elimination: the reduced matrix (rows and columns of the constrained dofs
 // replaced by a scaled identity) is factorised once; each solve lifts the prescribed values
 // to the right-hand side. The constrained set must not change over the run; their values may.
+// A body cut into subdomains is solved by Total FETI instead (feti::Feti, 6.2), with the same
+// contract: callers do not know which one they have.
+#include <memory>
 #include <vector>
 
 #include "tc/core/petsc.hpp"
+#include "tc/feti/feti.hpp"
 
 namespace tc::physics {
 
@@ -13,6 +17,10 @@ class ConstrainedSolver {
  public:
   ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
                     const std::string& package);
+  /// The same system solved by FETI over subdomains (the FETI object owns the Dirichlet dofs).
+  explicit ConstrainedSolver(std::unique_ptr<feti::Feti> feti);
+  ~ConstrainedSolver();
+  ConstrainedSolver(ConstrainedSolver&&) noexcept;
 
   /// On entry x holds the prescribed values at the constrained dofs (other entries are
   /// ignored); on exit x solves the equations of the free dofs.
@@ -20,7 +28,11 @@ class ConstrainedSolver {
   /// X = A⁻¹B with zero prescribed values, for k right-hand sides at once (dense n × k; the
   /// constrained rows of B are zeroed in place).
   void solve_homogeneous_many(::Mat b, ::Mat x) const;
-  [[nodiscard]] const std::string& package() const { return factor_.package(); }
+  [[nodiscard]] const std::string& package() const {
+    return feti_ ? feti_->package() : factor_.package();
+  }
+  /// The FETI solver when the body is decomposed, else null.
+  [[nodiscard]] const feti::Feti* feti() const { return feti_.get(); }
 
  private:
   core::SparseMatrix a_;  // the full matrix (shared), for the lifting
@@ -29,6 +41,7 @@ class ConstrainedSolver {
   core::SparseMatrix reduced_;
   core::CholeskySolver factor_;
   mutable core::Vector lift_, rhs_;
+  std::unique_ptr<feti::Feti> feti_;
 };
 
 }  // namespace tc::physics

@@ -9,6 +9,7 @@
 
 #include "tc/core/table.hpp"
 #include "tc/fem/material.hpp"
+#include "tc/feti/feti.hpp"
 #include "tc/mesh/mesh.hpp"
 
 namespace tc::physics {
@@ -78,6 +79,11 @@ struct SolverSettings {
   double qp_tolerance = 1e-8;
   int max_qp_iterations = 2000;
   std::string factorization;  // "" = automatic; "mumps" | "cholmod" | "petsc"
+  // FETI (bodies with subdomains > 1, 6.2): relative gluing/Dirichlet residual, iteration cap
+  // of the projected CG, preconditioner.
+  double feti_tolerance = 1e-10;
+  int max_feti_iterations = 1000;
+  feti::Preconditioner feti_preconditioner = feti::Preconditioner::dirichlet;
 };
 
 struct OutputSettings {

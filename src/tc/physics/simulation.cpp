@@ -36,6 +36,50 @@ const char* phase_of(std::string_view what) {
   return "bookkeeping";
 }
 
+/// Which of a body's operators a solver is for (FETI assembles it per subdomain).
+enum class Operator { mechanics, heat, mass };
+
+/// The solver of A x = b for one body: a direct factorisation of A, or Total FETI over the
+/// body's subdomains when it is decomposed (6.2), with a·M + b·K assembled per subdomain.
+std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySystem& sys,
+                                               const core::SparseMatrix& a, Operator op) {
+  const bool mech = op != Operator::heat;
+  const auto& dirichlet = mech ? sys.u_dirichlet_dofs() : sys.theta_dirichlet_dofs();
+  if (sys.subdomains().empty())
+    return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization);
+  const double tau = p.time.step;
+  const bool dynamic = p.time.scheme == Scheme::Dynamic;
+  auto local = [&](int s) {
+    const auto m = sys.subdomain_matrices(s);
+    switch (op) {
+      case Operator::mechanics:
+        return dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u)
+                       : m.stiffness_u.copy();
+      case Operator::heat:
+        return combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+      case Operator::mass:
+        return m.mass_u.copy();
+    }
+    return core::SparseMatrix{};
+  };
+  // Without inertia the subdomains of an elastic body float: TFETI's rigid-body kernels. With
+  // it they nearly float when τ is large, and the same modes deflate (feti.hpp); constants
+  // likewise for heat. The mass matrix alone needs no coarse space.
+  const auto kernel = op == Operator::heat   ? feti::Kernel::constant
+                      : op == Operator::mass ? feti::Kernel::none
+                                             : feti::Kernel::rigid;
+  const auto singular =
+      op == Operator::mechanics && !dynamic ? feti::Singular::yes : feti::Singular::no;
+  feti::FetiOptions options;
+  options.tolerance = p.solver.feti_tolerance;
+  options.max_iterations = p.solver.max_feti_iterations;
+  options.preconditioner = p.solver.feti_preconditioner;
+  options.package = p.solver.factorization;
+  return std::make_unique<ConstrainedSolver>(std::make_unique<feti::Feti>(
+      sys.subdomains(), sys.body().mesh.n_nodes(), mech ? sys.dim() : 1, dirichlet, kernel,
+      singular, local, options));
+}
+
 void require_finite(const core::Vector& v, const char* what, int step, int iteration) {
   if (!v.all_finite())
     throw NumericalError(fmt::format("{}: {} is not finite (NaN or Inf)", phase_of(what), what),
@@ -154,10 +198,8 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
       s->a_u =
           dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u) : m.stiffness_u.copy();
       s->a_theta = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
-      s->mech = std::make_unique<ConstrainedSolver>(s->a_u, sys.u_dirichlet_dofs(),
-                                                    problem_.solver.factorization);
-      s->heat = std::make_unique<ConstrainedSolver>(s->a_theta, sys.theta_dirichlet_dofs(),
-                                                    problem_.solver.factorization);
+      s->mech = body_solver(problem_, sys, s->a_u, Operator::mechanics);
+      s->heat = body_solver(problem_, sys, s->a_theta, Operator::heat);
     }
     factorization_ = s->mech->package();
     const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
@@ -214,9 +256,9 @@ void Simulation::initialise() {
         s.rhs_u.axpy(-1.0, s.work_u);
       }
       s.g_free = s.rhs_u.clone();  // g⁰ = M ü⁰ (no contact force at t = 0)
-      ConstrainedSolver mass(m.mass_u, sys.u_dirichlet_dofs(), problem_.solver.factorization);
+      const auto mass = body_solver(problem_, sys, m.mass_u, Operator::mass);
       st.a.zero();
-      mass.solve(s.rhs_u, st.a);
+      mass->solve(s.rhs_u, st.a);
     }
     states_.push_back(std::move(st));
     forces_.emplace_back(sys.n_u());
@@ -531,9 +573,8 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
       problem_.time.contact_scheme == ContactScheme::Stabilised) {
     auto t = timers_.scope("factorization");
     for (const int b : {sb, mb})
-      solvers_[b]->mass = std::make_unique<ConstrainedSolver>(systems_[b]->matrices().mass_u,
-                                                              systems_[b]->u_dirichlet_dofs(),
-                                                              problem_.solver.factorization);
+      solvers_[b]->mass =
+          body_solver(problem_, *systems_[b], systems_[b]->matrices().mass_u, Operator::mass);
     stabiliser_ =
         std::make_unique<DualContactSolver>(*solvers_[sb]->mass, *solvers_[mb]->mass,
                                             systems_[sb]->n_u(), systems_[mb]->n_u(), settings);

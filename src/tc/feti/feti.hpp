@@ -1,0 +1,128 @@
+#pragma once
+// Total FETI for one body (6.2, 6.4): the body's linear system A x = b, with x prescribed on
+// its Dirichlet dofs, solved on non-overlapping subdomains s with local matrices A_s (Σ_s A_s
+// assembled = A). Every subdomain copy of an interface dof is a separate unknown; the copies
+// are glued by the rows of B_g (for a node shared by m subdomains, m − 1 orthonormal rows per
+// component) and the Dirichlet data enter as rows of B_D on every copy (u_i = u_D,i). Then
+//   A_s u_s + B_sᵀ λ = f_s,   Σ_s B_s u_s = c,
+// and, eliminating u_s = A_s⁺(f_s − B_sᵀλ) + R_s α_s (R_s the kernel of a floating A_s),
+//   F λ − Gᵀ α = d,   G λ = e,   F = Σ_s B_s A_s⁺ B_sᵀ,  d = Σ_s B_s A_s⁺ f_s − c,
+//   G = Rᵀ Bᵀ,  e = Rᵀ f,
+// which projected CG solves on λ₀ + Ker G with P = I − Gᵀ(GGᵀ)⁻¹G (Farhat–Mandel–Roux;
+// Dostál et al. 2006 for Total FETI). With inertia or heat capacity A_s is non-singular and
+// there is no kernel; but when K dominates 4/τ²M the rigid motions are still nearly free and
+// plain CG crawls (640 iterations instead of 70 on 27 subdomains). The same coarse space then
+// deflates CG: λ₀ = W E⁻¹Wᵀd, search directions F-orthogonal to W = Gᵀ, E = WᵀFW (the
+// conjugate projector of Dostál, Kozubek, Brzobohatý et al. 2012).
+//
+// Parallel model: subdomains are dealt to the ranks of PETSC_COMM_WORLD in contiguous blocks;
+// a rank assembles and factorises only its own. Dual vectors (the size of the interface) are
+// replicated: F·x is the sum over ranks of the owned subdomains' products (MPI_Allreduce), the
+// coarse problem GGᵀ is factorised on every rank. Primal vectors (b, x) are replicated too.
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tc/core/petsc.hpp"
+#include "tc/mesh/partition.hpp"
+
+namespace tc::feti {
+
+/// The kernel of a subdomain matrix without Dirichlet data.
+/// The kernel of a subdomain matrix without Dirichlet data, or its near-kernel when the
+/// matrix is regularised (inertia, heat capacity): the coarse space.
+enum class Kernel {
+  none,      // no coarse space
+  rigid,     // elasticity: dim translations and dim(dim − 1)/2 rotations
+  constant,  // heat conduction: constants
+};
+
+/// Whether A_s has the kernel exactly (TFETI projector) or only nearly (deflation).
+enum class Singular { no, yes };
+
+enum class Preconditioner {
+  none,
+  lumped,     // Σ_s B_s A_s B_sᵀ
+  dirichlet,  // Σ_s B_s S_s B_sᵀ, S_s the Schur complement of A_s on its interface dofs
+};
+[[nodiscard]] const char* name(Preconditioner p);
+
+struct FetiOptions {
+  /// Stop when ‖B u − c‖ (the projected dual gradient: gluing jumps and Dirichlet misfit)
+  /// ≤ tolerance · ‖P d‖.
+  double tolerance = 1e-10;
+  int max_iterations = 2000;
+  Preconditioner preconditioner = Preconditioner::dirichlet;
+  bool orthonormal_gluing = true;  // Helmert rows; else chains u_s − u_{s+1}
+  bool deflation = true;           // the coarse space of a non-singular A_s deflates CG
+  std::string package;             // Cholesky package of the subdomain factorisations
+  /// The ranks the subdomains are dealt to (PETSC_COMM_SELF: this rank solves them all).
+  MPI_Comm comm = PETSC_COMM_WORLD;
+};
+
+struct FetiStatistics {
+  long solves = 0;
+  long iterations = 0;       // PCG iterations over all solves
+  int last_iterations = 0;   // of the last solve
+  double last_residual = 0;  // ‖B u − c‖ / ‖P d‖ at the end of the last solve
+};
+
+class Feti {
+ public:
+  /// Assembles A_s of the subdomains this rank owns with `local_matrix(s)` (the body's
+  /// assembly restricted to the cells of subdomain s, `block` dofs per node, interleaved).
+  Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
+       std::vector<PetscInt> dirichlet_dofs, Kernel kernel, Singular singular,
+       const std::function<core::SparseMatrix(int s)>& local_matrix, FetiOptions options = {});
+  ~Feti();
+  Feti(const Feti&) = delete;
+  Feti& operator=(const Feti&) = delete;
+
+  /// On entry x holds the prescribed values at the Dirichlet dofs; on exit x solves A x = b
+  /// (same contract as physics::ConstrainedSolver). Collective on PETSC_COMM_WORLD.
+  void solve(const core::Vector& b, core::Vector& x) const;
+  /// X = A⁻¹B with zero prescribed values, column by column (dense n × k).
+  void solve_homogeneous_many(::Mat b, ::Mat x) const;
+
+  [[nodiscard]] int n_subdomains() const { return static_cast<int>(subs_.size()); }
+  [[nodiscard]] PetscInt n_multipliers() const { return m_; }
+  [[nodiscard]] PetscInt n_gluing() const { return m_gluing_; }
+  [[nodiscard]] int coarse_dimension() const { return static_cast<int>(n_kernel_); }
+  [[nodiscard]] const FetiStatistics& statistics() const { return stats_; }
+  [[nodiscard]] const std::string& package() const { return package_; }
+  /// The subdomain of every cell's owner rank, for output.
+  [[nodiscard]] int owner_rank(int s) const;
+
+ private:
+  struct Subdomain;
+  using Dual = Eigen::VectorXd;
+  void build_rows(int n_nodes, const std::vector<PetscInt>& dirichlet);
+  void build_kernels(const std::vector<mesh::SubMesh>& subdomains, Kernel kernel);
+  void build_g();
+  void build_coarse();
+  void build_deflation();
+  void deflate(Dual& z) const;  // z ← z − W E⁻¹ (FW)ᵀ z
+  void apply_f(const Dual& x, Dual& y) const;
+  void precondition(const Dual& x, Dual& y) const;
+  void project(Dual& x) const;  // x ← P x
+  void sum_over_ranks(double* data, Eigen::Index n) const;
+
+  int block_;
+  FetiOptions options_;
+  std::vector<std::unique_ptr<Subdomain>> subs_;
+  Eigen::Index m_ = 0, m_gluing_ = 0, n_kernel_ = 0;
+  std::vector<PetscInt> dirichlet_row_dof_;  // body dof of each Dirichlet row
+  std::vector<int> owner_;                   // subdomain that carries each body node's load
+  Eigen::SparseMatrix<double> g_;            // G = Rᵀ Bᵀ, n_kernel × m
+  Eigen::LLT<Eigen::MatrixXd> coarse_;       // GGᵀ (singular) or E = GFGᵀ (deflation)
+  bool singular_ = false;
+  Eigen::MatrixXd fw_;                    // F W = F Gᵀ (deflation only), m × n_kernel
+  int first_owned_ = 0, last_owned_ = 0;  // [first, last) subdomains of this rank
+  std::string package_;
+  mutable FetiStatistics stats_;
+};
+
+}  // namespace tc::feti
