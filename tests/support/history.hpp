@@ -1,8 +1,10 @@
 #pragma once
 // history.csv and result.pvd as the restart and kill tests read them.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -62,6 +64,46 @@ inline double max_relative_difference(const History& a, const History& b,
       if (x != y) worst = std::max(worst, scale > 0 ? std::abs(x - y) / scale : INFINITY);
     }
   return worst;
+}
+
+/// One column over all rows (empty when the history has no such column).
+inline std::vector<double> column(const History& h, const std::string& name) {
+  std::vector<double> out;
+  const auto it = std::find(h.columns.begin(), h.columns.end(), name);
+  if (it == h.columns.end()) return out;
+  const auto c = static_cast<size_t>(it - h.columns.begin());
+  for (const auto& r : h.rows) out.push_back(r[c]);
+  return out;
+}
+
+/// max over rows of |a − b| / scale per physical column of two runs of one case: the scale is
+/// the column's largest magnitude in a, or for the components of one support's reaction the
+/// largest of the three (a tangential reaction that is round-off next to the normal one is
+/// judged against that). Counters and wall times are left out.
+inline std::map<std::string, double> column_differences(const History& a, const History& b) {
+  static const std::vector<std::string> skip{"step",          "time",
+                                             "coupling_iterations", "qp_iterations",
+                                             "operator_applications", "wall_seconds"};
+  auto peak = [&](const std::string& name) {
+    double m = 0;
+    for (const double v : column(a, name)) m = std::max(m, std::abs(v));
+    return m;
+  };
+  std::map<std::string, double> out;
+  for (const auto& name : a.columns) {
+    if (std::find(skip.begin(), skip.end(), name) != skip.end()) continue;
+    double scale = peak(name);
+    if (name.rfind("reaction_", 0) == 0) {
+      const auto group = name.substr(0, name.size() - 1);  // reaction_<body>_<where>_
+      for (const char* k : {"x", "y", "z"}) scale = std::max(scale, peak(group + k));
+    }
+    const auto va = column(a, name), vb = column(b, name);
+    double d = vb.size() == va.size() ? 0.0 : INFINITY;
+    for (size_t i = 0; i < va.size() && i < vb.size(); ++i)
+      d = std::max(d, std::abs(va[i] - vb[i]));
+    out[name] = scale > 0 ? d / scale : d;
+  }
+  return out;
 }
 
 /// The .vtu files a result.pvd lists, and whether it is a whole collection document.

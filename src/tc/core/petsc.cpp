@@ -259,6 +259,8 @@ double SparseMatrix::quadratic_form(const Vector& x, Vector& work) const {
 // -------------------------------------------------------------------- CholeskySolver
 
 std::vector<std::string> available_cholesky_packages() {
+  // The packages register with Mat's initialisation, which nothing may have triggered yet.
+  TC_PETSC(MatInitializePackage());
   std::vector<std::string> out;
   for (const char* p : {MATSOLVERCHOLMOD, MATSOLVERMUMPS, MATSOLVERPETSC}) {
     PetscBool found = PETSC_FALSE;
@@ -291,6 +293,10 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package
 
 void CholeskySolver::solve(const Vector& b, Vector& x) const {
   TC_PETSC(KSPSolve(ksp_.get(), b.get(), x.get()));
+}
+
+void CholeskySolver::solve_raw(::Vec b, ::Vec x) const {
+  TC_PETSC(KSPSolve(ksp_.get(), b, x));
 }
 
 void CholeskySolver::solve_many(::Mat b, ::Mat x) const {

@@ -167,6 +167,7 @@ class CholeskySolver {
   CholeskySolver() = default;
   explicit CholeskySolver(const SparseMatrix& a, const std::string& package = "");
   void solve(const Vector& b, Vector& x) const;
+  void solve_raw(::Vec b, ::Vec x) const;  // the same on bare PETSc vectors
   /// X = A⁻¹B for dense B and X (n × k, column-major, PETSc MATSEQDENSE): one multi-right-hand
   /// side solve, which the factorisation packages do with level-3 BLAS.
   void solve_many(::Mat b, ::Mat x) const;

@@ -39,6 +39,19 @@ double mean_diagonal(const core::SparseMatrix& a) {
 
 }  // namespace
 
+/// A column-major Eigen block seen as a PETSc MATSEQDENSE (no copy), for multi-RHS solves.
+class DenseView {
+ public:
+  explicit DenseView(Eigen::MatrixXd& m) {
+    TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, static_cast<PetscInt>(m.rows()),
+                               static_cast<PetscInt>(m.cols()), m.data(), mat_.out()));
+  }
+  [[nodiscard]] ::Mat get() const { return mat_.get(); }
+
+ private:
+  core::Handle<::Mat, MatDestroy> mat_;
+};
+
 struct Feti::Subdomain {
   std::vector<PetscInt> global_dof;  // local dof → body dof
   std::vector<Entry> b;              // B_s, sorted by row
@@ -51,26 +64,50 @@ struct Feti::Subdomain {
   core::CholeskySolver factor;     // of A with the fixing dofs eliminated
   std::vector<PetscInt> boundary;  // local dofs with a row of B (Dirichlet preconditioner)
   core::CholeskySolver interior;   // of A with the boundary dofs eliminated
-  mutable core::Vector w, z, t;
+  mutable Block w, z, t;           // work blocks, n × k
 
   [[nodiscard]] PetscInt n() const { return static_cast<PetscInt>(global_dof.size()); }
 
-  void scatter_transpose(const Dual& x, core::Vector& out) const {  // out = B_sᵀ x
-    out.zero();
-    auto v = out.view();
-    for (const auto& e : b) v[e.dof] += e.value * x[e.row];
+  void scatter_transpose(const Block& x, Block& out) const {  // out = B_sᵀ x
+    out.setZero(n(), x.cols());
+    for (const auto& e : b) out.row(e.dof) += e.value * x.row(e.row);
   }
-  void gather(const core::Vector& in, Dual& y) const {  // y += B_s in
-    const auto v = in.read();
-    for (const auto& e : b) y[e.row] += e.value * v[e.dof];
+  void gather(const Block& in, Block& y) const {  // y += B_s in
+    for (const auto& e : b) y.row(e.row) += e.value * in.row(e.dof);
   }
-  /// out = A_s⁺ in (in is overwritten at the fixing dofs).
-  void pseudo_solve(core::Vector& in, core::Vector& out) const {
-    if (!fixing.empty()) {
-      auto v = in.view();
-      for (const PetscInt d : fixing) v[d] = 0.0;
+  /// out = A_s⁺ in, column by column through one multi-RHS solve (in is zeroed at the
+  /// fixing dofs).
+  void pseudo_solve(Block& in, Block& out) const {
+    for (const PetscInt d : fixing) in.row(d).setZero();
+    solve_with(factor, in, out);
+  }
+  void interior_solve(Block& in, Block& out) const { solve_with(interior, in, out); }
+  /// One right-hand side through KSPSolve (KSPMatSolve costs several times more for one
+  /// column), more through one multi-RHS solve.
+  void solve_with(const core::CholeskySolver& c, Block& in, Block& out) const {
+    out.resize(in.rows(), in.cols());
+    if (in.cols() == 1) {
+      core::Handle<::Vec, VecDestroy> x, y;
+      TC_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n(), in.data(), x.out()));
+      TC_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n(), out.data(), y.out()));
+      c.solve_raw(x.get(), y.get());
+      return;
     }
-    factor.solve(in, out);
+    const DenseView bi(in), xo(out);
+    c.solve_many(bi.get(), xo.get());
+  }
+  void mult(Block& in, Block& out) const {  // out = A_s in
+    out.resize(in.rows(), in.cols());
+    core::Handle<::Vec, VecDestroy> x, y;
+    TC_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n(), nullptr, x.out()));
+    TC_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n(), nullptr, y.out()));
+    for (Eigen::Index j = 0; j < in.cols(); ++j) {
+      TC_PETSC(VecPlaceArray(x.get(), in.col(j).data()));
+      TC_PETSC(VecPlaceArray(y.get(), out.col(j).data()));
+      TC_PETSC(MatMult(a.get(), x.get(), y.get()));
+      TC_PETSC(VecResetArray(x.get()));
+      TC_PETSC(VecResetArray(y.get()));
+    }
   }
 };
 
@@ -93,6 +130,7 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
     subs_.push_back(std::move(sub));
   }
   std::sort(dirichlet_dofs.begin(), dirichlet_dofs.end());
+  dirichlet_dofs_ = dirichlet_dofs;
   build_rows(n_nodes, dirichlet_dofs);
   build_kernels(subdomains, kernel);
   if (singular_) build_coarse();
@@ -115,9 +153,6 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
       inner.zero_rows_columns(sub.boundary, diag);
       sub.interior = core::CholeskySolver(inner, options_.package);
     }
-    sub.w = core::Vector(sub.n());
-    sub.z = core::Vector(sub.n());
-    sub.t = core::Vector(sub.n());
   }
   if (!singular_) build_deflation();
 }
@@ -254,24 +289,28 @@ void Feti::build_coarse() {
 void Feti::build_deflation() {
   if (n_kernel_ == 0) return;
   build_g();
-  // W = Gᵀ: one product with F per coarse vector, once per operator.
-  fw_.resize(m_, n_kernel_);
-  Dual col(m_), y(m_);
-  for (Eigen::Index j = 0; j < n_kernel_; ++j) {
-    col = g_.row(j).transpose();
-    apply_f(col, y);
-    fw_.col(j) = y;
-  }
-  const Eigen::MatrixXd e = g_ * fw_;
+  // W spans the columns of Gᵀ = B R with the dependent ones dropped: a body without
+  // Dirichlet data for the field (held by contact, or a slave's temperature) has a global
+  // rigid motion or constant that B does not see. Orthonormal through the eigenvectors of GGᵀ.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(g_ * g_.transpose()));
+  const Eigen::VectorXd& ev = eig.eigenvalues();  // ascending
+  Eigen::Index dropped = 0;
+  while (dropped < ev.size() && ev[dropped] <= 1e-10 * ev[ev.size() - 1]) ++dropped;
+  const Eigen::Index r = ev.size() - dropped;
+  const Eigen::MatrixXd v =
+      eig.eigenvectors().rightCols(r) * ev.tail(r).cwiseSqrt().cwiseInverse().asDiagonal();
+  w_ = g_.transpose() * v;
+  apply_f(w_, fw_);  // one product with F per coarse vector, once per operator
+  const Eigen::MatrixXd e = w_.transpose() * fw_;
   coarse_.compute(0.5 * (e + e.transpose()));
   if (coarse_.info() != Eigen::Success)
     throw Error("FETI: the deflation space is rank deficient (WᵀFW not positive definite)");
 }
 
-void Feti::deflate(Dual& z) const {
-  if (singular_ || n_kernel_ == 0) return;
-  const Eigen::VectorXd c = fw_.transpose() * z;
-  z -= g_.transpose() * coarse_.solve(c);
+void Feti::deflate(Block& z) const {
+  if (singular_ || w_.cols() == 0) return;
+  const Block c = fw_.transpose() * z;
+  z -= w_ * coarse_.solve(c);
 }
 
 void Feti::sum_over_ranks(double* data, Eigen::Index n) const {
@@ -283,183 +322,181 @@ void Feti::sum_over_ranks(double* data, Eigen::Index n) const {
   if (rc != MPI_SUCCESS) throw Error("FETI: MPI_Allreduce failed");
 }
 
-void Feti::apply_f(const Dual& x, Dual& y) const {
-  y.setZero(m_);
+void Feti::apply_f(const Block& x, Block& y) const {
+  y.setZero(m_, x.cols());
   for (int s = first_owned_; s < last_owned_; ++s) {
     const auto& sub = *subs_[static_cast<size_t>(s)];
     sub.scatter_transpose(x, sub.w);
     sub.pseudo_solve(sub.w, sub.z);
     sub.gather(sub.z, y);
   }
-  sum_over_ranks(y.data(), m_);
+  sum_over_ranks(y.data(), y.size());
 }
 
-void Feti::precondition(const Dual& x, Dual& y) const {
+void Feti::precondition(const Block& x, Block& y) const {
   if (options_.preconditioner == Preconditioner::none) {
     y = x;
     return;
   }
-  y.setZero(m_);
+  y.setZero(m_, x.cols());
   for (int s = first_owned_; s < last_owned_; ++s) {
     const auto& sub = *subs_[static_cast<size_t>(s)];
     sub.scatter_transpose(x, sub.w);
     if (options_.preconditioner == Preconditioner::lumped) {
-      sub.a.mult(sub.w, sub.z);
+      sub.mult(sub.w, sub.z);
     } else {  // S v = (A (v̄ − A_red⁻¹ (A v̄)|_interior))|_boundary, v̄ = v on the boundary
-      sub.a.mult(sub.w, sub.t);
-      {
-        auto tv = sub.t.view();
-        for (const PetscInt d : sub.boundary) tv[d] = 0.0;
-      }
-      sub.interior.solve(sub.t, sub.z);
-      sub.w.axpy(-1.0, sub.z);
-      sub.a.mult(sub.w, sub.z);
+      sub.mult(sub.w, sub.t);
+      for (const PetscInt d : sub.boundary) sub.t.row(d).setZero();
+      sub.interior_solve(sub.t, sub.z);
+      sub.w -= sub.z;
+      sub.mult(sub.w, sub.z);
     }
     sub.gather(sub.z, y);
   }
-  sum_over_ranks(y.data(), m_);
+  sum_over_ranks(y.data(), y.size());
 }
 
-void Feti::project(Dual& x) const {
+void Feti::project(Block& x) const {
   if (!singular_ || n_kernel_ == 0) return;
-  const Eigen::VectorXd gx = g_ * x;
+  const Block gx = g_ * x;
   x -= g_.transpose() * coarse_.solve(gx);
 }
 
-void Feti::solve(const core::Vector& b, core::Vector& x) const {
+Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<Block>& f) const {
+  const Eigen::Index k = f_global.cols();
   ++stats_.solves;
+  stats_.right_hand_sides += k;
   // Right-hand sides per subdomain: each body dof's load on the copy of its owner.
-  std::vector<core::Vector> f(subs_.size());
-  Dual d = Dual::Zero(m_), e = Dual::Zero(n_kernel_);
-  {
-    const auto bv = b.read();
-    for (int s = first_owned_; s < last_owned_; ++s) {
-      const auto& sub = *subs_[static_cast<size_t>(s)];
-      f[static_cast<size_t>(s)] = core::Vector(sub.n());
-      auto fv = f[static_cast<size_t>(s)].view();
-      for (PetscInt i = 0; i < sub.n(); ++i) {
-        const PetscInt g = sub.global_dof[static_cast<size_t>(i)];
-        if (owner_[static_cast<size_t>(g / block_)] == s) fv[i] = bv[g];
-      }
-    }
-  }
+  f.assign(subs_.size(), Block{});
+  Block d = Block::Zero(m_, k), e = Block::Zero(n_kernel_, k);
   for (int s = first_owned_; s < last_owned_; ++s) {
     const auto& sub = *subs_[static_cast<size_t>(s)];
     auto& fs = f[static_cast<size_t>(s)];
-    if (sub.r.cols() > 0) {
-      const auto fv = fs.read();
-      const Eigen::Map<const Eigen::VectorXd> fe(fv.span().data(), sub.n());
-      e.segment(sub.kernel_offset, sub.r.cols()) = sub.r.transpose() * fe;
+    fs.setZero(sub.n(), k);
+    for (PetscInt i = 0; i < sub.n(); ++i) {
+      const PetscInt g = sub.global_dof[static_cast<size_t>(i)];
+      if (owner_[static_cast<size_t>(g / block_)] == s) fs.row(i) = f_global.row(g);
     }
-    sub.w.copy_from(fs);
+    if (singular_ && sub.r.cols() > 0)
+      e.middleRows(sub.kernel_offset, sub.r.cols()) = sub.r.transpose() * fs;
+    sub.w = fs;
     sub.pseudo_solve(sub.w, sub.z);
     sub.gather(sub.z, d);
   }
-  sum_over_ranks(d.data(), m_);
-  sum_over_ranks(e.data(), n_kernel_);
-  {
-    const auto xv = x.read();
-    for (size_t i = 0; i < dirichlet_row_dof_.size(); ++i)
-      d[m_gluing_ + static_cast<Eigen::Index>(i)] -= xv[dirichlet_row_dof_[i]];
-  }
+  sum_over_ranks(d.data(), d.size());
+  sum_over_ranks(e.data(), e.size());
+  d -= c;
 
   // Projected preconditioned CG on λ₀ + Ker G, λ₀ = Gᵀ(GGᵀ)⁻¹e; or deflated CG from
-  // λ₀ = W E⁻¹ Wᵀ d, which makes the gradient orthogonal to W from the start.
-  Dual lambda = Dual::Zero(m_);
-  if (n_kernel_ > 0) {
-    if (singular_)
-      lambda = g_.transpose() * coarse_.solve(e);
-    else
-      lambda = g_.transpose() * coarse_.solve(Eigen::VectorXd(g_ * d));
-  }
-  Dual fl(m_), g(m_), w(m_), z(m_), p(m_), fp(m_);
-  apply_f(lambda, fl);
-  g = fl - d;
+  // λ₀ = W E⁻¹ Wᵀ d, which makes the gradient orthogonal to W from the start. The k
+  // right-hand sides run their own recurrences; only the products are shared.
+  Block lambda = Block::Zero(m_, k);
+  if (n_kernel_ > 0)
+    lambda = singular_ ? Block(g_.transpose() * coarse_.solve(e))
+                       : Block(w_ * coarse_.solve(Block(w_.transpose() * d)));
+  Block g, w, z, p = Block::Zero(m_, k), fp;
+  apply_f(lambda, g);
+  g -= d;
   w = g;
   project(w);
-  Dual pd = d;
+  Block pd = d;
   project(pd);
-  const double scale = std::max(pd.norm(), 1e-300);
+  const Eigen::ArrayXd scale = pd.colwise().norm().transpose().array().max(1e-300);
+  const Eigen::ArrayXd zero_rhs = (pd.colwise().norm().transpose().array() == 0.0).cast<double>();
+  Eigen::ArrayXd rz = Eigen::ArrayXd::Ones(k);
   int it = 0;
-  double rz = 0;
+  double worst = 0;
   for (;; ++it) {
-    const double res = w.norm() / scale;
-    stats_.last_residual = res;
-    if (res <= options_.tolerance || pd.norm() == 0.0) break;
-    if (!std::isfinite(res))
-      throw NumericalError("FETI: the dual residual is not finite", -1, it, res);
+    const Eigen::ArrayXd res = (w.colwise().norm().transpose().array() / scale) * (1.0 - zero_rhs);
+    worst = res.maxCoeff();
+    if (worst <= options_.tolerance) break;
+    if (!std::isfinite(worst))
+      throw NumericalError("FETI: the dual residual is not finite", -1, it, worst);
     if (it >= options_.max_iterations)
       throw NumericalError(fmt::format("FETI: projected CG did not converge in {} iterations "
                                        "({} preconditioner)",
                                        it, name(options_.preconditioner)),
-                           -1, it, res);
+                           -1, it, worst);
     precondition(w, z);
     project(z);
     deflate(z);
-    const double rz_new = w.dot(z);
-    p = it == 0 ? z : Dual(z + (rz_new / rz) * p);
+    const Eigen::ArrayXd rz_new = w.cwiseProduct(z).colwise().sum().transpose().array();
+    const Eigen::ArrayXd beta = it == 0 ? Eigen::ArrayXd::Zero(k) : Eigen::ArrayXd(rz_new / rz);
+    p = z + p * beta.matrix().asDiagonal();
     rz = rz_new;
     apply_f(p, fp);
-    const double alpha = rz / p.dot(fp);
-    lambda -= alpha * p;
-    g -= alpha * fp;
+    // A converged column keeps α = 0: its λ stays where the criterion accepted it.
+    const Eigen::ArrayXd pfp = p.cwiseProduct(fp).colwise().sum().transpose().array();
+    const Eigen::ArrayXd alpha = (res > options_.tolerance).cast<double>() * rz / pfp.max(1e-300);
+    lambda -= p * alpha.matrix().asDiagonal();
+    g -= fp * alpha.matrix().asDiagonal();
     w = g;
     project(w);
   }
   stats_.last_iterations = it;
   stats_.iterations += it;
+  stats_.last_residual = worst;
+  // α = (GGᵀ)⁻¹G(Fλ − d) of the floating subdomains, returned in the last rows.
+  Block out(m_ + (singular_ ? n_kernel_ : 0), k);
+  out.topRows(m_) = lambda;
+  if (singular_ && n_kernel_ > 0) out.bottomRows(n_kernel_) = coarse_.solve(Block(g_ * g));
+  return out;
+}
 
-  // u_s = A_s⁺(f_s − B_sᵀλ) + R_s α_s, α = (GGᵀ)⁻¹G(Fλ − d); each body dof from its owner.
-  Dual alpha = Dual::Zero(n_kernel_);
-  if (singular_ && n_kernel_ > 0) alpha = coarse_.solve(g_ * g);
-  std::vector<double> u(static_cast<size_t>(x.size()), 0.0);
+Feti::Block Feti::primal(const Block& solution, const std::vector<Block>& f) const {
+  // u_s = A_s⁺(f_s − B_sᵀλ) + R_s α_s; each body dof from the copy of its owner.
+  const Eigen::Index k = solution.cols();
+  const Block lambda = solution.topRows(m_);
+  Block u = Block::Zero(static_cast<Eigen::Index>(owner_.size()) * block_, k);
   for (int s = first_owned_; s < last_owned_; ++s) {
     const auto& sub = *subs_[static_cast<size_t>(s)];
     sub.scatter_transpose(lambda, sub.w);
-    sub.w.scale(-1.0);
-    sub.w.axpy(1.0, f[static_cast<size_t>(s)]);
+    sub.w = f[static_cast<size_t>(s)] - sub.w;
     sub.pseudo_solve(sub.w, sub.z);
-    const auto zv = sub.z.read();
-    Eigen::VectorXd kernel_part;
-    const bool floating = singular_ && sub.r.cols() > 0;
-    if (floating) kernel_part = sub.r * alpha.segment(sub.kernel_offset, sub.r.cols());
+    if (singular_ && sub.r.cols() > 0)
+      sub.z += sub.r * solution.middleRows(m_ + sub.kernel_offset, sub.r.cols());
     for (PetscInt i = 0; i < sub.n(); ++i) {
       const PetscInt gdof = sub.global_dof[static_cast<size_t>(i)];
-      if (owner_[static_cast<size_t>(gdof / block_)] != s) continue;
-      u[static_cast<size_t>(gdof)] = zv[i] + (floating ? kernel_part[i] : 0.0);
+      if (owner_[static_cast<size_t>(gdof / block_)] == s) u.row(gdof) = sub.z.row(i);
     }
   }
-  sum_over_ranks(u.data(), static_cast<Eigen::Index>(u.size()));
-  std::vector<double> prescribed;
+  sum_over_ranks(u.data(), u.size());
+  return u;
+}
+
+void Feti::solve(const core::Vector& b, core::Vector& x) const {
+  Block f(b.size(), 1), c = Block::Zero(m_, 1);
   {
+    const auto bv = b.read();
+    for (PetscInt i = 0; i < b.size(); ++i) f(i, 0) = bv[i];
     const auto xv = x.read();
-    for (const PetscInt dof : dirichlet_row_dof_) prescribed.push_back(xv[dof]);
+    for (size_t i = 0; i < dirichlet_row_dof_.size(); ++i)
+      c(m_gluing_ + static_cast<Eigen::Index>(i), 0) = xv[dirichlet_row_dof_[i]];
   }
+  std::vector<Block> fs;
+  const Block u = primal(solve_dual(f, c, fs), fs);
   auto xv = x.view();
-  for (size_t i = 0; i < u.size(); ++i) xv[static_cast<PetscInt>(i)] = u[i];
-  for (size_t i = 0; i < prescribed.size(); ++i) xv[dirichlet_row_dof_[i]] = prescribed[i];
+  for (PetscInt i = 0; i < x.size(); ++i)
+    if (!std::binary_search(dirichlet_dofs_.begin(), dirichlet_dofs_.end(), i)) xv[i] = u(i, 0);
 }
 
 void Feti::solve_homogeneous_many(::Mat b, ::Mat x) const {
   PetscInt n = 0, k = 0;
   TC_PETSC(MatGetSize(b, &n, &k));
-  const double* bv = nullptr;
-  double* xv = nullptr;
-  TC_PETSC(MatDenseGetArrayRead(b, &bv));
-  TC_PETSC(MatDenseGetArrayWrite(x, &xv));
-  core::Vector rhs(n), sol(n);
-  for (PetscInt j = 0; j < k; ++j) {
-    {
-      auto r = rhs.view();
-      for (PetscInt i = 0; i < n; ++i) r[i] = bv[j * n + i];
-    }
-    sol.zero();
-    solve(rhs, sol);
-    const auto s = sol.read();
-    for (PetscInt i = 0; i < n; ++i) xv[j * n + i] = s[i];
+  Block f(n, k);
+  {
+    const double* bv = nullptr;
+    TC_PETSC(MatDenseGetArrayRead(b, &bv));
+    f = Eigen::Map<const Block>(bv, n, k);
+    TC_PETSC(MatDenseRestoreArrayRead(b, &bv));
   }
+  std::vector<Block> fs;
+  Block u = primal(solve_dual(f, Block::Zero(m_, k), fs), fs);
+  for (const PetscInt d : dirichlet_dofs_) u.row(d).setZero();
+  double* xv = nullptr;
+  TC_PETSC(MatDenseGetArrayWrite(x, &xv));
+  Eigen::Map<Block>(xv, n, k) = u;
   TC_PETSC(MatDenseRestoreArrayWrite(x, &xv));
-  TC_PETSC(MatDenseRestoreArrayRead(b, &bv));
 }
 
 }  // namespace tc::feti

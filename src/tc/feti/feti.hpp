@@ -13,7 +13,8 @@
 // there is no kernel; but when K dominates 4/τ²M the rigid motions are still nearly free and
 // plain CG crawls (640 iterations instead of 70 on 27 subdomains). The same coarse space then
 // deflates CG: λ₀ = W E⁻¹Wᵀd, search directions F-orthogonal to W = Gᵀ, E = WᵀFW (the
-// conjugate projector of Dostál, Kozubek, Brzobohatý et al. 2012).
+// conjugate projector of Dostál, Kozubek, Brzobohatý et al. 2012), W an orthonormal basis
+// of the columns of Gᵀ.
 //
 // Parallel model: subdomains are dealt to the ranks of PETSC_COMM_WORLD in contiguous blocks;
 // a rank assembles and factorises only its own. Dual vectors (the size of the interface) are
@@ -64,10 +65,11 @@ struct FetiOptions {
 };
 
 struct FetiStatistics {
-  long solves = 0;
-  long iterations = 0;       // PCG iterations over all solves
-  int last_iterations = 0;   // of the last solve
-  double last_residual = 0;  // ‖B u − c‖ / ‖P d‖ at the end of the last solve
+  long solves = 0;            // calls, each with one block of right-hand sides
+  long right_hand_sides = 0;  // columns over all calls
+  long iterations = 0;        // PCG iterations over all solves (shared by a block's columns)
+  int last_iterations = 0;    // of the last solve
+  double last_residual = 0;   // ‖B u − c‖ / ‖P d‖ at the end of the last solve
 };
 
 class Feti {
@@ -84,7 +86,8 @@ class Feti {
   /// On entry x holds the prescribed values at the Dirichlet dofs; on exit x solves A x = b
   /// (same contract as physics::ConstrainedSolver). Collective on PETSC_COMM_WORLD.
   void solve(const core::Vector& b, core::Vector& x) const;
-  /// X = A⁻¹B with zero prescribed values, column by column (dense n × k).
+  /// X = A⁻¹B with zero prescribed values (dense n × k): the k right-hand sides share every
+  /// product with F, so the subdomains do multi-RHS solves (level-3 BLAS).
   void solve_homogeneous_many(::Mat b, ::Mat x) const;
 
   [[nodiscard]] int n_subdomains() const { return static_cast<int>(subs_.size()); }
@@ -98,28 +101,33 @@ class Feti {
 
  private:
   struct Subdomain;
-  using Dual = Eigen::VectorXd;
+  using Block = Eigen::MatrixXd;  // k dual or primal vectors, one per column
   void build_rows(int n_nodes, const std::vector<PetscInt>& dirichlet);
   void build_kernels(const std::vector<mesh::SubMesh>& subdomains, Kernel kernel);
   void build_g();
   void build_coarse();
   void build_deflation();
-  void deflate(Dual& z) const;  // z ← z − W E⁻¹ (FW)ᵀ z
-  void apply_f(const Dual& x, Dual& y) const;
-  void precondition(const Dual& x, Dual& y) const;
-  void project(Dual& x) const;  // x ← P x
+  void apply_f(const Block& x, Block& y) const;
+  void precondition(const Block& x, Block& y) const;
+  void project(Block& x) const;  // x ← P x
+  void deflate(Block& z) const;  // z ← z − W E⁻¹ (FW)ᵀ z
+  /// λ (and below it α of the floating subdomains) for k right-hand sides f (body dofs × k)
+  /// and Dirichlet data c (m × k); f is split into the subdomains' loads on the way.
+  Block solve_dual(const Block& f_global, const Block& c, std::vector<Block>& f) const;
+  Block primal(const Block& solution, const std::vector<Block>& f) const;
   void sum_over_ranks(double* data, Eigen::Index n) const;
 
   int block_;
   FetiOptions options_;
   std::vector<std::unique_ptr<Subdomain>> subs_;
   Eigen::Index m_ = 0, m_gluing_ = 0, n_kernel_ = 0;
+  std::vector<PetscInt> dirichlet_dofs_;     // sorted
   std::vector<PetscInt> dirichlet_row_dof_;  // body dof of each Dirichlet row
   std::vector<int> owner_;                   // subdomain that carries each body node's load
   Eigen::SparseMatrix<double> g_;            // G = Rᵀ Bᵀ, n_kernel × m
   Eigen::LLT<Eigen::MatrixXd> coarse_;       // GGᵀ (singular) or E = GFGᵀ (deflation)
   bool singular_ = false;
-  Eigen::MatrixXd fw_;                    // F W = F Gᵀ (deflation only), m × n_kernel
+  Eigen::MatrixXd w_, fw_;  // deflation only: W (orthonormal basis of range Gᵀ) and F W
   int first_owned_ = 0, last_owned_ = 0;  // [first, last) subdomains of this rank
   std::string package_;
   mutable FetiStatistics stats_;

@@ -439,9 +439,10 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
 }
 
 void CaseReader::read_solver(const TableReader& root) {
-  const auto s = root.sub_table("solver", Need::Optional,
-                                {"coupling_tolerance", "max_coupling_iterations", "qp_tolerance",
-                                 "max_qp_iterations", "factorization"});
+  const auto s = root.sub_table(
+      "solver", Need::Optional,
+      {"coupling_tolerance", "max_coupling_iterations", "qp_tolerance", "max_qp_iterations",
+       "factorization", "feti_tolerance", "max_feti_iterations", "feti_preconditioner"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -455,6 +456,15 @@ void CaseReader::read_solver(const TableReader& root) {
   if (const auto v =
           s->choice("factorization", Need::Optional, {"auto", "mumps", "cholmod", "petsc"}))
     settings.factorization = *v == "auto" ? "" : *v;
+  if (const auto v = s->number("feti_tolerance", Need::Optional, unit))
+    settings.feti_tolerance = *v;
+  if (const auto v = s->integer("max_feti_iterations", Need::Optional, 1))
+    settings.max_feti_iterations = *v;
+  if (const auto v =
+          s->choice("feti_preconditioner", Need::Optional, {"dirichlet", "lumped", "none"}))
+    settings.feti_preconditioner = *v == "dirichlet" ? feti::Preconditioner::dirichlet
+                                   : *v == "lumped"  ? feti::Preconditioner::lumped
+                                                     : feti::Preconditioner::none;
 }
 
 void CaseReader::read_output(const TableReader& root) {

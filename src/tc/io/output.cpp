@@ -98,7 +98,7 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
         fem::von_mises(fem::cell_stress(type, x, ue, dte, mat.lame_lambda(), mat.lame_mu(), beta)));
     const auto q = fem::cell_heat_flux(type, x, te, mat.thermal_conductivity);
     flux.values.insert(flux.values.end(), {q[0], q[1], q[2]});
-    sub.values.push_back(0.0);
+    sub.values.push_back(sys.cell_subdomain()[static_cast<size_t>(c)]);
   }
   cell_data = {std::move(vm), std::move(flux), std::move(sub)};
   contact_fields(sim, body, point_data);
@@ -277,6 +277,14 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
     out.print("  \"multipliers\": {},\n", dual ? dual->rows().n_rows() : 0);
     out.print("  \"ranks\": {},\n", core::PetscSession::size());
     out.print("  \"subdomains\": {},\n", subdomains);
+    const auto feti = sim.feti_statistics();
+    out.print(
+        "  \"feti\": {{\"solves\": {}, \"right_hand_sides\": {}, \"iterations\": {}, "
+        "\"preconditioner\": {}}},\n",
+        feti.solves, feti.right_hand_sides, feti.iterations,
+        json_string(subdomains > static_cast<int>(p.bodies.size())
+                        ? feti::name(p.solver.feti_preconditioner)
+                        : "none"));
     out.print("  \"factorization\": {},\n", json_string(sim.factorization()));
     out.print(
         "  \"dual_operator\": {},\n",

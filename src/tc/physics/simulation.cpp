@@ -225,6 +225,18 @@ PetscInt Simulation::n_dofs() const {
   return n;
 }
 
+feti::FetiStatistics Simulation::feti_statistics() const {
+  feti::FetiStatistics total;
+  for (const auto& s : solvers_)
+    for (const auto* solver : {s->mech.get(), s->heat.get(), s->mass.get()})
+      if (solver && solver->feti()) {
+        total.solves += solver->feti()->statistics().solves;
+        total.right_hand_sides += solver->feti()->statistics().right_hand_sides;
+        total.iterations += solver->feti()->statistics().iterations;
+      }
+  return total;
+}
+
 void Simulation::initialise() {
   const double theta0 = problem_.physics.reference_temperature;
   for (int b = 0; b < n_bodies(); ++b) {

@@ -165,6 +165,8 @@ class Simulation {
   [[nodiscard]] const core::PhaseTimers& timers() const { return timers_; }
   [[nodiscard]] const std::string& factorization() const { return factorization_; }
   [[nodiscard]] PetscInt n_dofs() const;
+  /// FETI solves and projected-CG iterations so far, summed over the decomposed bodies' solvers.
+  [[nodiscard]] feti::FetiStatistics feti_statistics() const;
 
   /// history.csv: names of the columns and the row of the current step.
   [[nodiscard]] const std::vector<std::string>& history_columns() const { return columns_; }
