@@ -5,6 +5,7 @@
 // differences of the runs' solver paths stay far below it.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "support/cli.hpp"
 #include "support/history.hpp"
@@ -18,7 +19,8 @@ const std::filesystem::path kCase =
 class FetiCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fresh_dir("feti-cli");
+    // ctest runs each test of the suite as its own process, possibly at the same time.
+    dir_ = fresh_dir(fmt::format("feti-cli-{}", ::getpid()));
     const auto text = read_file(kCase);
     const auto cut = dir_ / "cut.toml";
     std::ofstream(cut) << replace_all(text, "subdomains = 1", "subdomains = 8");
