@@ -91,7 +91,8 @@ TEST_F(FetiCli, TwoRanksGiveTheOneRankHistory) {
   const double mean_two = double(feti_two.second) / double(feti_two.first);
   EXPECT_GT(mean_one, 5.0);  // the count is real: a FETI solve takes tens of iterations
   EXPECT_NEAR(mean_one, mean_two, 2.0);
-  const auto coupling_a = column(a, "coupling_iterations"), coupling_b = column(b, "coupling_iterations");
+  const auto coupling_a = column(a, "coupling_iterations"),
+             coupling_b = column(b, "coupling_iterations");
   const auto qp_a = column(a, "qp_iterations"), qp_b = column(b, "qp_iterations");
   for (size_t k = 0; k < a.rows.size(); ++k) {
     EXPECT_NEAR(coupling_a[k], coupling_b[k], 2) << k;
