@@ -25,7 +25,8 @@ constexpr int n_steps = 40;  // the case's end / step
 /// The uninterrupted run, once per test program.
 const tc::test::History& uninterrupted() {
   static const tc::test::History h = [] {
-    const auto out = tc::test::fresh_dir("kill-full");
+    // One directory per test process: ctest runs the two kill tests at the same time.
+    const auto out = tc::test::fresh_dir("kill-full-" + std::to_string(::getpid()));
     const auto r = thermocontact("run " + sliding.string() + " --output " + out.string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
     return tc::test::read_history(out / "history.csv");
@@ -116,7 +117,8 @@ void kill_trials(int sig, int trials) {
     const size_t rows = static_cast<size_t>(step(random)) + 1;
     SCOPED_TRACE("signal " + std::to_string(sig) + ", seed " + std::to_string(seed) +
                  ", killed once history.csv had " + std::to_string(rows) + " rows");
-    const auto out = tc::test::fresh_dir("kill-" + std::to_string(sig) + "-" + std::to_string(t));
+    const auto out = tc::test::fresh_dir("kill-" + std::to_string(::getpid()) + "-" +
+                                         std::to_string(sig) + "-" + std::to_string(t));
     const auto k = run_and_kill(out, sig, rows);
     if (k.finished) {  // the machine was fast enough to finish first: nothing to test
       ADD_FAILURE() << "the run ended before the signal";

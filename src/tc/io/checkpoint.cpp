@@ -117,6 +117,8 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
     for (const auto* v : {&b.u, &b.v, &b.a, &b.theta, &b.force, &b.g_free}) e.put(*v);
   e.put(c.lambda);
   e.put(std::vector<std::int32_t>(c.lambda_nodes.begin(), c.lambda_nodes.end()));
+  e.put(c.lambda_tangents);
+  for (const auto& v : c.compliance) e.put(std::vector<std::int32_t>(v.begin(), v.end()));
   e.put(c.slip);
   e.put(c.heat_flux);
   e.put(c.row);
@@ -172,6 +174,11 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
   c.lambda = d.get_vector<double>();
   const auto nodes = d.get_vector<std::int32_t>();
   c.lambda_nodes.assign(nodes.begin(), nodes.end());
+  c.lambda_tangents = d.get_vector<double>();
+  for (auto& v : c.compliance) {
+    const auto x = d.get_vector<std::int32_t>();
+    v.assign(x.begin(), x.end());
+  }
   c.slip = d.get_vector<double>();
   c.heat_flux = d.get_vector<double>();
   c.row = d.get_vector<double>();

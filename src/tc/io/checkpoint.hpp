@@ -24,7 +24,8 @@ class CheckpointError : public Error {
   using Error::Error;
 };
 
-inline constexpr std::uint32_t checkpoint_version = 1;
+inline constexpr std::uint32_t checkpoint_version =
+    2;  // 2: + warm-start tangents, compliance records
 
 /// The file name of the checkpoint in an output directory.
 [[nodiscard]] std::filesystem::path checkpoint_file(const std::filesystem::path& directory);

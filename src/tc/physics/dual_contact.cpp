@@ -6,6 +6,8 @@
 #include <cmath>
 #include <utility>
 
+#include "tc/core/error.hpp"
+
 namespace tc::physics {
 
 const char* name(DualOperator k) {
@@ -112,6 +114,7 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
     }
   const auto t = static_cast<Eigen::Index>(dofs_.size());
   if (t == old) return 0;
+  chunks_.push_back(static_cast<PetscInt>(t - old));
   s_.conservativeResize(t, t);
   const auto n = static_cast<PetscInt>(index_.size());
   constexpr Eigen::Index block = 64;  // bounds the dense work space to n × block
@@ -147,6 +150,16 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
   const Eigen::MatrixXd sym = 0.5 * (fresh + fresh.transpose());
   fresh = sym;
   return static_cast<PetscInt>(t - old);
+}
+
+void DofCompliance::replay(std::span<const PetscInt> dofs, std::span<const PetscInt> chunks) {
+  if (!dofs_.empty()) throw Error("DofCompliance::replay needs an empty compliance");
+  size_t at = 0;
+  for (const PetscInt k : chunks) {
+    if (at + static_cast<size_t>(k) > dofs.size()) throw Error("DofCompliance: bad replay record");
+    cover(dofs.subspan(at, static_cast<size_t>(k)));
+    at += static_cast<size_t>(k);
+  }
 }
 
 void DualContactSolver::form_explicit() {

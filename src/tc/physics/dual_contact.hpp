@@ -58,9 +58,16 @@ class DofCompliance {
   [[nodiscard]] PetscInt index(PetscInt dof) const { return index_[dof]; }
   [[nodiscard]] PetscInt size() const { return static_cast<PetscInt>(dofs_.size()); }
   [[nodiscard]] const Eigen::MatrixXd& matrix() const { return s_; }
+  /// T in the order added, and the number of dofs each cover() added: enough to rebuild S
+  /// with the same solves in the same blocks, hence the same bits (restart).
+  [[nodiscard]] const std::vector<PetscInt>& dofs() const { return dofs_; }
+  [[nodiscard]] const std::vector<PetscInt>& chunks() const { return chunks_; }
+  /// Rebuilds S from an empty compliance by replaying the recorded cover() calls.
+  void replay(std::span<const PetscInt> dofs, std::span<const PetscInt> chunks);
 
  private:
   const ConstrainedSolver& solver_;
+  std::vector<PetscInt> chunks_;
   std::vector<PetscInt> index_;  // dof → position in T, or −1
   std::vector<PetscInt> dofs_;   // T in the order added
   Eigen::MatrixXd s_;
@@ -117,6 +124,12 @@ class DualContactSolver {
   void form_by_solves();        // F column blocks by multi-right-hand-side solves
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
 
+ public:
+  /// The slave's (0) and master's (1) compliance, for checkpoints.
+  [[nodiscard]] DofCompliance& compliance(int i) { return compliance_[i]; }
+  [[nodiscard]] const DofCompliance& compliance(int i) const { return compliance_[i]; }
+
+ private:
   const ConstrainedSolver& slave_;
   const ConstrainedSolver& master_;
   DualContactSettings settings_;

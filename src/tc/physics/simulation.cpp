@@ -1094,6 +1094,15 @@ Checkpoint Simulation::checkpoint() const {
   }
   c.lambda = contact_multipliers();
   c.lambda_nodes = lambda_nodes_;
+  for (const auto& tl : lambda_tangents_)
+    for (const auto& t : tl) c.lambda_tangents.insert(c.lambda_tangents.end(), t.begin(), t.end());
+  const DualContactSolver* duals[2] = {dual_.get(), stabiliser_.get()};
+  for (int d = 0; d < 2; ++d)
+    for (int i = 0; d < 2 && duals[d] && i < 2; ++i) {
+      const auto& comp = duals[d]->compliance(i);
+      c.compliance[4 * d + 2 * i].assign(comp.dofs().begin(), comp.dofs().end());
+      c.compliance[4 * d + 2 * i + 1].assign(comp.chunks().begin(), comp.chunks().end());
+    }
   c.slip = slip_;
   c.heat_flux = heat_flux_;
   c.row = row_;
@@ -1140,6 +1149,21 @@ void Simulation::restore(const Checkpoint& c) {
     throw Error("checkpoint: the multipliers do not match their contact nodes");
   lambda_ = c.lambda.empty() ? core::Vector() : core::Vector::from(c.lambda);
   lambda_nodes_ = c.lambda_nodes;
+  DualContactSolver* duals[2] = {dual_.get(), stabiliser_.get()};
+  for (int d = 0; d < 2; ++d)
+    for (int i = 0; duals[d] && i < 2; ++i) {
+      const auto& dofs = c.compliance[4 * d + 2 * i];
+      const auto& chunks = c.compliance[4 * d + 2 * i + 1];
+      duals[d]->compliance(i).replay(std::vector<PetscInt>(dofs.begin(), dofs.end()),
+                                     std::vector<PetscInt>(chunks.begin(), chunks.end()));
+    }
+  const size_t per_basis = c.lambda_tangents.size() / 6;  // nodes with two tangents of 3
+  for (int l = 0; l < 2; ++l) {
+    lambda_tangents_[l].resize(per_basis);
+    for (size_t k = 0; k < per_basis; ++k)
+      for (int x = 0; x < 3; ++x)
+        lambda_tangents_[l][k][x] = c.lambda_tangents[3 * (l * per_basis + k) + x];
+  }
   slip_ = c.slip;
   heat_flux_ = c.heat_flux;
   row_ = c.row;

@@ -82,8 +82,12 @@ struct Checkpoint {
   };
   int step = 0;
   std::vector<Body> bodies;
-  std::vector<double> lambda;     // node-major multipliers of the last step
-  std::vector<int> lambda_nodes;  // slave mesh node of each contact node of lambda
+  std::vector<double> lambda;           // node-major multipliers of the last step
+  std::vector<int> lambda_nodes;        // slave mesh node of each contact node of lambda
+  std::vector<double> lambda_tangents;  // 3D mortar: t_1 then t_2 of each node, xyz (warm start)
+  // The compliance records (DofCompliance::dofs, chunks) of the contact solver's slave and
+  // master, then of the stabiliser's: replayed on restore, so F has the same bits.
+  std::array<std::vector<int>, 8> compliance;
   std::vector<double> slip, heat_flux;
   std::vector<double> row;  // the history row of `step`
   double external_work = 0;
