@@ -153,7 +153,13 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
 }
 
 void DofCompliance::replay(std::span<const PetscInt> dofs, std::span<const PetscInt> chunks) {
-  if (!dofs_.empty()) throw Error("DofCompliance::replay needs an empty compliance");
+  if (std::equal(dofs.begin(), dofs.end(), dofs_.begin(), dofs_.end()) &&
+      std::equal(chunks.begin(), chunks.end(), chunks_.begin(), chunks_.end()))
+    return;  // already this record (a restore into the run that wrote it)
+  for (const PetscInt d : dofs_) index_[d] = -1;
+  dofs_.clear();
+  chunks_.clear();
+  s_.resize(0, 0);
   size_t at = 0;
   for (const PetscInt k : chunks) {
     if (at + static_cast<size_t>(k) > dofs.size()) throw Error("DofCompliance: bad replay record");

@@ -62,7 +62,8 @@ class DofCompliance {
   /// with the same solves in the same blocks, hence the same bits (restart).
   [[nodiscard]] const std::vector<PetscInt>& dofs() const { return dofs_; }
   [[nodiscard]] const std::vector<PetscInt>& chunks() const { return chunks_; }
-  /// Rebuilds S from an empty compliance by replaying the recorded cover() calls.
+  /// Rebuilds S from scratch by replaying the recorded cover() calls (nothing to do when the
+  /// record is already this one's).
   void replay(std::span<const PetscInt> dofs, std::span<const PetscInt> chunks);
 
  private:
