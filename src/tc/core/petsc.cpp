@@ -256,6 +256,13 @@ double SparseMatrix::quadratic_form(const Vector& x, Vector& work) const {
   return x.dot(work);
 }
 
+double mean_diagonal(const SparseMatrix& a) {
+  Vector d(a.rows());
+  TC_PETSC(MatGetDiagonal(a.get(), d.get()));
+  const double mean = d.sum() / static_cast<double>(a.rows());
+  return mean > 0 ? mean : 1.0;
+}
+
 // -------------------------------------------------------------------- CholeskySolver
 
 std::vector<std::string> available_cholesky_packages() {

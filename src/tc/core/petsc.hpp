@@ -159,6 +159,10 @@ class SparseMatrix {
   Handle<::Mat, MatDestroy> m_;
 };
 
+/// The mean of the diagonal (1 if not positive): the scale given to the rows of eliminated
+/// dofs, so that a matrix with them replaced by a scaled identity keeps its conditioning.
+[[nodiscard]] double mean_diagonal(const SparseMatrix& a);
+
 /// A direct Cholesky factorisation of an SPD SparseMatrix, done once, solved many times.
 /// The package is "mumps" or "cholmod" (PETSc's MatSolverType); it may be overridden with the
 /// PETSc option -tc_factor_package.

@@ -30,13 +30,6 @@ struct Entry {  // one nonzero of B_s: row of B, local dof, value
   double value;
 };
 
-double mean_diagonal(const core::SparseMatrix& a) {
-  core::Vector d(a.rows());
-  TC_PETSC(MatGetDiagonal(a.get(), d.get()));
-  const double mean = d.sum() / static_cast<double>(a.rows());
-  return mean > 0 ? mean : 1.0;
-}
-
 }  // namespace
 
 /// A column-major Eigen block seen as a PETSc MATSEQDENSE (no copy), for multi-RHS solves.
@@ -140,7 +133,7 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
     if (sub.a.rows() != sub.n())
       throw Error(fmt::format("FETI: subdomain {} matrix has {} rows, expected {}", s, sub.a.rows(),
                               sub.n()));
-    const double diag = mean_diagonal(sub.a);
+    const double diag = core::mean_diagonal(sub.a);
     auto reduced = sub.a.copy();
     reduced.zero_rows_columns(sub.fixing, diag);
     sub.factor = core::CholeskySolver(reduced, options_.package);

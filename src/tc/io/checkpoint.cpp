@@ -10,6 +10,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "tc/core/bytes.hpp"
 #include "tc/core/petsc.hpp"
 
 namespace tc::io {
@@ -27,61 +28,38 @@ std::uint64_t fnv1a(const char* data, size_t n) {
   return h;
 }
 
-class Encoder {
+class Encoder : public core::ByteWriter {
  public:
   template <class T>
-  void put(T v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  void put(const T& v) {
+    core::ByteWriter::put(v);
   }
   template <class T>
   void put(const std::vector<T>& v) {
-    put(static_cast<std::uint64_t>(v.size()));
-    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    put_vector(v);
   }
   std::string finish() {
-    put(fnv1a(bytes_.data(), bytes_.size()));
-    return std::move(bytes_);
+    put(fnv1a(str().data(), str().size()));
+    return std::move(str());
   }
-
- private:
-  std::string bytes_;
 };
 
 /// Reads what Encoder wrote, refusing to run past the end (a damaged file is an error, not a
 /// crash).
-class Decoder {
+class Decoder : public core::ByteReader {
  public:
-  Decoder(const std::string& bytes, std::string where) : b_(bytes), where_(std::move(where)) {}
-  template <class T>
-  T get() {
-    T v;
-    need(sizeof v);
-    std::memcpy(&v, b_.data() + pos_, sizeof v);
-    pos_ += sizeof v;
-    return v;
-  }
-  template <class T>
-  std::vector<T> get_vector() {
-    const auto n = get<std::uint64_t>();
-    if (n > (b_.size() - pos_) / sizeof(T)) fail("a vector runs past the end of the file");
-    std::vector<T> v(n);
-    std::memcpy(v.data(), b_.data() + pos_, n * sizeof(T));
-    pos_ += n * sizeof(T);
-    return v;
-  }
+  Decoder(const std::string& bytes, std::string where)
+      : core::ByteReader(bytes,
+                         [where](const std::string& what) {
+                           throw CheckpointError(fmt::format("checkpoint {}: {}", where, what));
+                         }),
+        where_(std::move(where)) {}
   [[noreturn]] void fail(const std::string& what) const {
     throw CheckpointError(fmt::format("checkpoint {}: {}", where_, what));
   }
-  [[nodiscard]] size_t position() const { return pos_; }
 
  private:
-  void need(size_t n) const {
-    if (n > b_.size() - pos_) fail("the file is truncated");
-  }
-  const std::string& b_;
   std::string where_;
-  size_t pos_ = 0;
 };
 
 }  // namespace

@@ -30,6 +30,7 @@
 #include <type_traits>
 #include <unordered_map>
 
+#include "tc/core/bytes.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::mesh {
@@ -131,62 +132,14 @@ RawMesh read_raw_safely(const std::filesystem::path& file, int dim) {
 // becomes a MeshError here. Forking an MPI process is safe for this: the child touches no
 // MPI state and leaves by _exit (no atexit handlers, no MPI_Finalize).
 
-class Bytes {
+using Bytes = core::ByteWriter;
+
+/// The child's record read back; a short record is a MeshError.
+class Reader : public core::ByteReader {
  public:
-  template <class T>
-  void put(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    s_.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  template <class T>
-  void put_vector(const std::vector<T>& v) {
-    put(static_cast<std::uint64_t>(v.size()));
-    s_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-  }
-  void put_string(const std::string& v) {
-    put(static_cast<std::uint64_t>(v.size()));
-    s_ += v;
-  }
-  std::string& str() { return s_; }
-
- private:
-  std::string s_;
-};
-
-class Reader {
- public:
-  explicit Reader(const std::string& s) : s_(s) {}
-  template <class T>
-  T get() {
-    T v;
-    need(sizeof v);
-    std::memcpy(&v, s_.data() + pos_, sizeof v);
-    pos_ += sizeof v;
-    return v;
-  }
-  template <class T>
-  std::vector<T> get_vector() {
-    const auto n = get<std::uint64_t>();
-    if (n > (s_.size() - pos_) / sizeof(T)) throw MeshError("mesh reader: truncated data");
-    std::vector<T> v(n);
-    std::memcpy(v.data(), s_.data() + pos_, n * sizeof(T));
-    pos_ += n * sizeof(T);
-    return v;
-  }
-  std::string get_string() {
-    const auto n = get<std::uint64_t>();
-    need(n);
-    std::string v = s_.substr(pos_, n);
-    pos_ += n;
-    return v;
-  }
-
- private:
-  void need(std::size_t n) const {
-    if (n > s_.size() - pos_) throw MeshError("mesh reader: truncated data");
-  }
-  const std::string& s_;
-  std::size_t pos_ = 0;
+  explicit Reader(const std::string& s)
+      : core::ByteReader(
+            s, [](const std::string& what) { throw MeshError("mesh reader: " + what); }) {}
 };
 
 void put_block(Bytes& b, const RawBlock& block) {

@@ -2,18 +2,9 @@
 
 namespace tc::physics {
 
-namespace {
-double mean_diagonal(const core::SparseMatrix& a) {
-  core::Vector d(a.rows());
-  TC_PETSC(MatGetDiagonal(a.get(), d.get()));
-  const double mean = d.sum() / static_cast<double>(a.rows());
-  return mean > 0 ? mean : 1.0;
-}
-}  // namespace
-
 ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
                                      const std::string& package)
-    : a_(a.share()), dofs_(std::move(dofs)), diag_(mean_diagonal(a)), reduced_(a.copy()) {
+    : a_(a.share()), dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)), reduced_(a.copy()) {
   reduced_.zero_rows_columns(dofs_, diag_);
   factor_ = core::CholeskySolver(reduced_, package);
   lift_ = core::Vector(a.rows());

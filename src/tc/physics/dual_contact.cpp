@@ -251,12 +251,11 @@ void DualContactSolver::form_by_solves() {
   // the solutions. Blocks bound the dense work space to n × block per body.
   const PetscInt m = rows_.n_rows();
   constexpr PetscInt block = 64;
-  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_dense_.out()));
+  f_dense_ = zero_dense(m, m);
   PetscScalar* f = nullptr;
   TC_PETSC(MatDenseGetArray(f_dense_.get(), &f));
   PetscInt ldf = m;
   TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ldf));
-  for (PetscInt j = 0; j < m; ++j) std::fill(f + j * ldf, f + j * ldf + m, 0.0);
   const std::pair<const core::SparseMatrix*, const ConstrainedSolver*> bodies[] = {
       {&rows_.slave, &slave_}, {&rows_.master, &master_}};
   for (const auto& [b, solver] : bodies) {
