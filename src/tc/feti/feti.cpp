@@ -152,15 +152,6 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
 
 Feti::~Feti() = default;
 
-int Feti::owner_rank(int s) const {
-  int size = 1;
-  MPI_Comm_size(options_.comm, &size);
-  const int n = n_subdomains();
-  for (int r = 0; r < size; ++r)
-    if (s < static_cast<int>(static_cast<long>(n) * (r + 1) / size)) return r;
-  return size - 1;
-}
-
 void Feti::build_rows(int n_nodes, const std::vector<PetscInt>& dirichlet) {
   // Copies of every body node: (subdomain, local node), in subdomain order.
   std::vector<std::vector<std::pair<int, PetscInt>>> copies(static_cast<size_t>(n_nodes));

@@ -96,8 +96,6 @@ class Feti {
   [[nodiscard]] int coarse_dimension() const { return static_cast<int>(n_kernel_); }
   [[nodiscard]] const FetiStatistics& statistics() const { return stats_; }
   [[nodiscard]] const std::string& package() const { return package_; }
-  /// The subdomain of every cell's owner rank, for output.
-  [[nodiscard]] int owner_rank(int s) const;
 
  private:
   struct Subdomain;
