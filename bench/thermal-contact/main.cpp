@@ -5,11 +5,12 @@
 // of the case (the shared machine's load inflates the wall times; run with
 // OPENBLAS_NUM_THREADS=1: the solves' BLAS threads spin against the other processes).
 //
-//   build/bin/bench_thermal-contact [--ab] [case.toml ...]   (default: the two examples)
+//   build/bin/bench_thermal-contact [--ab] [--loops] [case.toml ...]   (default: the examples)
 //
 // --ab runs each case twice in turn, as committed and with the explicit F formed by 2m solves
 // every step and the QP unscaled (the state before issue 7's speed work), for a comparison
-// under the same load.
+// under the same load. --loops adds a run with the Tresca → Coulomb updates staggered with
+// the heat step (FrictionLoop::staggered) instead of nested in the mechanical half.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -26,7 +27,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct Counts : tc::physics::Observer {
-  long qp = 0, applications = 0, coupling = 0;
+  long qp = 0, applications = 0, coupling = 0, friction = 0;
   int max_coupling = 0;
   void step(const tc::physics::Simulation& sim) override {
     if (sim.step() == 0) return;
@@ -34,6 +35,7 @@ struct Counts : tc::physics::Observer {
     applications += static_cast<long>(sim.history("operator_applications"));
     const int c = static_cast<int>(sim.history("coupling_iterations"));
     coupling += c;
+    friction += static_cast<long>(sim.history("friction_iterations"));
     max_coupling = std::max(max_coupling, c);
   }
 };
@@ -42,10 +44,12 @@ struct Counts : tc::physics::Observer {
 
 int main(int argc, char** argv) {
   std::vector<std::string> cases;
-  bool ab = false;
+  bool ab = false, loops = false;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--ab")
       ab = true;
+    else if (std::string(argv[i]) == "--loops")
+      loops = true;
     else
       cases.emplace_back(argv[i]);
   }
@@ -57,14 +61,17 @@ int main(int argc, char** argv) {
   fmt::print(
       "| case | dofs | steps | total [s] | CPU [s] | assembly + factorisation | mortar | dual "
       "set-up | QP | "
-      "heat | mechanics | coupling it./step (max) | QP it./step | F appl./step |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  std::vector<std::pair<std::string, bool>> runs;
+      "heat | mechanics | coupling it./step (max) | γ updates/step | QP it./step | F appl./step |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  enum class Variant { committed, before, staggered };
+  std::vector<std::pair<std::string, Variant>> runs;
   for (const auto& file : cases) {
-    runs.emplace_back(file, false);
-    if (ab) runs.emplace_back(file, true);
+    runs.emplace_back(file, Variant::committed);
+    if (ab) runs.emplace_back(file, Variant::before);
+    if (loops) runs.emplace_back(file, Variant::staggered);
   }
-  for (const auto& [file, before] : runs) {
+  for (const auto& [file, variant] : runs) {
+    const bool before = variant == Variant::before;
     const auto problem = tc::io::read_case(file);
     const auto t0 = Clock::now();
     const std::clock_t c0 = std::clock();
@@ -75,6 +82,7 @@ int main(int argc, char** argv) {
       settings.scale = false;
     }
     if (problem.contact) sim.enable_mortar_contact(settings);
+    if (variant == Variant::staggered) sim.set_friction_loop(tc::physics::FrictionLoop::staggered);
     Counts counts;
     const auto status = sim.run(counts);
     const double total = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -84,15 +92,18 @@ int main(int argc, char** argv) {
     const double n = std::max(1, status.steps_done);
     const auto name =
         file.substr(file.find("examples/") == std::string::npos ? 0 : file.find("examples/") + 9) +
-        (before ? " (F by solves, unscaled)" : "");
+        (before                          ? " (F by solves, unscaled)"
+         : variant == Variant::staggered ? " (γ updates staggered with the heat step)"
+                                         : "");
     fmt::print(
         "| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | "
         "{:.1f} "
-        "({}) | {:.0f} | {:.0f} |\n",
+        "({}) | {:.1f} | {:.0f} | {:.0f} |\n",
         name, sim.n_dofs(), status.steps_done, total, cpu, t["assembly"] + t["factorization"],
         t["mortar"], t["dual_setup"], t["qp"], t["heat_solve"], t["mechanical_solve"],
         static_cast<double>(counts.coupling) / n, counts.max_coupling,
-        static_cast<double>(counts.qp) / n, static_cast<double>(counts.applications) / n);
+        static_cast<double>(counts.friction) / n, static_cast<double>(counts.qp) / n,
+        static_cast<double>(counts.applications) / n);
     std::fflush(stdout);
   }
   return 0;

@@ -1,6 +1,7 @@
 #pragma once
 // Running the thermocontact binary from tests.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -38,9 +39,12 @@ inline std::string read_file(const std::filesystem::path& p) {
   return s.str();
 }
 
-/// A fresh empty directory under the system's temporary directory.
+/// A fresh empty directory under the system's temporary directory, private to this process:
+/// ctest runs the tests of one binary in parallel processes, and other checkouts' test runs
+/// may share the machine (a shared name let one run delete another's output mid-run).
 inline std::filesystem::path fresh_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("tc-test-" + name);
+  const auto d = std::filesystem::temp_directory_path() /
+                 ("tc-test-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;

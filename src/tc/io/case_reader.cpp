@@ -439,10 +439,10 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
 }
 
 void CaseReader::read_solver(const TableReader& root) {
-  const auto s = root.sub_table(
-      "solver", Need::Optional,
-      {"coupling_tolerance", "max_coupling_iterations", "qp_tolerance", "max_qp_iterations",
-       "factorization", "feti_tolerance", "max_feti_iterations", "feti_preconditioner"});
+  const auto s = root.sub_table("solver", Need::Optional,
+                                {"coupling_tolerance", "max_coupling_iterations", "friction_loop",
+                                 "qp_tolerance", "max_qp_iterations", "factorization",
+                                 "feti_tolerance", "max_feti_iterations", "feti_preconditioner"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -450,6 +450,9 @@ void CaseReader::read_solver(const TableReader& root) {
     settings.coupling_tolerance = *v;
   if (const auto v = s->integer("max_coupling_iterations", Need::Optional, 1))
     settings.max_coupling_iterations = *v;
+  if (const auto v = s->choice("friction_loop", Need::Optional, {"nested", "staggered"}))
+    settings.friction_loop =
+        *v == "nested" ? physics::FrictionLoop::nested : physics::FrictionLoop::staggered;
   if (const auto v = s->number("qp_tolerance", Need::Optional, unit)) settings.qp_tolerance = *v;
   if (const auto v = s->integer("max_qp_iterations", Need::Optional, 1))
     settings.max_qp_iterations = *v;

@@ -324,7 +324,8 @@ std::vector<double> DualContactSolver::targets(const core::Vector& ref_slave,
 qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
                                       const core::Vector& u_free_master, std::span<const double> c,
                                       std::span<const double> friction_bound, core::Vector& lambda,
-                                      core::Vector& u_slave, core::Vector& u_master, bool recover) {
+                                      core::Vector& u_slave, core::Vector& u_master, bool recover,
+                                      double rtol) {
   const PetscInt m = rows_.n_rows();
   const int dim = rows_.dim;
   u_slave.copy_from(u_free_slave);
@@ -367,6 +368,7 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
 
   qp::QpOptions opt = settings_.qp;
   opt.max_eigenvalue = lambda_max_;
+  if (rtol > 0) opt.rtol = rtol;
   qp::QpResult r;
   if (kind_ == DualOperator::explicit_schur) {
     qp::MatrixOperator f(scaled ? f_scaled_.get() : f_dense_.get());

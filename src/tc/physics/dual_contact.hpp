@@ -102,11 +102,12 @@ class DualContactSolver {
   /// Given u_free,i = A_i⁻¹ f_i (with the Dirichlet values), the targets c and the friction
   /// bounds 𝔉γ_k per node, solves for λ (warm-started from its value on entry) and returns
   /// u_i = u_free,i − A_i⁻¹ B_iᵀ λ. With `recover` false u_i = u_free,i on return (two solves
-  /// saved: see recover() and constraint_values()).
+  /// saved: see recover() and constraint_values()). `rtol` > 0 overrides the settings' QP
+  /// tolerance (a looser one for the early updates of a fixed point).
   qp::QpResult solve(const core::Vector& u_free_slave, const core::Vector& u_free_master,
                      std::span<const double> c, std::span<const double> friction_bound,
                      core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master,
-                     bool recover = true);
+                     bool recover = true, double rtol = 0);
   /// u_i −= A_i⁻¹ B_iᵀ λ (two solves): what solve() skips with recover = false.
   void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const;
   /// B u = B u_free − F λ of u = u_free − A⁻¹Bᵀλ without forming u (explicit F: one dense

@@ -73,9 +73,16 @@ struct ContactSettings {
   bool frictional_heating = true;
 };
 
+/// Where the Tresca → Coulomb update γ = λ_n of (6.3) sits in the fixed point of a step.
+enum class FrictionLoop {
+  nested,    // iterated inside the mechanical half at the θ of the iteration: QPs only (default)
+  staggered  // one update per heat–mechanics iteration, as (6.3) is written
+};
+
 struct SolverSettings {
   double coupling_tolerance = 1e-6;
   int max_coupling_iterations = 20;
+  FrictionLoop friction_loop = FrictionLoop::nested;
   double qp_tolerance = 1e-8;
   int max_qp_iterations = 2000;
   std::string factorization;  // "" = automatic; "mumps" | "cholmod" | "petsc"

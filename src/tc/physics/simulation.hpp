@@ -47,6 +47,7 @@ using ContactRowsBuilder =
 struct ContactStatistics {
   int qp_iterations = 0;
   int operator_applications = 0;
+  int friction_iterations = 0;  // QPs of the step: Tresca → Coulomb updates γ = λ_n (6.3)
   double normal_force = 0;      // Σ_k w_k λ_n,k
   double tangential_force = 0;  // Σ_k w_k ‖λ_τ,k‖
   double dissipation = 0;       // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
@@ -137,6 +138,8 @@ class Simulation {
   [[nodiscard]] const ContactHeat& contact_heat() const { return heat_; }
   /// Aitken relaxation of the Tresca → Coulomb fixed point (default on; docs/choices.md).
   void set_coupling_acceleration(bool on) { accelerate_ = on; }
+  /// Overrides problem().solver.friction_loop (comparisons).
+  void set_friction_loop(FrictionLoop loop) { friction_loop_ = loop; }
   /// β_C and δ_C of (2.13) from the contact's γ_C^s, γ_C^m (δ_C = ½ when both are 0).
   [[nodiscard]] double beta_c() const { return beta_c_; }
   [[nodiscard]] double delta_c() const { return delta_c_; }
@@ -199,6 +202,11 @@ class Simulation {
   void update_state(int b);               // Newmark/backward-difference updates of u̇, ü
   int couple_contact();  // the staggered loop of 6.3 for the contact pair (heat, dual QP)
   void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
+  struct TrescaIteration;
+  // QPs with u_free fixed, γ ← λ_n (Aitken), at most `max_updates` times or until
+  // ‖λ_n(γ) − γ‖ ≤ tol‖λ‖; returns ‖λ_n(γ) − γ‖ of the last update.
+  double coulomb_fixed_point(TrescaIteration& t, std::span<const double> targets, int outer,
+                             int max_updates);
   void stabilise_predictor(std::span<const double> normal_targets);
   void contact_bookkeeping();
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
@@ -237,6 +245,7 @@ class Simulation {
   // Thermal contact (2.13, §4.4), with the mortar pair only.
   double beta_c_ = 0, delta_c_ = 0.5;
   bool accelerate_ = true;
+  FrictionLoop friction_loop_;
   ConductanceTreatment conductance_treatment_ = ConductanceTreatment::Implicit;
   std::unique_ptr<InterfaceHeatSolver> interface_heat_;
   std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step
