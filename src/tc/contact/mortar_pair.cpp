@@ -92,6 +92,7 @@ MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
 
 void MortarPair::update(std::span<const double> u_slave, std::span<const double> u_master) {
   timings_ = {};
+  conductance_moments_.clear();
   auto t0 = Clock::now();
   set_positions(u_slave, u_master);
   timings_.geometry += since(t0);
@@ -349,36 +350,53 @@ const std::vector<std::array<double, 3>>& MortarPair::tangents(int l) const {
 ThermalContact MortarPair::thermal_conductance(std::span<const double> gamma, double beta_c) const {
   check_size(gamma, contact_nodes_.size(), "gamma (one per contact node)");
   const int n_s = slave_->n_nodes(), n_m = master_->n_nodes();
-  const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
+  if (conductance_moments_.empty() && !segments_.empty()) {
+    const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
+    for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
+                         bool warped, const PlacedFacet& m) {
+      ConductanceMoments t{};
+      t.segment = static_cast<int>(&seg - segments_.data());
+      t.ns = s.facet->n;
+      t.nm = m.facet->n;
+      for_each_point(dim_, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
+        for (int c = 0; c < q.slave.n; ++c) {
+          const double w = q.slave.phi[c] * q.weight;
+          for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b) {
+              t.ss[c][a][b] += w * q.slave.phi[a] * q.slave.phi[b];
+              t.sm[c][a][b] -= w * q.slave.phi[a] * q.master.phi[b];
+              t.mm[c][a][b] += w * q.master.phi[a] * q.master.phi[b];
+            }
+        }
+      });
+      conductance_moments_.push_back(t);
+    });
+  }
   Triplets ss(n_s), sm(n_s), ms(n_m), mm(n_m);
-  for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
-                       bool warped, const PlacedFacet& m) {
+  for (const auto& t : conductance_moments_) {
+    const MortarSegment& seg = segments_[t.segment];
+    const int ns = t.ns, nm = t.nm;
     const auto& sn = slave_facets_[seg.slave].nodes;
     const auto& mn = master_facets_[seg.master].nodes;
-    double lss[4][4] = {}, lsm[4][4] = {}, lmm[4][4] = {};
-    for_each_point(dim_, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
-      double g = 0;  // γ = Σ_k γ_k φ_k^s (0 at slave nodes that are not contact nodes)
-      for (int a = 0; a < q.slave.n; ++a)
-        if (contact_index_[sn[a]] >= 0) g += gamma[contact_index_[sn[a]]] * q.slave.phi[a];
-      const double w = beta_c * g * q.weight;
-      for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b) {
-          lss[a][b] += w * q.slave.phi[a] * q.slave.phi[b];
-          lsm[a][b] -= w * q.slave.phi[a] * q.master.phi[b];
-          lmm[a][b] += w * q.master.phi[a] * q.master.phi[b];
-        }
-    });
-    const int ns = s.facet->n, nm = m.facet->n;
+    double g[4] = {};  // β_C γ_c, γ = Σ_c γ_c φ_c^s (0 at slave nodes that are not contact nodes)
+    for (int c = 0; c < ns; ++c)
+      if (contact_index_[sn[c]] >= 0) g[c] = beta_c * gamma[contact_index_[sn[c]]];
+    auto block = [&](const double(&m)[4][4][4], int a, int b) {
+      double v = 0;
+      for (int c = 0; c < ns; ++c) v += g[c] * m[c][a][b];
+      return v;
+    };
     for (int a = 0; a < ns; ++a)
-      for (int b = 0; b < ns; ++b) ss.add(sn[a], sn[b], lss[a][b]);
+      for (int b = 0; b < ns; ++b) ss.add(sn[a], sn[b], block(t.ss, a, b));
     for (int a = 0; a < ns; ++a)
       for (int b = 0; b < nm; ++b) {
-        sm.add(sn[a], mn[b], lsm[a][b]);
-        ms.add(mn[b], sn[a], lsm[a][b]);
+        const double v = block(t.sm, a, b);
+        sm.add(sn[a], mn[b], v);
+        ms.add(mn[b], sn[a], v);
       }
     for (int a = 0; a < nm; ++a)
-      for (int b = 0; b < nm; ++b) mm.add(mn[a], mn[b], lmm[a][b]);
-  });
+      for (int b = 0; b < nm; ++b) mm.add(mn[a], mn[b], block(t.mm, a, b));
+  }
   return {to_matrix(ss.compress(), n_s), to_matrix(sm.compress(), n_m),
           to_matrix(ms.compress(), n_s), to_matrix(mm.compress(), n_m)};
 }

@@ -162,6 +162,16 @@ class MortarPair {
   std::vector<double> gap_, weights_;
   core::SparseMatrix d_, m_, b_slave_, b_master_;
   MortarTimings timings_;
+  // L_θγ is linear in γ and the geometry is fixed between updates, while the fixed point
+  // (6.3) asks for L at every iteration: per segment the
+  // integrals ∫ φ_c^s φ_a φ_b dS over the slave facet's nodes c, for the ss, sm, mm blocks.
+  // Filled by the first thermal_conductance after an update.
+  struct ConductanceMoments {
+    int segment;  // index in segments_
+    int ns, nm;  // nodes of the slave and the master facet
+    double ss[4][4][4], sm[4][4][4], mm[4][4][4];
+  };
+  mutable std::vector<ConductanceMoments> conductance_moments_;
 };
 
 }  // namespace tc::contact
