@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace tc::qp {
 
@@ -46,6 +47,15 @@ struct State {
   Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save, e;
   double alpha_bar = 0;
   QpResult r;
+
+  /// With a change of variables, 1/s: ‖g^P‖ = ‖S⁻¹ĝ^P‖ in the original variables, since the
+  /// splitting commutes with a positive diagonal scaling (one factor per disc).
+  const Vector* unscale = nullptr;
+  double stop_norm() {
+    if (!unscale) return gp.norm();
+    TC_PETSC(VecPointwiseMult(work.get(), gp.get(), unscale->get()));
+    return work.norm();
+  }
 
   State(const LinearOperator& f_, const FeasibleSet& s, const QpOptions& o, const Vector& d_,
         Vector& x_)
@@ -292,29 +302,87 @@ struct State {
   }
 };
 
+/// y = S F S x: the operator in the scaled variables (QpOptions::scaling).
+class ScaledOperator final : public LinearOperator {
+ public:
+  ScaledOperator(const LinearOperator& f, const Vector& s) : f_(f), s_(s), t_(s.duplicate()) {}
+  void apply(const Vector& x, Vector& y) const override {
+    TC_PETSC(VecPointwiseMult(t_.get(), s_.get(), x.get()));
+    f_.apply(t_, y);
+    TC_PETSC(VecPointwiseMult(y.get(), s_.get(), y.get()));
+  }
+  [[nodiscard]] Vector make_vector() const override { return f_.make_vector(); }
+
+ private:
+  const LinearOperator& f_;
+  const Vector& s_;
+  mutable Vector t_;
+};
+
+/// ẑ = S⁻¹ M⁻¹ S⁻¹ ĝ: the preconditioned direction z = M⁻¹g seen in x̂ = S⁻¹x (ĝ = Sg).
+class UnscaledPreconditioner final : public LinearOperator {
+ public:
+  UnscaledPreconditioner(const LinearOperator& m, const Vector& inverse_s)
+      : m_(m), inv_(inverse_s), t_(inverse_s.duplicate()) {}
+  void apply(const Vector& x, Vector& y) const override {
+    TC_PETSC(VecPointwiseMult(t_.get(), inv_.get(), x.get()));
+    m_.apply(t_, y);
+    TC_PETSC(VecPointwiseMult(y.get(), inv_.get(), y.get()));
+  }
+  [[nodiscard]] Vector make_vector() const override { return m_.make_vector(); }
+
+ private:
+  const LinearOperator& m_;
+  const Vector& inv_;
+  mutable Vector t_;
+};
+
 }  // namespace
 
 QpResult Mpgp::solve(const Vector& d, Vector& x) const {
-  State s(f_, set_, options_, d, x);
-  double lambda_max = options_.max_eigenvalue;
+  const double tolerance = std::max(options_.rtol * d.norm(), options_.atol);
+  if (!options_.scaling) return run(f_, set_, options_, d, x, tolerance, nullptr);
+  // The change of variables x = S x̂: F̂ = SFS, d̂ = Sd, Ω̂ = S⁻¹Ω; the tolerance stays the
+  // one of the original problem and is tested on S⁻¹ĝ^P (State::stop_norm).
+  const Vector& s = *options_.scaling;
+  Vector inverse_s = s.clone();
+  TC_PETSC(VecReciprocal(inverse_s.get()));
+  const ScaledOperator f_hat(f_, s);
+  const FeasibleSet set_hat = set_.scaled(s);
+  Vector d_hat = d.duplicate();
+  TC_PETSC(VecPointwiseMult(d_hat.get(), s.get(), d.get()));
+  TC_PETSC(VecPointwiseMult(x.get(), inverse_s.get(), x.get()));
+  QpOptions o = options_;
+  o.scaling = nullptr;
+  std::optional<UnscaledPreconditioner> pc;
+  if (options_.preconditioner) o.preconditioner = &pc.emplace(*options_.preconditioner, inverse_s);
+  QpResult r = run(f_hat, set_hat, o, d_hat, x, tolerance, &inverse_s);
+  TC_PETSC(VecPointwiseMult(x.get(), s.get(), x.get()));
+  return r;
+}
+
+QpResult Mpgp::run(const LinearOperator& f, const FeasibleSet& set, const QpOptions& options,
+                   const Vector& d, Vector& x, double tolerance, const Vector* unscale) {
+  State s(f, set, options, d, x);
+  s.unscale = unscale;
+  double lambda_max = options.max_eigenvalue;
   if (!(lambda_max > 0)) {
-    const auto est =
-        estimate_max_eigenvalue(f_, options_.lanczos_steps, options_.lanczos_tolerance);
+    const auto est = estimate_max_eigenvalue(f, options.lanczos_steps, options.lanczos_tolerance);
     s.r.operator_applications += est.applications;
     lambda_max = est.bound;
   }
   s.r.max_eigenvalue = lambda_max;
-  s.alpha_bar = options_.alpha_factor / lambda_max;
-  s.r.tolerance = std::max(options_.rtol * d.norm(), options_.atol);
+  s.alpha_bar = options.alpha_factor / lambda_max;
+  s.r.tolerance = tolerance;
 
-  set_.project(x);
+  set.project(x);
   s.gradient();
   s.split();
   s.precondition();
   s.p.copy_from(s.z);
 
   for (;;) {
-    s.r.projected_gradient = s.gp.norm();
+    s.r.projected_gradient = s.stop_norm();
     if (!std::isfinite(s.r.projected_gradient) || !std::isfinite(s.alpha_bar)) {
       s.r.status = QpStatus::breakdown;
       s.r.message = fmt::format("non-finite projected gradient at iteration {}", s.r.iterations);
@@ -324,7 +392,7 @@ QpResult Mpgp::solve(const Vector& d, Vector& x) const {
       s.r.status = QpStatus::converged;
       break;
     }
-    if (s.r.iterations >= options_.max_iterations) {
+    if (s.r.iterations >= options.max_iterations) {
       s.r.status = QpStatus::max_iterations;
       s.r.message = fmt::format(
           "not converged in {} iterations: projected gradient {:.3e} > tolerance {:.3e} "
@@ -341,7 +409,7 @@ QpResult Mpgp::solve(const Vector& d, Vector& x) const {
           "F is not positive definite on the search direction at iteration {} (projected "
           "gradient {:.3e})",
           s.r.iterations, s.r.projected_gradient);
-      s.r.projected_gradient = s.gp.norm();
+      s.r.projected_gradient = s.stop_norm();
       break;
     }
   }

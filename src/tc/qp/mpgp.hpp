@@ -58,6 +58,14 @@ struct QpOptions {
   /// a disc's tangent leaves its circle at once (MPGP only).
   ExpansionStep arc_step = ExpansionStep::fixed;
   ProportioningTest proportioning_test = ProportioningTest::reduced;
+  /// Optional change of variables x = S x̂, S = diag(s), s > 0 (e.g.
+  /// FeasibleSet::jacobi_scaling): the algorithm runs on SFS, Sd and the scaled set, so that
+  /// its fixed-step expansion, proportioning and arc moves — not only CG in the face, as
+  /// with `preconditioner` — see the better conditioned problem (Dostál 2009, §5.7 on
+  /// preconditioning by a change of variables). The two components of a disc need one factor
+  /// (the disc stays a disc). ‖g^P‖ is still measured in the original variables, x and the
+  /// result are in them; `max_eigenvalue` (given or returned) is λ_max(SFS). null = none.
+  const Vector* scaling = nullptr;
 };
 
 enum class QpStatus { converged, max_iterations, breakdown };
@@ -87,6 +95,11 @@ class Mpgp {
   QpResult solve(const Vector& d, Vector& x) const;
 
  private:
+  /// The algorithm itself, on (f, set, d) as given; `unscale` (may be null) maps the
+  /// projected gradient back for the stopping test (QpOptions::scaling).
+  static QpResult run(const LinearOperator& f, const FeasibleSet& set, const QpOptions& options,
+                      const Vector& d, Vector& x, double tolerance, const Vector* unscale);
+
   const LinearOperator& f_;
   const FeasibleSet& set_;
   QpOptions options_;

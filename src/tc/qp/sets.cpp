@@ -161,4 +161,42 @@ PetscInt FeasibleSet::count_active(const Vector& x) const {
   return total;
 }
 
+FeasibleSet FeasibleSet::scaled(const Vector& s) const {
+  const auto rs = s.read();
+  const auto sv = rs.span();
+  if (sv.size() != intervals_.size())
+    throw std::invalid_argument("FeasibleSet::scaled: the scaling has another layout");
+  FeasibleSet out(s);
+  for (size_t i = 0; i < intervals_.size(); ++i) {
+    if (!(sv[i] > 0)) throw std::invalid_argument("FeasibleSet::scaled: a factor is not > 0");
+    // ±∞ and 0 stay what they are; a finite bound moves with its component.
+    out.intervals_[i] = {intervals_[i].lo / sv[i], intervals_[i].hi / sv[i]};
+  }
+  for (const auto& b : discs_) {
+    const double sa = sv[b.first], sb = sv[b.second];
+    if (std::abs(sa - sb) > 1e-12 * std::max(sa, sb))
+      throw std::invalid_argument(
+          "FeasibleSet::scaled: the two components of a disc need one factor");
+    out.add_disc({b.first, b.second, {b.disc.r / sa}});
+  }
+  return out;
+}
+
+Vector FeasibleSet::jacobi_scaling(const Vector& diagonal) const {
+  Vector s = diagonal.duplicate();
+  {
+    const auto rd = diagonal.read();
+    const auto dv = rd.span();
+    auto sv = s.view();
+    for (size_t i = 0; i < intervals_.size(); ++i) {
+      if (!(dv[i] > 0))
+        throw std::invalid_argument("FeasibleSet::jacobi_scaling: a diagonal entry is not > 0");
+      sv[i] = 1 / std::sqrt(dv[i]);
+    }
+    for (const auto& b : discs_)
+      sv[b.first] = sv[b.second] = 1 / std::sqrt(std::sqrt(dv[b.first] * dv[b.second]));
+  }
+  return s;
+}
+
 }  // namespace tc::qp

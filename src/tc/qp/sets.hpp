@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "tc/core/petsc.hpp"
@@ -122,6 +123,16 @@ class FeasibleSet {
   void restrict_to_free(const Vector& x, Vector& v) const;
   /// Number of active components (a disc counts as two). Collective.
   [[nodiscard]] PetscInt count_active(const Vector& x) const;
+
+  /// The set in the variables x̂ = S⁻¹x for S = diag(s), s > 0: intervals [lo/s_i, hi/s_i],
+  /// discs of radius r/s. Both components of a disc must share one factor (then the image of
+  /// a disc is a disc and its projection is the scaled projection); std::invalid_argument
+  /// otherwise. Local, no communication.
+  [[nodiscard]] FeasibleSet scaled(const Vector& s) const;
+  /// Jacobi factors that keep discs discs: s_i = diag_i^(−1/2) on interval components and
+  /// (diag_a diag_b)^(−1/4) on both components of a disc (the geometric mean of the two
+  /// Jacobi factors), so that SFS has a unit diagonal except on the discs. diag > 0.
+  [[nodiscard]] Vector jacobi_scaling(const Vector& diagonal) const;
 
  private:
   std::vector<Interval> intervals_;
