@@ -103,9 +103,19 @@ std::vector<Variant> strategy_variants() {
     o.expansion = Expansion::projected_cg;
     o.gamma = 4;
   });
+  add("slide on circles", [](auto& o) { o.circle_face = tc::qp::CircleFace::slide; });
+  add("slide on circles, BB length", [](auto& o) {
+    o.circle_face = tc::qp::CircleFace::slide;
+    o.expansion_step = ExpansionStep::barzilai_borwein;
+    o.arc_step = ExpansionStep::barzilai_borwein;
+  });
   add("per-node Jacobi in face", [](auto&) {});
   v.back().node_jacobi_in_face = true;
   add("Jacobi change of variables", [](auto&) {});
+  v.back().jacobi_scaling = true;
+  add("slide + Jacobi in face", [](auto& o) { o.circle_face = tc::qp::CircleFace::slide; });
+  v.back().node_jacobi_in_face = true;
+  add("slide + Jacobi variables", [](auto& o) { o.circle_face = tc::qp::CircleFace::slide; });
   v.back().jacobi_scaling = true;
   return v;
 }
@@ -222,10 +232,10 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
     c.difference = relative_difference(x, x_m);
     row.variants.push_back(c);
     fmt::print(stderr,
-               "  variant {}: {} ({} cg, {} expansion, {} proportioning, {} arc Cauchy, {} long, "
-               "{} fall-backs) {:.2f} s\n",
+               "  variant {}: {} ({} cg, {} expansion, {} proportioning, {} arc Cauchy, {} slides, "
+               "{} long, {} fall-backs) {:.2f} s\n",
                v.name, c.applications, rv.cg_steps, rv.expansion_steps, rv.proportioning_steps,
-               rv.cauchy_steps, rv.long_expansions, rv.fallbacks, c.seconds);
+               rv.cauchy_steps, rv.slides, rv.long_expansions, rv.fallbacks, c.seconds);
   }
   if (preconditioner) {
     tc::qp::QpOptions pc = opt;

@@ -44,7 +44,7 @@ struct State {
   const QpOptions& opt;
   const Vector& d;
   Vector& x;
-  Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save, e;
+  Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save, e, hp;
   double alpha_bar = 0;
   QpResult r;
 
@@ -74,7 +74,8 @@ struct State {
         work(g.duplicate()),
         x_save(g.duplicate()),
         g_save(g.duplicate()),
-        e(g.duplicate()) {}
+        e(g.duplicate()),
+        hp(g.duplicate()) {}
 
   int cauchy_rejected = 0;  // Cauchy steps tried and not taken: stop trying when they dominate
   /// sᵀs / sᵀFs of the last direction s along which a step was taken (CG, feasible or
@@ -94,7 +95,9 @@ struct State {
     apply(x, g);
     g.axpy(-1.0, d);
   }
-  void split() { set.split_gradient(x, g, phi, beta, gp); }
+  /// CircleFace::slide with discs present: circles are part of the face.
+  bool slide = false;
+  void split() { set.split_gradient(x, g, phi, beta, gp, slide); }
   /// The search direction in the face: φ, or the masked preconditioned φ.
   void precondition() {
     if (!opt.preconditioner) {
@@ -102,7 +105,7 @@ struct State {
       return;
     }
     opt.preconditioner->apply(phi, z);
-    set.restrict_to_free(x, z);
+    set.restrict_to_free(x, z, slide);
   }
   /// Dostál's proportioning test ‖β‖² ≤ Γ² g̃ᵀφ with the reduced free gradient
   /// g̃ = (x − P(x − ᾱ φ))/ᾱ, which never lets a step of length ᾱ leave the set.
@@ -123,9 +126,19 @@ struct State {
     apply(p, fp);
     const double pfp = p.dot(fp);
     if (!(pfp > 0)) return false;
-    const double a_cg = g.dot(p) / pfp;
-    const double a_f = set.max_step(x, p);
+    const bool on_circles = slide && set.moves_on_circles(x, p);
+    // Sliding, the step sees F plus the circles' curvature (FeasibleSet::add_circle_curvature):
+    // with F alone the CG step overshoots along the arcs, and the retraction raises f.
+    double php = pfp;
+    if (on_circles) {
+      hp.copy_from(fp);
+      set.add_circle_curvature(x, g, p, hp);
+      php = p.dot(hp);
+    }
+    const double a_cg = g.dot(p) / php;
+    const double a_f = set.max_step(x, p, slide);
     remember_step(p, pfp);
+    if (a_cg <= a_f && on_circles) return slide_step(a_cg, php);
     if (a_cg <= a_f) {
       ++r.cg_steps;
       x.axpy(-a_cg, p);
@@ -139,10 +152,57 @@ struct State {
     }
     ++r.expansion_steps;
     if (opt.expansion == Expansion::projected_cg && projected_cg_step(a_cg)) return true;
-    set.advance(x, p, a_f);  // as far as feasible: components reaching the boundary bind
-    g.axpy(-a_f, fp);
+    if (on_circles) {
+      // The feasible step slides nodes along their circles as well: the retraction changes
+      // x off the line, so g is recomputed; if f rose, the step is undone and the
+      // projected gradient move below starts from where it was.
+      x_save.copy_from(x);
+      g_save.copy_from(g);
+      set.advance(x, p, a_f);
+      gradient();
+      if (change_of_f() > change_noise()) {
+        x.copy_from(x_save);
+        g.copy_from(g_save);
+        ++r.fallbacks;
+      }
+    } else {
+      set.advance(x, p, a_f);  // as far as feasible: components reaching the boundary bind
+      g.axpy(-a_f, fp);
+    }
     split();
     expand(opt.expansion == Expansion::full_gradient ? g : phi, opt.expansion_step);
+    return true;
+  }
+
+  /// CircleFace::slide: the CG step x − α_cg p with the nodes on circles moved along their
+  /// tangent and put back on the circle (FeasibleSet::advance snaps them, since a tangent
+  /// leaves the circle at once). The retraction moves x off the CG line by O(α²‖p‖²/r), so
+  /// g is recomputed (one application) and the step is kept only if f fell; otherwise the
+  /// projected gradient step P(x − ᾱg), which descends for ᾱ ≤ 2/λ_max, replaces it. The
+  /// next direction is conjugated as in CG and turned into the new tangents: exact
+  /// conjugacy is lost with the curvature, which is why this is an option.
+  bool slide_step(double a_cg, double php) {
+    x_save.copy_from(x);
+    g_save.copy_from(g);
+    set.advance(x, p, a_cg);
+    gradient();
+    if (change_of_f() > change_noise()) {
+      x.copy_from(x_save);
+      g.copy_from(g_save);
+      ++r.fallbacks;
+      ++r.expansion_steps;
+      split();
+      expand(g, ExpansionStep::fixed);
+      return true;
+    }
+    ++r.cg_steps;
+    ++r.slides;
+    split();
+    precondition();
+    const double b = z.dot(hp) / php;  // conjugate with respect to F + C
+    p.scale(-b);
+    p.axpy(1.0, z);
+    set.restrict_to_free(x, p, true);
     return true;
   }
 
@@ -365,6 +425,7 @@ QpResult Mpgp::run(const LinearOperator& f, const FeasibleSet& set, const QpOpti
                    const Vector& d, Vector& x, double tolerance, const Vector* unscale) {
   State s(f, set, options, d, x);
   s.unscale = unscale;
+  s.slide = options.circle_face == CircleFace::slide && set.has_discs();
   double lambda_max = options.max_eigenvalue;
   if (!(lambda_max > 0)) {
     const auto est = estimate_max_eigenvalue(f, options.lanczos_steps, options.lanczos_tolerance);

@@ -37,6 +37,20 @@ enum class ProportioningTest {
   free,  // ‖β‖² ≤ Γ² φᵀφ (PERMON): g̃ᵀφ ≤ φᵀφ, so proportioning happens less often
 };
 
+/// How a node that lies on its friction circle takes part in the face (MPGP only).
+enum class CircleFace {
+  /// Dostál & Kozubek (2012): the node is active, the tangential part of g is chopped (part of
+  /// β), and only proportioning steps and projected moves slide it along the circle.
+  chopped,
+  /// The circle belongs to the face: the tangential part of g is free (part of φ), only the
+  /// inward normal part is chopped. CG moves such nodes along their tangent and puts them back
+  /// on the circle (the projection, a retraction in the sense of Absil et al. 2008, §4.1);
+  /// the gradient is then recomputed (one more application) and the step kept only if f
+  /// fell, else replaced by the projected gradient step P(x − ᾱg). A heuristic outside
+  /// MPGP's convergence theory, safeguarded like the long expansion moves.
+  slide,
+};
+
 struct QpOptions {
   double rtol = 1e-8;         // stop when ‖g^P‖ ≤ max(rtol ‖d‖, atol)
   double atol = 1e-30;        // absolute floor (d = 0 has the solution of the set alone)
@@ -66,6 +80,7 @@ struct QpOptions {
   /// (the disc stays a disc). ‖g^P‖ is still measured in the original variables, x and the
   /// result are in them; `max_eigenvalue` (given or returned) is λ_max(SFS). null = none.
   const Vector* scaling = nullptr;
+  CircleFace circle_face = CircleFace::chopped;
 };
 
 enum class QpStatus { converged, max_iterations, breakdown };
@@ -84,6 +99,7 @@ struct [[nodiscard]] QpResult {
   std::string message;      // why it stopped, with the numbers
   int long_expansions = 0;  // expansion moves longer than ᾱ (ExpansionStep, projected CG) kept
   int fallbacks = 0;        // ... and rejected because f rose (the ᾱ move taken instead)
+  int slides = 0;           // CG steps that moved nodes along their circles (CircleFace::slide)
   [[nodiscard]] bool converged() const { return status == QpStatus::converged; }
 };
 
