@@ -256,8 +256,9 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
         row.mprgp_pc.seconds, row.mprgp_pc.difference);
   }
 
-  // TAO's bound-constrained solvers cannot take discs; CG is left out there as well.
-  if (set.has_discs())
+  // TAO's bound-constrained solvers cannot take discs; CG is left out there as well (and
+  // everywhere with --mprgp-only).
+  if (set.has_discs() || s.mprgp_only)
     for (Cell* c : {&row.bqpip, &row.gpcg, &row.blmvm, &row.cg}) c->skipped = true;
   if (s.mprgp_only || set.has_discs()) return;
   Vector lower = d.duplicate(), upper = d.duplicate();
