@@ -37,6 +37,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -71,6 +72,11 @@ std::vector<double> parse_list(const std::string& s) {
 struct Variant {
   std::string name;
   tc::qp::QpOptions options;
+  /// Needs diag(F) (skipped where it is not at hand): the change of variables
+  /// QpOptions::scaling = FeasibleSet::jacobi_scaling(diag F), or the same factors squared as
+  /// a preconditioner in face (a per-node Jacobi that treats a disc's pair alike).
+  bool jacobi_scaling = false;
+  bool node_jacobi_in_face = false;
 };
 
 std::vector<Variant> strategy_variants() {
@@ -97,6 +103,20 @@ std::vector<Variant> strategy_variants() {
     o.expansion = Expansion::projected_cg;
     o.gamma = 4;
   });
+  add("slide on circles", [](auto& o) { o.circle_face = tc::qp::CircleFace::slide; });
+  add("slide on circles, BB length", [](auto& o) {
+    o.circle_face = tc::qp::CircleFace::slide;
+    o.expansion_step = ExpansionStep::barzilai_borwein;
+    o.arc_step = ExpansionStep::barzilai_borwein;
+  });
+  add("per-node Jacobi in face", [](auto&) {});
+  v.back().node_jacobi_in_face = true;
+  add("Jacobi change of variables", [](auto&) {});
+  v.back().jacobi_scaling = true;
+  add("slide + Jacobi in face", [](auto& o) { o.circle_face = tc::qp::CircleFace::slide; });
+  v.back().node_jacobi_in_face = true;
+  add("slide + Jacobi variables", [](auto& o) { o.circle_face = tc::qp::CircleFace::slide; });
+  v.back().jacobi_scaling = true;
   return v;
 }
 
@@ -152,7 +172,7 @@ double relative_difference(const Vector& x, const Vector& ref) {
 /// second MPRGP run, applied to the free gradient in the face.
 void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
                   const tc::qp::FeasibleSet& set, const Settings& s,
-                  const tc::qp::LinearOperator* preconditioner) {
+                  const tc::qp::LinearOperator* preconditioner, const Vector* diagonal) {
   const double eps = s.rtol * d.norm();
   // MPRGP, defaults of the qp layer (ᾱ = 1.9/λ̂_max, Γ = 1, free-gradient expansion).
   tc::qp::QpOptions opt = s.mprgp;
@@ -176,10 +196,31 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
              "halvings) {:.2f} s\n",
              rm.operator_applications, rm.cg_steps, rm.expansion_steps, rm.long_expansions,
              rm.fallbacks, rm.proportioning_steps, rm.step_halvings, row.mprgp.seconds);
+  // Per-node Jacobi factors (FeasibleSet::jacobi_scaling) for the variants that need them.
+  std::optional<Vector> scaling, squared;
+  std::optional<tc::qp::FunctionOperator> node_jacobi;
+  if (diagonal) {
+    scaling = set.jacobi_scaling(*diagonal);
+    squared = scaling->clone();
+    TC_PETSC(VecPointwiseMult(squared->get(), squared->get(), squared->get()));
+    node_jacobi.emplace(
+        [&squared](const Vector& x, Vector& y) {
+          TC_PETSC(VecPointwiseMult(y.get(), squared->get(), x.get()));
+        },
+        d);
+  }
   for (const auto& v : s.variants) {
     tc::qp::QpOptions vo = v.options;
     vo.rtol = opt.rtol;
     vo.max_iterations = opt.max_iterations;
+    if ((v.jacobi_scaling || v.node_jacobi_in_face) && !diagonal) {
+      Cell c;
+      c.skipped = true;
+      row.variants.push_back(c);
+      continue;
+    }
+    if (v.jacobi_scaling) vo.scaling = &*scaling;
+    if (v.node_jacobi_in_face) vo.preconditioner = &*node_jacobi;
     Vector x = d.duplicate();
     t0 = Clock::now();
     const auto rv = tc::qp::Mpgp(f, set, vo).solve(d, x);
@@ -190,8 +231,11 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
     c.capped = rv.status == tc::qp::QpStatus::max_iterations;
     c.difference = relative_difference(x, x_m);
     row.variants.push_back(c);
-    fmt::print(stderr, "  variant {}: {} ({} long, {} fall-backs) {:.2f} s\n", v.name,
-               c.applications, rv.long_expansions, rv.fallbacks, c.seconds);
+    fmt::print(stderr,
+               "  variant {}: {} ({} cg, {} expansion, {} proportioning, {} arc Cauchy, {} slides, "
+               "{} long, {} fall-backs) {:.2f} s\n",
+               v.name, c.applications, rv.cg_steps, rv.expansion_steps, rv.proportioning_steps,
+               rv.cauchy_steps, rv.slides, rv.long_expansions, rv.fallbacks, c.seconds);
   }
   if (preconditioner) {
     tc::qp::QpOptions pc = opt;
@@ -212,8 +256,9 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
         row.mprgp_pc.seconds, row.mprgp_pc.difference);
   }
 
-  // TAO's bound-constrained solvers cannot take discs; CG is left out there as well.
-  if (set.has_discs())
+  // TAO's bound-constrained solvers cannot take discs; CG is left out there as well (and
+  // everywhere with --mprgp-only).
+  if (set.has_discs() || s.mprgp_only)
     for (Cell* c : {&row.bqpip, &row.gpcg, &row.blmvm, &row.cg}) c->skipped = true;
   if (s.mprgp_only || set.has_discs()) return;
   Vector lower = d.duplicate(), upper = d.duplicate();
@@ -381,38 +426,6 @@ tc::test::QpProblem scaled_qp(long n, double kappa, double active, std::uint64_t
   return p;
 }
 
-/// The 3D contact instance of random_qp (per node: a free multiplier, λ_n ≥ 0 and a friction
-/// disc of radius 0.9 λ_n*) with κ(F₀) ≤ 10, scaled like scaled_qp but with one factor per
-/// node, so that a disc stays a disc (of radius r/D_b) and the bound at 0 stays at 0.
-tc::test::QpProblem scaled_disc_qp(long nodes, double kappa, double active, std::uint64_t seed) {
-  using tc::test::QpKind;
-  auto p = tc::test::random_qp(PETSC_COMM_SELF, nodes, QpKind::contact3d, 10.0, active, 0.0, seed);
-  Vector scale = p.d.duplicate();
-  std::vector<double> node_scale(static_cast<size_t>(nodes));
-  {
-    std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ULL);
-    std::uniform_real_distribution<double> u(0.0, 0.5 * std::log10(kappa / 10.0));
-    auto v = scale.view();
-    for (long b = 0; b < nodes; ++b) {
-      node_scale[b] = std::pow(10.0, u(rng));
-      for (int k = 0; k < 4; ++k) v[4 * b + k] = node_scale[b];
-    }
-  }
-  TC_PETSC(MatDiagonalScale(p.f.get(), scale.get(), scale.get()));
-  TC_PETSC(VecPointwiseDivide(p.x_star.get(), p.x_star.get(), scale.get()));
-  TC_PETSC(VecPointwiseMult(p.g_star.get(), p.g_star.get(), scale.get()));
-  TC_PETSC(MatMult(p.f.get(), p.x_star.get(), p.d.get()));
-  p.d.axpy(-1.0, p.g_star);
-  p.set = tc::qp::FeasibleSet(p.d);
-  for (long b = 0; b < nodes; ++b) {
-    p.set.set_interval(static_cast<PetscInt>(4 * b + 1), {0.0, tc::qp::infinity});
-    const auto i = static_cast<PetscInt>(4 * b);
-    p.set.add_disc({i + 2, i + 3, {p.radius[b] / node_scale[b]}});
-  }
-  p.kappa_bound *= kappa / 10.0;
-  return p;
-}
-
 std::string kappa_text(double k) {
   return fmt::format("1e{}", std::lround(std::log10(k)));
 }
@@ -509,7 +522,7 @@ int main(int argc, char** argv) {
     row.active = fmt::format("{:.0f} %", 100 * in.active);
     fmt::print(stderr, "{}: n = {}, κ ≤ {}, active {}\n", row.name, row.n, row.kappa, row.active);
     const auto seed = static_cast<std::uint64_t>(in.n + 7 * std::log10(in.kappa) + 100 * in.active);
-    auto p = in.discs    ? scaled_disc_qp(row.n, in.kappa, in.active, seed)
+    auto p = in.discs    ? tc::test::scaled_disc_qp(row.n, in.kappa, in.active, seed)
              : in.scaled ? scaled_qp(row.n, in.kappa, in.active, seed)
                          : tc::test::random_qp(PETSC_COMM_SELF, row.n, tc::test::QpKind::lower,
                                                in.kappa, in.active, 0.0, seed);
@@ -524,7 +537,9 @@ int main(int argc, char** argv) {
           TC_PETSC(VecPointwiseMult(y.get(), inverse_diagonal.get(), x.get()));
         },
         p.d);
-    run_instance(row, f, p.d, p.set, s, &jacobi);
+    Vector diagonal = p.d.duplicate();
+    TC_PETSC(MatGetDiagonal(p.f.get(), diagonal.get()));
+    run_instance(row, f, p.d, p.set, s, &jacobi, &diagonal);
     rows.push_back(row);
   }
 
@@ -544,7 +559,20 @@ int main(int argc, char** argv) {
     for (PetscInt i = 0; i < c.n_contact; ++i) set.set_interval(i, {0.0, tc::qp::infinity});
     const tc::qp::FunctionOperator lumped([&c](const Vector& x, Vector& y) { c.lumped(x, y); },
                                           c.d);
-    run_instance(row, f, c.d, set, s, &lumped);
+    // diag(F) for the variants that need it: one application per unit vector, outside the
+    // counts (physics::DualContactSolver forms F explicitly below 1500 rows, so it has it).
+    std::optional<Vector> diagonal;
+    if (!s.variants.empty()) {
+      diagonal = c.d.duplicate();
+      Vector unit = c.d.duplicate(), column = c.d.duplicate();
+      for (PetscInt i = 0; i < c.n_contact; ++i) {
+        unit.zero();
+        unit.view()[i] = 1;
+        c.apply(unit, column);
+        diagonal->view()[i] = column.read()[i];
+      }
+    }
+    run_instance(row, f, c.d, set, s, &lumped, diagonal ? &*diagonal : nullptr);
     row.active = fmt::format("{:.0f} %", 100.0 * row.n_active / row.n);
     rows.push_back(row);
   }

@@ -176,4 +176,36 @@ inline QpProblem random_qp(MPI_Comm comm, PetscInt n_blocks, QpKind kind, double
   return p;
 }
 
+/// The 3D contact instance of random_qp, made ill-conditioned for bench/qp and the MPGP
+/// disc tests (per node: a free multiplier, λ_n ≥ 0 and a friction
+/// disc of radius 0.9 λ_n*) with κ(F₀) ≤ 10, scaled like scaled_qp but with one factor per
+/// node, so that a disc stays a disc (of radius r/D_b) and the bound at 0 stays at 0.
+inline QpProblem scaled_disc_qp(long nodes, double kappa, double active, std::uint64_t seed) {
+  auto p = random_qp(PETSC_COMM_SELF, nodes, QpKind::contact3d, 10.0, active, 0.0, seed);
+  core::Vector scale = p.d.duplicate();
+  std::vector<double> node_scale(static_cast<size_t>(nodes));
+  {
+    std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ULL);
+    std::uniform_real_distribution<double> u(0.0, 0.5 * std::log10(kappa / 10.0));
+    auto v = scale.view();
+    for (long b = 0; b < nodes; ++b) {
+      node_scale[b] = std::pow(10.0, u(rng));
+      for (int k = 0; k < 4; ++k) v[4 * b + k] = node_scale[b];
+    }
+  }
+  TC_PETSC(MatDiagonalScale(p.f.get(), scale.get(), scale.get()));
+  TC_PETSC(VecPointwiseDivide(p.x_star.get(), p.x_star.get(), scale.get()));
+  TC_PETSC(VecPointwiseMult(p.g_star.get(), p.g_star.get(), scale.get()));
+  TC_PETSC(MatMult(p.f.get(), p.x_star.get(), p.d.get()));
+  p.d.axpy(-1.0, p.g_star);
+  p.set = qp::FeasibleSet(p.d);
+  for (long b = 0; b < nodes; ++b) {
+    p.set.set_interval(static_cast<PetscInt>(4 * b + 1), {0.0, qp::infinity});
+    const auto i = static_cast<PetscInt>(4 * b);
+    p.set.add_disc({i + 2, i + 3, {p.radius[b] / node_scale[b]}});
+  }
+  p.kappa_bound *= kappa / 10.0;
+  return p;
+}
+
 }  // namespace tc::test

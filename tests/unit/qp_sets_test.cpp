@@ -100,5 +100,40 @@ TEST(FeasibleSet, SplitGradientOfAMixedProduct) {
   for (int i = 0; i < 4; ++i) EXPECT_EQ(p[i], f[i] + b[i]);
 }
 
+TEST(FeasibleSet, ScaledSetIsTheImageUnderTheChangeOfVariables) {
+  // [λ_n ≥ 0, box [−1, 2], disc r = 3] in x̂ = S⁻¹x with s = (2, 4, 0.5, 0.5).
+  core::Vector layout(4);
+  FeasibleSet set(layout);
+  set.set_interval(0, {0.0, infinity});
+  set.set_interval(1, {-1.0, 2.0});
+  set.add_disc({2, 3, {3.0}});
+  const auto s = core::Vector::from(std::vector<double>{2.0, 4.0, 0.5, 0.5});
+  const FeasibleSet hat = set.scaled(s);
+  // The corners of the image: 0 and ∞ stay, −1/4 and 2/4, radius 3/0.5 = 6.
+  auto x = core::Vector::from(std::vector<double>{-1.0, 1.0, 8.0, 0.0});
+  hat.project(x);
+  const auto v = x.to_std();
+  EXPECT_EQ(v[0], 0.0);
+  EXPECT_EQ(v[1], 0.5);
+  EXPECT_DOUBLE_EQ(v[2], 6.0);
+  EXPECT_EQ(v[3], 0.0);
+  EXPECT_EQ(hat.violation(core::Vector::from(std::vector<double>{1e9, -0.25, 0.0, 6.0})), 0.0);
+  // The two components of a disc must share one factor, or a disc would become an ellipse.
+  const auto bad = core::Vector::from(std::vector<double>{1.0, 1.0, 1.0, 2.0});
+  EXPECT_THROW((void)set.scaled(bad), std::invalid_argument);
+}
+
+TEST(FeasibleSet, JacobiScalingSharesOneFactorPerDisc) {
+  core::Vector layout(4);
+  FeasibleSet set(layout);
+  set.add_disc({2, 3, {1.0}});
+  const auto diag = core::Vector::from(std::vector<double>{4.0, 1.0, 16.0, 1.0});
+  const auto s = set.jacobi_scaling(diag).to_std();
+  EXPECT_DOUBLE_EQ(s[0], 0.5);  // 4^(−1/2)
+  EXPECT_DOUBLE_EQ(s[1], 1.0);
+  EXPECT_DOUBLE_EQ(s[2], 0.5);  // (16·1)^(−1/4): the geometric mean of 1/4 and 1
+  EXPECT_DOUBLE_EQ(s[3], 0.5);
+}
+
 }  // namespace
 }  // namespace tc::qp

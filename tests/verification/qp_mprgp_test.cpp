@@ -217,6 +217,13 @@ const StrategyCase strategies[] = {
        o.expansion = qp::Expansion::projected_cg;
        o.gamma = 4;
      }},
+    {"slide_on_circles", [](QpOptions& o) { o.circle_face = qp::CircleFace::slide; }},
+    {"slide_bb_length",
+     [](QpOptions& o) {
+       o.circle_face = qp::CircleFace::slide;
+       o.expansion_step = qp::ExpansionStep::barzilai_borwein;
+       o.arc_step = qp::ExpansionStep::barzilai_borwein;
+     }},
 };
 
 class Strategy : public ::testing::TestWithParam<std::tuple<QpKind, int>> {};
@@ -317,6 +324,128 @@ TEST(Qp, PreconditioningInFaceHelpsABadlyScaledProblem) {
       << b.result.operator_applications;
   // x* has entries up to 1e2·O(1): the relative accuracy of Kkt (1e-6) on that scale.
   EXPECT_LT(b.error, 1e-6 * p.x_star.max_abs());
+}
+
+// ------------------------------------------- friction discs, badly scaled (issue 4, MPGP)
+
+/// The Jacobi change of variables of QpOptions::scaling for an explicit F.
+core::Vector jacobi_scaling(const QpProblem& p) {
+  core::Vector diagonal = p.d.duplicate();
+  TC_PETSC(MatGetDiagonal(p.f.get(), diagonal.get()));
+  return p.set.jacobi_scaling(diagonal);
+}
+
+/// scaled_disc_qp: 3D contact nodes (free multiplier, λ_n ≥ 0, friction disc) scaled by one
+/// factor per node so that κ(F) ≤ κ; x* known by construction. 150 nodes = 600 variables:
+/// small enough that even the unpreconditioned runs take well under a second.
+struct DiscCase {
+  double kappa;
+  bool scaled;  // Jacobi change of variables (QpOptions::scaling)
+  bool slide;   // QpOptions::circle_face = slide
+};
+
+class ScaledDiscs : public ::testing::TestWithParam<DiscCase> {};
+
+TEST_P(ScaledDiscs, KktAndTheKnownSolution) {
+  const auto c = GetParam();
+  auto p = scaled_disc_qp(150, c.kappa, 0.5, 2026);
+  const core::Vector s = jacobi_scaling(p);
+  QpOptions opt;
+  opt.rtol = 1e-10;
+  opt.max_iterations = 200000;
+  if (c.scaled) opt.scaling = &s;
+  if (c.slide) opt.circle_face = qp::CircleFace::slide;
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  // The stopping test is on the original variables' ‖g^P‖ even when the solver works in
+  // scaled ones (a test on ĝ^P = S g^P alone would be off by up to max s_i = 1/√min F_ii).
+  EXPECT_LE(o.result.projected_gradient, o.result.tolerance);
+  EXPECT_LE(o.residual, 2 * o.result.tolerance + 1e-13 * p.d.norm());  // as in Kkt
+  // Discs are projected onto radius r/s_b: a few ulps of r, r ≤ 1.
+  EXPECT_LE(o.violation, 1e-14);
+  // ‖x − x*‖ ≤ ‖g^P‖/λ_min-scale: λ_min(F) ≥ λ_max/κ, ‖g^P‖ ≤ 1e-10‖d‖ and ‖d‖ ≲ λ_max‖x*‖
+  // give ‖x − x*‖ ≲ κ·1e-10·‖x*‖-scale, i.e. 1e-6 and 1e-4 of max|x*| at κ 1e4 and 1e6
+  // (x* has entries up to 1 in the unscaled variables, up to 10^(½·log10(κ/10)) here).
+  const double scale = p.x_star.max_abs();
+  EXPECT_LT(o.error, c.kappa * 1e-10 * scale) << "‖x*‖∞ = " << scale;
+  EXPECT_LT(o.complementarity, c.kappa * 1e-10 * p.d.norm());
+}
+
+INSTANTIATE_TEST_SUITE_P(Qp, ScaledDiscs,
+                         ::testing::Values(DiscCase{1e4, false, false}, DiscCase{1e4, true, false},
+                                           DiscCase{1e6, true, false}, DiscCase{1e4, false, true},
+                                           DiscCase{1e6, false, true}, DiscCase{1e6, true, true}),
+                         [](const auto& info) {
+                           return std::string(info.param.kappa < 1e5 ? "kappa1e4" : "kappa1e6") +
+                                  (info.param.scaled ? "_jacobi_variables" : "_plain") +
+                                  (info.param.slide ? "_slide" : "");
+                         });
+
+TEST(Qp, SlidingOnCirclesCutsTheDiscWork) {
+  // CircleFace::slide keeps CG running while nodes slide along their circles; with the
+  // chopped tangent (the default) 91–99 % of the steps are proportioning or projected moves.
+  // bench/qp measured 7438 → 639 at 250 nodes, κ ≤ 1e4; a regression that dropped the
+  // tangent from φ, or the retraction, would fall back to the default's count.
+  auto p = scaled_disc_qp(150, 1e4, 0.5, 2026);
+  QpOptions chopped;
+  chopped.rtol = 1e-8;
+  chopped.max_iterations = 200000;
+  QpOptions slide = chopped;
+  slide.circle_face = qp::CircleFace::slide;
+  const auto a = solve(p, chopped);
+  const auto b = solve(p, slide);
+  ASSERT_TRUE(a.result.converged()) << a.result.message;
+  ASSERT_TRUE(b.result.converged()) << b.result.message;
+  EXPECT_GT(b.result.slides, 0);
+  EXPECT_LT(b.result.operator_applications, a.result.operator_applications / 3)
+      << "chopped " << a.result.operator_applications << ", slide "
+      << b.result.operator_applications;
+}
+
+TEST(Qp, ChangeOfVariablesCutsTheDiscWork) {
+  // The point of QpOptions::scaling: on a per-node scaled instance the Jacobi variables undo
+  // the scaling (κ 1e4 → ≈ 10), so MPGP needs a fraction of the plain run's applications. A
+  // regression that ignored `scaling` (or applied it only in the face) would fail here.
+  auto p = scaled_disc_qp(150, 1e4, 0.5, 2026);
+  const core::Vector s = jacobi_scaling(p);
+  QpOptions plain;
+  plain.rtol = 1e-8;
+  plain.max_iterations = 200000;
+  QpOptions scaled = plain;
+  scaled.scaling = &s;
+  const auto a = solve(p, plain);
+  const auto b = solve(p, scaled);
+  ASSERT_TRUE(a.result.converged()) << a.result.message;
+  ASSERT_TRUE(b.result.converged()) << b.result.message;
+  EXPECT_LT(b.result.operator_applications, a.result.operator_applications / 5)
+      << "plain " << a.result.operator_applications << ", Jacobi variables "
+      << b.result.operator_applications;
+}
+
+TEST(Qp, ChangeOfVariablesOnEverySetKind) {
+  // Bounds, boxes, discs, 3D contact nodes, with a scaling that is not Jacobi (a smooth
+  // pattern in [1/2, 2], one factor per block, so κ grows by 16 at most and the instances stay
+  // easy): the same known solution and KKT quality as Kkt, so the scaled set, operator,
+  // gradient and stopping test are consistent.
+  for (const auto kind : {QpKind::lower, QpKind::box, QpKind::disc, QpKind::contact3d}) {
+    auto p = random_qp(PETSC_COMM_SELF, 400 / block_size(kind), kind, 1e3, 0.5, 0.1, 77);
+    core::Vector s = p.d.duplicate();
+    {
+      auto v = s.view();
+      const PetscInt bs = block_size(kind);
+      for (PetscInt i = 0; i < s.local_size(); ++i)
+        v[i] = std::pow(2.0, std::sin(0.37 * static_cast<double>(i / bs)));
+    }
+    QpOptions opt;
+    opt.rtol = 1e-10;
+    opt.max_iterations = 50000;
+    opt.scaling = &s;
+    const auto o = solve(p, opt);
+    ASSERT_TRUE(o.result.converged()) << kind_name(kind) << ": " << o.result.message;
+    EXPECT_LE(o.violation, 1e-14) << kind_name(kind);
+    EXPECT_LE(o.residual, 2 * o.result.tolerance + 1e-13 * p.d.norm()) << kind_name(kind);
+    EXPECT_LT(o.error, 1e-6) << kind_name(kind);  // κ ≤ 1e3, rtol 1e-10: as in Kkt
+  }
 }
 
 TEST(Qp, ReportsNonConvergenceWithItsNumbers) {

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace tc::qp {
 
@@ -43,9 +44,18 @@ struct State {
   const QpOptions& opt;
   const Vector& d;
   Vector& x;
-  Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save, e;
+  Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save, e, hp;
   double alpha_bar = 0;
   QpResult r;
+
+  /// With a change of variables, 1/s: ‖g^P‖ = ‖S⁻¹ĝ^P‖ in the original variables, since the
+  /// splitting commutes with a positive diagonal scaling (one factor per disc).
+  const Vector* unscale = nullptr;
+  double stop_norm() {
+    if (!unscale) return gp.norm();
+    TC_PETSC(VecPointwiseMult(work.get(), gp.get(), unscale->get()));
+    return work.norm();
+  }
 
   State(const LinearOperator& f_, const FeasibleSet& s, const QpOptions& o, const Vector& d_,
         Vector& x_)
@@ -64,7 +74,8 @@ struct State {
         work(g.duplicate()),
         x_save(g.duplicate()),
         g_save(g.duplicate()),
-        e(g.duplicate()) {}
+        e(g.duplicate()),
+        hp(g.duplicate()) {}
 
   int cauchy_rejected = 0;  // Cauchy steps tried and not taken: stop trying when they dominate
   /// sᵀs / sᵀFs of the last direction s along which a step was taken (CG, feasible or
@@ -84,7 +95,9 @@ struct State {
     apply(x, g);
     g.axpy(-1.0, d);
   }
-  void split() { set.split_gradient(x, g, phi, beta, gp); }
+  /// CircleFace::slide with discs present: circles are part of the face.
+  bool slide = false;
+  void split() { set.split_gradient(x, g, phi, beta, gp, slide); }
   /// The search direction in the face: φ, or the masked preconditioned φ.
   void precondition() {
     if (!opt.preconditioner) {
@@ -92,7 +105,7 @@ struct State {
       return;
     }
     opt.preconditioner->apply(phi, z);
-    set.restrict_to_free(x, z);
+    set.restrict_to_free(x, z, slide);
   }
   /// Dostál's proportioning test ‖β‖² ≤ Γ² g̃ᵀφ with the reduced free gradient
   /// g̃ = (x − P(x − ᾱ φ))/ᾱ, which never lets a step of length ᾱ leave the set.
@@ -113,9 +126,19 @@ struct State {
     apply(p, fp);
     const double pfp = p.dot(fp);
     if (!(pfp > 0)) return false;
-    const double a_cg = g.dot(p) / pfp;
-    const double a_f = set.max_step(x, p);
+    const bool on_circles = slide && set.moves_on_circles(x, p);
+    // Sliding, the step sees F plus the circles' curvature (FeasibleSet::add_circle_curvature):
+    // with F alone the CG step overshoots along the arcs, and the retraction raises f.
+    double php = pfp;
+    if (on_circles) {
+      hp.copy_from(fp);
+      set.add_circle_curvature(x, g, p, hp);
+      php = p.dot(hp);
+    }
+    const double a_cg = g.dot(p) / php;
+    const double a_f = set.max_step(x, p, slide);
     remember_step(p, pfp);
+    if (a_cg <= a_f && on_circles) return slide_step(a_cg, php);
     if (a_cg <= a_f) {
       ++r.cg_steps;
       x.axpy(-a_cg, p);
@@ -129,10 +152,57 @@ struct State {
     }
     ++r.expansion_steps;
     if (opt.expansion == Expansion::projected_cg && projected_cg_step(a_cg)) return true;
-    set.advance(x, p, a_f);  // as far as feasible: components reaching the boundary bind
-    g.axpy(-a_f, fp);
+    if (on_circles) {
+      // The feasible step slides nodes along their circles as well: the retraction changes
+      // x off the line, so g is recomputed; if f rose, the step is undone and the
+      // projected gradient move below starts from where it was.
+      x_save.copy_from(x);
+      g_save.copy_from(g);
+      set.advance(x, p, a_f);
+      gradient();
+      if (change_of_f() > change_noise()) {
+        x.copy_from(x_save);
+        g.copy_from(g_save);
+        ++r.fallbacks;
+      }
+    } else {
+      set.advance(x, p, a_f);  // as far as feasible: components reaching the boundary bind
+      g.axpy(-a_f, fp);
+    }
     split();
     expand(opt.expansion == Expansion::full_gradient ? g : phi, opt.expansion_step);
+    return true;
+  }
+
+  /// CircleFace::slide: the CG step x − α_cg p with the nodes on circles moved along their
+  /// tangent and put back on the circle (FeasibleSet::advance snaps them, since a tangent
+  /// leaves the circle at once). The retraction moves x off the CG line by O(α²‖p‖²/r), so
+  /// g is recomputed (one application) and the step is kept only if f fell; otherwise the
+  /// projected gradient step P(x − ᾱg), which descends for ᾱ ≤ 2/λ_max, replaces it. The
+  /// next direction is conjugated as in CG and turned into the new tangents: exact
+  /// conjugacy is lost with the curvature, which is why this is an option.
+  bool slide_step(double a_cg, double php) {
+    x_save.copy_from(x);
+    g_save.copy_from(g);
+    set.advance(x, p, a_cg);
+    gradient();
+    if (change_of_f() > change_noise()) {
+      x.copy_from(x_save);
+      g.copy_from(g_save);
+      ++r.fallbacks;
+      ++r.expansion_steps;
+      split();
+      expand(g, ExpansionStep::fixed);
+      return true;
+    }
+    ++r.cg_steps;
+    ++r.slides;
+    split();
+    precondition();
+    const double b = z.dot(hp) / php;  // conjugate with respect to F + C
+    p.scale(-b);
+    p.axpy(1.0, z);
+    set.restrict_to_free(x, p, true);
     return true;
   }
 
@@ -292,29 +362,88 @@ struct State {
   }
 };
 
+/// y = S F S x: the operator in the scaled variables (QpOptions::scaling).
+class ScaledOperator final : public LinearOperator {
+ public:
+  ScaledOperator(const LinearOperator& f, const Vector& s) : f_(f), s_(s), t_(s.duplicate()) {}
+  void apply(const Vector& x, Vector& y) const override {
+    TC_PETSC(VecPointwiseMult(t_.get(), s_.get(), x.get()));
+    f_.apply(t_, y);
+    TC_PETSC(VecPointwiseMult(y.get(), s_.get(), y.get()));
+  }
+  [[nodiscard]] Vector make_vector() const override { return f_.make_vector(); }
+
+ private:
+  const LinearOperator& f_;
+  const Vector& s_;
+  mutable Vector t_;
+};
+
+/// ẑ = S⁻¹ M⁻¹ S⁻¹ ĝ: the preconditioned direction z = M⁻¹g seen in x̂ = S⁻¹x (ĝ = Sg).
+class UnscaledPreconditioner final : public LinearOperator {
+ public:
+  UnscaledPreconditioner(const LinearOperator& m, const Vector& inverse_s)
+      : m_(m), inv_(inverse_s), t_(inverse_s.duplicate()) {}
+  void apply(const Vector& x, Vector& y) const override {
+    TC_PETSC(VecPointwiseMult(t_.get(), inv_.get(), x.get()));
+    m_.apply(t_, y);
+    TC_PETSC(VecPointwiseMult(y.get(), inv_.get(), y.get()));
+  }
+  [[nodiscard]] Vector make_vector() const override { return m_.make_vector(); }
+
+ private:
+  const LinearOperator& m_;
+  const Vector& inv_;
+  mutable Vector t_;
+};
+
 }  // namespace
 
 QpResult Mpgp::solve(const Vector& d, Vector& x) const {
-  State s(f_, set_, options_, d, x);
-  double lambda_max = options_.max_eigenvalue;
+  const double tolerance = std::max(options_.rtol * d.norm(), options_.atol);
+  if (!options_.scaling) return run(f_, set_, options_, d, x, tolerance, nullptr);
+  // The change of variables x = S x̂: F̂ = SFS, d̂ = Sd, Ω̂ = S⁻¹Ω; the tolerance stays the
+  // one of the original problem and is tested on S⁻¹ĝ^P (State::stop_norm).
+  const Vector& s = *options_.scaling;
+  Vector inverse_s = s.clone();
+  TC_PETSC(VecReciprocal(inverse_s.get()));
+  const ScaledOperator f_hat(f_, s);
+  const FeasibleSet set_hat = set_.scaled(s);
+  Vector d_hat = d.duplicate();
+  TC_PETSC(VecPointwiseMult(d_hat.get(), s.get(), d.get()));
+  TC_PETSC(VecPointwiseMult(x.get(), inverse_s.get(), x.get()));
+  QpOptions o = options_;
+  o.scaling = nullptr;
+  std::optional<UnscaledPreconditioner> pc;
+  if (options_.preconditioner) o.preconditioner = &pc.emplace(*options_.preconditioner, inverse_s);
+  QpResult r = run(f_hat, set_hat, o, d_hat, x, tolerance, &inverse_s);
+  TC_PETSC(VecPointwiseMult(x.get(), s.get(), x.get()));
+  return r;
+}
+
+QpResult Mpgp::run(const LinearOperator& f, const FeasibleSet& set, const QpOptions& options,
+                   const Vector& d, Vector& x, double tolerance, const Vector* unscale) {
+  State s(f, set, options, d, x);
+  s.unscale = unscale;
+  s.slide = options.circle_face == CircleFace::slide && set.has_discs();
+  double lambda_max = options.max_eigenvalue;
   if (!(lambda_max > 0)) {
-    const auto est =
-        estimate_max_eigenvalue(f_, options_.lanczos_steps, options_.lanczos_tolerance);
+    const auto est = estimate_max_eigenvalue(f, options.lanczos_steps, options.lanczos_tolerance);
     s.r.operator_applications += est.applications;
     lambda_max = est.bound;
   }
   s.r.max_eigenvalue = lambda_max;
-  s.alpha_bar = options_.alpha_factor / lambda_max;
-  s.r.tolerance = std::max(options_.rtol * d.norm(), options_.atol);
+  s.alpha_bar = options.alpha_factor / lambda_max;
+  s.r.tolerance = tolerance;
 
-  set_.project(x);
+  set.project(x);
   s.gradient();
   s.split();
   s.precondition();
   s.p.copy_from(s.z);
 
   for (;;) {
-    s.r.projected_gradient = s.gp.norm();
+    s.r.projected_gradient = s.stop_norm();
     if (!std::isfinite(s.r.projected_gradient) || !std::isfinite(s.alpha_bar)) {
       s.r.status = QpStatus::breakdown;
       s.r.message = fmt::format("non-finite projected gradient at iteration {}", s.r.iterations);
@@ -324,7 +453,7 @@ QpResult Mpgp::solve(const Vector& d, Vector& x) const {
       s.r.status = QpStatus::converged;
       break;
     }
-    if (s.r.iterations >= options_.max_iterations) {
+    if (s.r.iterations >= options.max_iterations) {
       s.r.status = QpStatus::max_iterations;
       s.r.message = fmt::format(
           "not converged in {} iterations: projected gradient {:.3e} > tolerance {:.3e} "
@@ -341,7 +470,7 @@ QpResult Mpgp::solve(const Vector& d, Vector& x) const {
           "F is not positive definite on the search direction at iteration {} (projected "
           "gradient {:.3e})",
           s.r.iterations, s.r.projected_gradient);
-      s.r.projected_gradient = s.gp.norm();
+      s.r.projected_gradient = s.stop_norm();
       break;
     }
   }

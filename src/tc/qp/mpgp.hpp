@@ -37,6 +37,20 @@ enum class ProportioningTest {
   free,  // ‖β‖² ≤ Γ² φᵀφ (PERMON): g̃ᵀφ ≤ φᵀφ, so proportioning happens less often
 };
 
+/// How a node that lies on its friction circle takes part in the face (MPGP only).
+enum class CircleFace {
+  /// Dostál & Kozubek (2012): the node is active, the tangential part of g is chopped (part of
+  /// β), and only proportioning steps and projected moves slide it along the circle.
+  chopped,
+  /// The circle belongs to the face: the tangential part of g is free (part of φ), only the
+  /// inward normal part is chopped. CG moves such nodes along their tangent and puts them back
+  /// on the circle (the projection, a retraction in the sense of Absil et al. 2008, §4.1);
+  /// the gradient is then recomputed (one more application) and the step kept only if f
+  /// fell, else replaced by the projected gradient step P(x − ᾱg). A heuristic outside
+  /// MPGP's convergence theory, safeguarded like the long expansion moves.
+  slide,
+};
+
 struct QpOptions {
   double rtol = 1e-8;         // stop when ‖g^P‖ ≤ max(rtol ‖d‖, atol)
   double atol = 1e-30;        // absolute floor (d = 0 has the solution of the set alone)
@@ -58,6 +72,15 @@ struct QpOptions {
   /// a disc's tangent leaves its circle at once (MPGP only).
   ExpansionStep arc_step = ExpansionStep::fixed;
   ProportioningTest proportioning_test = ProportioningTest::reduced;
+  /// Optional change of variables x = S x̂, S = diag(s), s > 0 (e.g.
+  /// FeasibleSet::jacobi_scaling): the algorithm runs on SFS, Sd and the scaled set, so that
+  /// its fixed-step expansion, proportioning and arc moves — not only CG in the face, as
+  /// with `preconditioner` — see the better conditioned problem (Dostál 2009, §5.7 on
+  /// preconditioning by a change of variables). The two components of a disc need one factor
+  /// (the disc stays a disc). ‖g^P‖ is still measured in the original variables, x and the
+  /// result are in them; `max_eigenvalue` (given or returned) is λ_max(SFS). null = none.
+  const Vector* scaling = nullptr;
+  CircleFace circle_face = CircleFace::chopped;
 };
 
 enum class QpStatus { converged, max_iterations, breakdown };
@@ -76,6 +99,7 @@ struct [[nodiscard]] QpResult {
   std::string message;      // why it stopped, with the numbers
   int long_expansions = 0;  // expansion moves longer than ᾱ (ExpansionStep, projected CG) kept
   int fallbacks = 0;        // ... and rejected because f rose (the ᾱ move taken instead)
+  int slides = 0;           // CG steps that moved nodes along their circles (CircleFace::slide)
   [[nodiscard]] bool converged() const { return status == QpStatus::converged; }
 };
 
@@ -87,6 +111,11 @@ class Mpgp {
   QpResult solve(const Vector& d, Vector& x) const;
 
  private:
+  /// The algorithm itself, on (f, set, d) as given; `unscale` (may be null) maps the
+  /// projected gradient back for the stopping test (QpOptions::scaling).
+  static QpResult run(const LinearOperator& f, const FeasibleSet& set, const QpOptions& options,
+                      const Vector& d, Vector& x, double tolerance, const Vector* unscale);
+
   const LinearOperator& f_;
   const FeasibleSet& set_;
   QpOptions options_;

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "tc/core/petsc.hpp"
@@ -110,18 +111,42 @@ class FeasibleSet {
   void project(Vector& x) const;
   /// Largest violation of the set by x (0 when feasible). Collective.
   [[nodiscard]] double violation(const Vector& x) const;
-  /// φ, β and g^P = φ + β at a feasible x (see the header comment).
+  /// φ, β and g^P = φ + β at a feasible x (see the header comment). With `slide`, the
+  /// tangential part of g at a node on its circle (r > 0) goes to φ instead of β, and β keeps
+  /// only an inward normal part (g·n)⁺n: the circle is then part of the face, along which
+  /// the solver slides (QpOptions::circle_face); g^P is the same either way.
   void split_gradient(const Vector& x, const Vector& g, Vector& free, Vector& chopped,
-                      Vector& projected) const;
-  /// Largest α ≥ 0 with x − α p ∈ Ω (∞ if unbounded). Collective.
-  [[nodiscard]] double max_step(const Vector& x, const Vector& p) const;
+                      Vector& projected, bool slide = false) const;
+  /// Largest α ≥ 0 with x − α p ∈ Ω (∞ if unbounded). With `slide`, nodes on their circle
+  /// (r > 0) do not limit α: they move along their tangent and `advance` puts them back on
+  /// the circle. Collective.
+  [[nodiscard]] double max_step(const Vector& x, const Vector& p, bool slide = false) const;
+  /// y += C p with C the curvature term of f restricted to the circles: (μ/r) on the two
+  /// components of a node on its circle (r > 0), μ = max(−g·n, 0) the normal force. Along a
+  /// tangent p, f on the circle has second derivative pᵀFp + Σ (μ/r)‖p_k‖² (differentiate
+  /// f(r(cos θ, sin θ)) twice), which is what a step that slides and retracts sees.
+  void add_circle_curvature(const Vector& x, const Vector& g, const Vector& p, Vector& y) const;
+  /// Whether a step along p moves a node that is on its circle (r > 0), i.e. whether
+  /// `advance` will retract something and the gradient must be recomputed. Collective.
+  [[nodiscard]] bool moves_on_circles(const Vector& x, const Vector& p) const;
   /// x ← x − α p for α ≤ max_step(x, p), putting the components that reach the boundary
   /// exactly on it, so that they are active afterwards without a tolerance.
   void advance(Vector& x, const Vector& p, double alpha) const;
-  /// Zeros the active components of v (the masked preconditioner works in the free face).
-  void restrict_to_free(const Vector& x, Vector& v) const;
+  /// Zeros the active components of v (the masked preconditioner works in the free face);
+  /// with `slide`, keeps the tangential part of v at nodes on their circle (r > 0).
+  void restrict_to_free(const Vector& x, Vector& v, bool slide = false) const;
   /// Number of active components (a disc counts as two). Collective.
   [[nodiscard]] PetscInt count_active(const Vector& x) const;
+
+  /// The set in the variables x̂ = S⁻¹x for S = diag(s), s > 0: intervals [lo/s_i, hi/s_i],
+  /// discs of radius r/s. Both components of a disc must share one factor (then the image of
+  /// a disc is a disc and its projection is the scaled projection); std::invalid_argument
+  /// otherwise. Local, no communication.
+  [[nodiscard]] FeasibleSet scaled(const Vector& s) const;
+  /// Jacobi factors that keep discs discs: s_i = diag_i^(−1/2) on interval components and
+  /// (diag_a diag_b)^(−1/4) on both components of a disc (the geometric mean of the two
+  /// Jacobi factors), so that SFS has a unit diagonal except on the discs. diag > 0.
+  [[nodiscard]] Vector jacobi_scaling(const Vector& diagonal) const;
 
  private:
   std::vector<Interval> intervals_;
