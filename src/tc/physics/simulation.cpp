@@ -178,6 +178,9 @@ struct Simulation::Solvers {
   // g^k = f^k − K_u u^k − K_uθ(θ^k − θ₀) that replaces M_u ü^k (which holds the contact force).
   std::unique_ptr<ConstrainedSolver> mass;
   core::Vector g_free;
+  // M_u factorised for the initial acceleration, kept until the stabiliser takes it
+  // (enable_contact) or the first step drops it: one factorisation less per body.
+  std::unique_ptr<ConstrainedSolver> initial_mass;
   bool expansion = false;  // θ drives u (thermal expansion on, α ≠ 0)
   bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
 };
@@ -269,9 +272,9 @@ void Simulation::initialise() {
         s.rhs_u.axpy(-1.0, s.work_u);
       }
       s.g_free = s.rhs_u.clone();  // g⁰ = M ü⁰ (no contact force at t = 0)
-      const auto mass = body_solver(problem_, sys, m.mass_u, Operator::mass);
+      s.initial_mass = body_solver(problem_, sys, m.mass_u, Operator::mass);
       st.a.zero();
-      mass->solve(s.rhs_u, st.a);
+      s.initial_mass->solve(s.rhs_u, st.a);
     }
     states_.push_back(std::move(st));
     forces_.emplace_back(sys.n_u());
@@ -586,9 +589,12 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   if (problem_.time.scheme == Scheme::Dynamic &&
       problem_.time.contact_scheme == ContactScheme::Stabilised) {
     auto t = timers_.scope("factorization");
-    for (const int b : {sb, mb})
-      solvers_[b]->mass =
-          body_solver(problem_, *systems_[b], systems_[b]->matrices().mass_u, Operator::mass);
+    for (const int b : {sb, mb}) {
+      auto& sv = *solvers_[b];
+      sv.mass = sv.initial_mass ? std::move(sv.initial_mass)
+                                : body_solver(problem_, *systems_[b],
+                                              systems_[b]->matrices().mass_u, Operator::mass);
+    }
     stabiliser_ =
         std::make_unique<DualContactSolver>(*solvers_[sb]->mass, *solvers_[mb]->mass,
                                             systems_[sb]->n_u(), systems_[mb]->n_u(), settings);
@@ -974,6 +980,7 @@ void Simulation::contact_bookkeeping() {
 
 void Simulation::advance() {
   const auto t0 = Clock::now();
+  for (auto& sv : solvers_) sv->initial_mass.reset();
   std::vector<core::Vector> old_u;
   for (const auto& st : states_) old_u.push_back(st.u.clone());
   int coupling = 0;
