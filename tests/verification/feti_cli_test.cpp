@@ -78,8 +78,10 @@ TEST_F(FetiCli, TwoRanksGiveTheOneRankHistory) {
   for (const auto& [name, d] : column_differences(a, b)) EXPECT_LT(d, 1e-8) << name;
   // Iterations: FETI's projected CG within ±2 per solve on average, the coupling within ±2 per
   // step. MPGP's counts follow the round-off of F (summed over the ranks in another order)
-  // through its active-set decisions on the friction discs: per step within 10 % (3.8 % seen,
-  // 13 of 341), over the run within 2 %.
+  // through its active-set decisions on the friction discs, and since the Tresca → Coulomb
+  // updates are nested, through each update's QP tolerance, which follows the last fixed-point
+  // residual (docs/choices.md): per step within 15 % (11.5 % seen, 218 against 193), over the
+  // run within 2 %.
   const auto feti_one = feti_counts(read_file(dir_ / "np1/summary.json"));
   const auto feti_two = feti_counts(read_file(dir_ / "np2/summary.json"));
   ASSERT_GT(feti_one.first, 0);
@@ -93,7 +95,7 @@ TEST_F(FetiCli, TwoRanksGiveTheOneRankHistory) {
   const auto qp_a = column(a, "qp_iterations"), qp_b = column(b, "qp_iterations");
   for (size_t k = 0; k < a.rows.size(); ++k) {
     EXPECT_NEAR(coupling_a[k], coupling_b[k], 2) << k;
-    EXPECT_NEAR(qp_a[k], qp_b[k], std::max(10.0, 0.1 * qp_a[k])) << k;
+    EXPECT_NEAR(qp_a[k], qp_b[k], std::max(10.0, 0.15 * qp_a[k])) << k;
   }
   double total_a = 0, total_b = 0;
   for (size_t k = 0; k < qp_a.size(); ++k) total_a += qp_a[k], total_b += qp_b[k];

@@ -58,11 +58,17 @@ TEST(FrictionLoop, NestedAndStaggeredStopAtTheSameFixedPoint) {
   ASSERT_GT(std::abs(column(nested.history, "heat_conducted").back()), 0.0);
   // Each scheme stops within coupling_tolerance = 1e-6 (relative change of λ and θ, and
   // ‖λ_n(γ) − γ‖ ≤ 1e-6‖λ‖) of the step's fixed point, and the state carries the remainder
-  // over 30 steps: measured, the largest difference of a physical column is 4.7e-7 (strain
-  // energy). 1.5e-6 fails when the nested loop stops 100× early (coupling_tolerance 1e-4 for
-  // it alone: 3.2e-6 in the strain energy, and slip_nodes differs by 15 %).
-  for (const auto& [name, d] : column_differences(staggered.history, nested.history))
-    EXPECT_LT(d, 1.5e-6) << name;
+  // over 30 steps; energies are quadratic in u, so two runs may differ by ~2·2e-6 there
+  // (measured: 2.0e-6 in the strain energy, the largest). The node counts are the sharp
+  // check: which nodes stick and which slide must not depend on the scheme (a nested loop
+  // stopped 100× early, coupling_tolerance 1e-4 for it alone, changes slip_nodes by 15 % while
+  // its energies stay within 3.2e-6).
+  for (const auto& [name, d] : column_differences(staggered.history, nested.history)) {
+    if (name == "slip_nodes" || name == "active_nodes" || name == "friction_iterations") continue;
+    EXPECT_LT(d, 5e-6) << name;
+  }
+  for (const char* count : {"slip_nodes", "active_nodes"})
+    EXPECT_EQ(column(staggered.history, count), column(nested.history, count)) << count;
   // What the nesting is for: the heat and mechanical solves go with the outer iterations.
   EXPECT_LT(nested.coupling, staggered.coupling);
   // In the staggered loop every heat–mechanics iteration makes one update.
