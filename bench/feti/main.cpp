@@ -9,13 +9,14 @@
 //   build/bin/bench_feti                 scalability table (s = 2 … 5)
 //   build/bin/bench_feti size N S        one quasistatic solve on N³ cells, S subdomains:
 //                                        time and peak memory (the largest size that fits)
-//   build/bin/bench_feti contact H S [steps]
+//   build/bin/bench_feti contact H S [steps [S_min]]
 //                                        two blocks in frictional contact through Simulation,
 //                                        H/h = H cells per subdomain edge, each body cut into
-//                                        s³ subdomains for s = 2 … S, `steps` quasistatic steps
-//                                        (default 3: pressed, then sliding): FETI iterations
+//                                        s³ subdomains for s = S_min (2) … S, `steps` quasistatic
+//                                        steps (default 3: pressed, then sliding): FETI iterations
 //                                        per solve, contact QP iterations, time per
-//                                        subdomain·iteration
+//                                        subdomain·iteration (TC_BENCH_DYNAMIC=1 in the
+//                                        environment: dynamic steps, the deflated FETI)
 //   mpirun -n 2 build/bin/bench_feti ... the subdomains dealt to two ranks
 #include <fmt/format.h>
 #include <sys/resource.h>
@@ -159,7 +160,8 @@ physics::Problem contact_blocks(int h, int s, int steps) {
   const int n = h * s;
   physics::Problem p;
   p.dimension = 3;
-  p.time.scheme = std::getenv("TC_BENCH_DYNAMIC") ? physics::Scheme::Dynamic : physics::Scheme::Quasistatic;
+  p.time.scheme =
+      std::getenv("TC_BENCH_DYNAMIC") ? physics::Scheme::Dynamic : physics::Scheme::Quasistatic;
   p.time.step = 0.1;
   p.time.end = 0.1 * steps;
   p.physics.thermal_expansion = false;
@@ -204,7 +206,7 @@ struct QpCounts : physics::Observer {
   }
 };
 
-void contact_blocks_bench(int h, int s_max, int steps) {
+void contact_blocks_bench(int h, int s_max, int steps, int s_min) {
   const bool root = core::PetscSession::rank() == 0;
   const int ranks = core::PetscSession::size();
   if (root)
@@ -216,7 +218,7 @@ void contact_blocks_bench(int h, int s_max, int steps) {
         "ms per subdomain·iteration (1-rhs) |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         h, steps, ranks);
-  for (int s = 2; s <= s_max; ++s) {
+  for (int s = s_min; s <= s_max; ++s) {
     const auto p = contact_blocks(h, s, steps);
     auto t0 = Clock::now();
     physics::Simulation sim(p);
@@ -255,8 +257,8 @@ int main(int argc, char** argv) {
   char** pargv = argv;
   core::PetscSession session(&pargc, &pargv);
   if (argc >= 4 && std::string(argv[1]) == "contact")
-    contact_blocks_bench(std::stoi(argv[2]), std::stoi(argv[3]),
-                         argc >= 5 ? std::stoi(argv[4]) : 3);
+    contact_blocks_bench(std::stoi(argv[2]), std::stoi(argv[3]), argc >= 5 ? std::stoi(argv[4]) : 3,
+                         argc >= 6 ? std::stoi(argv[5]) : 2);
   else if (argc >= 4 && std::string(argv[1]) == "size")
     size(std::stoi(argv[2]), std::stoi(argv[3]));
   else
