@@ -54,8 +54,10 @@ void collective_check(MPI_Comm comm, const char* what, const std::function<void(
     already_collective = dynamic_cast<const Collective*>(&e) != nullptr;
   } catch (const std::exception& e) {
     kind = other, message = e.what();
+  } catch (...) {  // anything else must not leave this rank alone either
+    kind = other, message = "unknown exception";
   }
-  // The lowest failing rank (size if none): one integer, the only cost when all went well.
+  // The lowest failing rank (INT_MAX if none): one integer, the only cost when all went well.
   int first = failed ? rank : INT_MAX;
   check_mpi(MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm), "MPI_Allreduce");
   if (first == INT_MAX) return;
