@@ -43,6 +43,13 @@ int report_input_error(const tc::InputError& e) {
   return 2;
 }
 
+/// An error every rank threw together (core/collective.hpp) is printed once, by rank 0; one
+/// of a single rank by that rank.
+void report(const std::exception& e, const char* prefix) {
+  if (tc::reported_here(e, tc::core::PetscSession::rank()))
+    fmt::print(stderr, "{}: {}\n", prefix, e.what());
+}
+
 int run(const std::string& case_file, const std::string& output, const std::string& restart,
         int stop_after, std::vector<std::string> extra, const char* program) {
   std::vector<char*> args{const_cast<char*>(program)};
@@ -95,13 +102,13 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   } catch (const tc::InputError& e) {
     return report_input_error(e);
   } catch (const tc::MeshError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    report(e, "error");
     return 2;
   } catch (const tc::io::CheckpointError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    report(e, "error");
     return 2;
   } catch (const tc::Error& e) {
-    fmt::print(stderr, "stopped: {}\n", e.what());
+    report(e, "stopped");
     return 1;
   }
 }

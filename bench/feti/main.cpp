@@ -9,16 +9,27 @@
 //   build/bin/bench_feti                 scalability table (s = 2 … 5)
 //   build/bin/bench_feti size N S        one quasistatic solve on N³ cells, S subdomains:
 //                                        time and peak memory (the largest size that fits)
+//   build/bin/bench_feti contact H S [steps [S_min]]
+//                                        two blocks in frictional contact through Simulation,
+//                                        H/h = H cells per subdomain edge, each body cut into
+//                                        s³ subdomains for s = S_min (2) … S, `steps` quasistatic
+//                                        steps (default 3: pressed, then sliding): FETI iterations
+//                                        per solve, contact QP iterations, time per
+//                                        subdomain·iteration (TC_BENCH_DYNAMIC=1 in the
+//                                        environment: dynamic steps, the deflated FETI)
 //   mpirun -n 2 build/bin/bench_feti ... the subdomains dealt to two ranks
 #include <fmt/format.h>
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <string>
 
 #include "../../tests/support/problems.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/mesh/box.hpp"
 #include "tc/physics/body_system.hpp"
+#include "tc/physics/simulation.hpp"
 
 namespace {
 
@@ -140,13 +151,115 @@ void size(int n, int subdomains) {
         peak_rss_gib());
 }
 
+/// Two blocks of s·H cells per edge, each cut into s³ subdomains: the master [0,1]²×[−1,0]
+/// clamped at its base, the slave [0,1]²×[0,1] (its base on the master's top) with its top
+/// pressed down 1 mm/m in the first step, then dragged along y by 0.2 mm per step, 𝔉 = 0.3:
+/// the whole interface in contact, sticking then sliding. Quasistatic: TFETI with the rigid
+/// body kernels, the contact QP on top (explicit F while it has at most 1500 rows).
+physics::Problem contact_blocks(int h, int s, int steps) {
+  const int n = h * s;
+  physics::Problem p;
+  p.dimension = 3;
+  p.time.scheme =
+      std::getenv("TC_BENCH_DYNAMIC") ? physics::Scheme::Dynamic : physics::Scheme::Quasistatic;
+  p.time.step = 0.1;
+  p.time.end = 0.1 * steps;
+  p.physics.thermal_expansion = false;
+  p.physics.thermoelastic_heating = false;
+  for (int b = 0; b < 2; ++b) {
+    physics::Body body;
+    body.name = b == 0 ? "master" : "slave";
+    body.material = test::steel();
+    body.mesh = b == 0 ? mesh::make_box(3, {0, 0, -1}, {1, 1, 0}, {n, n, n})
+                       : mesh::make_box(3, {0, 0, 0}, {1, 1, 1}, {n, n, n});
+    body.initial_temperature = p.physics.reference_temperature;
+    body.subdomains = s * s * s;
+    p.bodies.push_back(std::move(body));
+  }
+  physics::BoundaryCondition clamp;
+  clamp.body = 0;
+  clamp.where = "zmin";
+  for (auto& d : clamp.displacement) d = core::TimeTable(0.0);
+  p.boundaries.push_back(clamp);
+  physics::BoundaryCondition top;
+  top.body = 1;
+  top.where = "zmax";
+  top.displacement[0] = core::TimeTable(0.0);
+  const double end = 0.1 * steps;
+  top.displacement[1] = core::TimeTable({0.0, 0.1, end}, {0.0, 0.0, 2e-4 * (steps - 1)});
+  top.displacement[2] = core::TimeTable({0.0, 0.1}, {0.0, -1e-3});
+  p.boundaries.push_back(top);
+  p.contact = test::contact_pair(1, "zmin", 0, "zmax", 0.3);
+  p.solver.qp_tolerance = 1e-8;
+  p.solver.coupling_tolerance = 1e-6;
+  p.solver.feti_tolerance = 1e-8;
+  p.solver.feti_preconditioner = feti::Preconditioner::dirichlet;
+  return p;
+}
+
+struct QpCounts : physics::Observer {
+  long qp = 0, coupling = 0;
+  void step(const physics::Simulation& sim) override {
+    if (sim.step() == 0) return;
+    qp += static_cast<long>(sim.history("qp_iterations"));
+    coupling += static_cast<long>(sim.history("coupling_iterations"));
+  }
+};
+
+void contact_blocks_bench(int h, int s_max, int steps, int s_min) {
+  const bool root = core::PetscSession::rank() == 0;
+  const int ranks = core::PetscSession::size();
+  if (root)
+    fmt::print(
+        "H/h = {}, {} quasistatic steps, {} rank(s)\n\n"
+        "| subdomains per body | cells per body | dofs | contact rows | dual operator | "
+        "FETI solves (1 rhs + blocks) | FETI its per solve | FETI its per 1-rhs solve | "
+        "coupling its | QP its | QP its per coupling it | set-up (s) | run (s) | FETI (s) | "
+        "ms per subdomain·iteration (1-rhs) |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        h, steps, ranks);
+  for (int s = s_min; s <= s_max; ++s) {
+    const auto p = contact_blocks(h, s, steps);
+    auto t0 = Clock::now();
+    physics::Simulation sim(p);
+    sim.enable_mortar_contact();
+    const double setup = since(t0);
+    QpCounts counts;
+    t0 = Clock::now();
+    const auto status = sim.run(counts);
+    const double run = since(t0);
+    if (!status.completed && root) fmt::print("  stopped: {}\n", status.message);
+    const auto f = sim.feti_statistics();
+    const int subdomains = 2 * s * s * s;  // both bodies
+    // A rank works on its own subdomains: time per subdomain·iteration counts those.
+    const double per_sub_it = f.single_iterations > 0
+                                  ? 1e3 * f.single_seconds * ranks /
+                                        (static_cast<double>(subdomains) * f.single_iterations)
+                                  : 0.0;
+    if (root)
+      fmt::print(
+          "| {} | {}³ | {} | {} | {} | {} + {} | {:.1f} | {:.1f} | {} | {} | {:.1f} | {:.1f} | "
+          "{:.1f} | {:.1f} | {:.3f} |\n",
+          s * s * s, h * s, sim.n_dofs(), sim.dual_solver()->rows().n_rows(),
+          physics::name(sim.dual_solver()->kind()), f.single_solves, f.solves - f.single_solves,
+          static_cast<double>(f.iterations) / std::max(1L, f.solves),
+          static_cast<double>(f.single_iterations) / std::max(1L, f.single_solves), counts.coupling,
+          counts.qp, static_cast<double>(counts.qp) / std::max(1L, counts.coupling), setup, run,
+          f.seconds, per_sub_it);
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int pargc = 1;
   char** pargv = argv;
   core::PetscSession session(&pargc, &pargv);
-  if (argc >= 4 && std::string(argv[1]) == "size")
+  if (argc >= 4 && std::string(argv[1]) == "contact")
+    contact_blocks_bench(std::stoi(argv[2]), std::stoi(argv[3]), argc >= 5 ? std::stoi(argv[4]) : 3,
+                         argc >= 6 ? std::stoi(argv[5]) : 2);
+  else if (argc >= 4 && std::string(argv[1]) == "size")
     size(std::stoi(argv[2]), std::stoi(argv[3]));
   else
     scalability();

@@ -29,4 +29,13 @@ NumericalError::NumericalError(const std::string& what, int step, int iteration,
       iteration_(iteration),
       residual_(residual) {}
 
+NumericalError NumericalError::preformatted(const std::string& what, int step, int iteration,
+                                            double residual) {
+  return {Preformatted{}, what, step, iteration, residual};
+}
+
+bool reported_here(const std::exception& e, int rank) {
+  return rank == 0 || dynamic_cast<const Collective*>(&e) == nullptr;
+}
+
 }  // namespace tc

@@ -4,6 +4,7 @@
 // step, iteration and residual so the time loop and the user can act on them.
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tc {
@@ -53,13 +54,37 @@ class PetscError : public Error {
 class NumericalError : public Error {
  public:
   NumericalError(const std::string& what, int step, int iteration, double residual);
+  /// The same error with `what` already formatted (a copy received from another rank).
+  [[nodiscard]] static NumericalError preformatted(const std::string& what, int step, int iteration,
+                                                   double residual);
   [[nodiscard]] int step() const { return step_; }
   [[nodiscard]] int iteration() const { return iteration_; }
   [[nodiscard]] double residual() const { return residual_; }
 
  private:
+  struct Preformatted {};
+  NumericalError(Preformatted, const std::string& what, int step, int iteration, double residual)
+      : Error(what), step_(step), iteration_(iteration), residual_(residual) {}
   int step_, iteration_;
   double residual_;
 };
+
+/// Marks an error that every rank threw together (core/collective.hpp): reported once, on
+/// rank 0, where an error of one rank alone is reported by that rank.
+class Collective {
+ public:
+  virtual ~Collective() = default;
+};
+
+/// An error of type E thrown by every rank (the type keeps the exit code).
+template <class E>
+class CollectiveError : public E, public Collective {
+ public:
+  explicit CollectiveError(E e) : E(std::move(e)) {}
+};
+
+/// Whether this rank reports `e` to the user: rank 0 for a collective error, else every rank
+/// that has it.
+[[nodiscard]] bool reported_here(const std::exception& e, int rank);
 
 }  // namespace tc

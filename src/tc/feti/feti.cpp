@@ -4,8 +4,11 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <limits>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::feti {
@@ -111,10 +114,11 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
   if (!singular_ && !options_.deflation) kernel = Kernel::none;
   const int n_sub = static_cast<int>(subdomains.size());
   int rank = 0, size = 1;
-  MPI_Comm_rank(options_.comm, &rank);
-  MPI_Comm_size(options_.comm, &size);
-  first_owned_ = static_cast<int>(static_cast<long>(n_sub) * rank / size);
-  last_owned_ = static_cast<int>(static_cast<long>(n_sub) * (rank + 1) / size);
+  if (MPI_Comm_rank(options_.comm, &rank) != MPI_SUCCESS ||
+      MPI_Comm_size(options_.comm, &size) != MPI_SUCCESS)
+    throw Error("FETI: MPI_Comm_rank/MPI_Comm_size failed");
+  first_owned_ = first_subdomain(n_sub, rank, size);
+  last_owned_ = first_subdomain(n_sub, rank + 1, size);
   for (int s = 0; s < n_sub; ++s) {
     auto sub = std::make_unique<Subdomain>();
     for (const int g : subdomains[static_cast<size_t>(s)].global_node)
@@ -127,25 +131,41 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
   build_rows(n_nodes, dirichlet_dofs);
   build_kernels(subdomains, kernel);
   if (singular_) build_coarse();
-  for (int s = first_owned_; s < last_owned_; ++s) {
-    auto& sub = *subs_[static_cast<size_t>(s)];
-    sub.a = local_matrix(s);
-    if (sub.a.rows() != sub.n())
-      throw Error(fmt::format("FETI: subdomain {} matrix has {} rows, expected {}", s, sub.a.rows(),
-                              sub.n()));
-    const double diag = core::mean_diagonal(sub.a);
-    auto reduced = sub.a.copy();
-    reduced.zero_rows_columns(sub.fixing, diag);
-    sub.factor = core::CholeskySolver(reduced, options_.package);
-    package_ = sub.factor.package();
-    if (options_.preconditioner == Preconditioner::dirichlet) {
-      for (const auto& e : sub.b) sub.boundary.push_back(e.dof);
-      std::sort(sub.boundary.begin(), sub.boundary.end());
-      sub.boundary.erase(std::unique(sub.boundary.begin(), sub.boundary.end()), sub.boundary.end());
-      auto inner = sub.a.copy();
-      inner.zero_rows_columns(sub.boundary, diag);
-      sub.interior = core::CholeskySolver(inner, options_.package);
+  // Rank-local: a subdomain that fails to assemble or factorise on one rank stops every rank
+  // (with the rank named) instead of leaving the others in the next MPI_Allreduce.
+  core::collective_check(options_.comm, "FETI subdomain assembly and factorisation", [&] {
+    for (int s = first_owned_; s < last_owned_; ++s) {
+      auto& sub = *subs_[static_cast<size_t>(s)];
+      sub.a = local_matrix(s);
+      if (sub.a.rows() != sub.n())
+        throw Error(fmt::format("FETI: subdomain {} matrix has {} rows, expected {}", s,
+                                sub.a.rows(), sub.n()));
+      if (s == first_owned_ && core::injected_failure("factorisation"))
+        throw PetscError(PETSC_ERR_MAT_CH_ZRPVT,
+                         fmt::format("FETI: the factorisation of subdomain {} failed (injected "
+                                     "by -tc_fail_on_rank)",
+                                     s));
+      const double diag = core::mean_diagonal(sub.a);
+      auto reduced = sub.a.copy();
+      reduced.zero_rows_columns(sub.fixing, diag);
+      sub.factor = core::CholeskySolver(reduced, options_.package);
+      package_ = sub.factor.package();
+      if (options_.preconditioner == Preconditioner::dirichlet) {
+        for (const auto& e : sub.b) sub.boundary.push_back(e.dof);
+        std::sort(sub.boundary.begin(), sub.boundary.end());
+        sub.boundary.erase(std::unique(sub.boundary.begin(), sub.boundary.end()),
+                           sub.boundary.end());
+        auto inner = sub.a.copy();
+        inner.zero_rows_columns(sub.boundary, diag);
+        sub.interior = core::CholeskySolver(inner, options_.package);
+      }
     }
+  });
+  if (core::injected_failure("solve")) {
+    // After -tc_fail_after_solves solves of this operator (default 0): a failure in the run.
+    PetscBool set = PETSC_FALSE;
+    fail_after_ = 0;
+    TC_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-tc_fail_after_solves", &fail_after_, &set));
   }
   if (!singular_) build_deflation();
 }
@@ -299,7 +319,7 @@ void Feti::deflate(Block& z) const {
 
 void Feti::sum_over_ranks(double* data, Eigen::Index n) const {
   int size = 1;
-  MPI_Comm_size(options_.comm, &size);
+  if (MPI_Comm_size(options_.comm, &size) != MPI_SUCCESS) throw Error("FETI: MPI_Comm_size failed");
   if (size == 1) return;
   const int rc =
       MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, options_.comm);
@@ -308,12 +328,17 @@ void Feti::sum_over_ranks(double* data, Eigen::Index n) const {
 
 void Feti::apply_f(const Block& x, Block& y) const {
   y.setZero(m_, x.cols());
-  for (int s = first_owned_; s < last_owned_; ++s) {
-    const auto& sub = *subs_[static_cast<size_t>(s)];
-    sub.scatter_transpose(x, sub.w);
-    sub.pseudo_solve(sub.w, sub.z);
-    sub.gather(sub.z, y);
-  }
+  core::collective_check(options_.comm, "FETI subdomain solve", [&] {
+    if (fail_after_ >= 0 && stats_.solves > fail_after_)  // fault injection
+      throw NumericalError("FETI: a subdomain solve failed (injected by -tc_fail_on_rank)", -1, 0,
+                           std::nan(""));
+    for (int s = first_owned_; s < last_owned_; ++s) {
+      const auto& sub = *subs_[static_cast<size_t>(s)];
+      sub.scatter_transpose(x, sub.w);
+      sub.pseudo_solve(sub.w, sub.z);
+      sub.gather(sub.z, y);
+    }
+  });
   sum_over_ranks(y.data(), y.size());
 }
 
@@ -323,20 +348,22 @@ void Feti::precondition(const Block& x, Block& y) const {
     return;
   }
   y.setZero(m_, x.cols());
-  for (int s = first_owned_; s < last_owned_; ++s) {
-    const auto& sub = *subs_[static_cast<size_t>(s)];
-    sub.scatter_transpose(x, sub.w);
-    if (options_.preconditioner == Preconditioner::lumped) {
-      sub.mult(sub.w, sub.z);
-    } else {  // S v = (A (v̄ − A_red⁻¹ (A v̄)|_interior))|_boundary, v̄ = v on the boundary
-      sub.mult(sub.w, sub.t);
-      for (const PetscInt d : sub.boundary) sub.t.row(d).setZero();
-      sub.interior_solve(sub.t, sub.z);
-      sub.w -= sub.z;
-      sub.mult(sub.w, sub.z);
+  core::collective_check(options_.comm, "FETI preconditioner", [&] {
+    for (int s = first_owned_; s < last_owned_; ++s) {
+      const auto& sub = *subs_[static_cast<size_t>(s)];
+      sub.scatter_transpose(x, sub.w);
+      if (options_.preconditioner == Preconditioner::lumped) {
+        sub.mult(sub.w, sub.z);
+      } else {  // S v = (A (v̄ − A_red⁻¹ (A v̄)|_interior))|_boundary, v̄ = v on the boundary
+        sub.mult(sub.w, sub.t);
+        for (const PetscInt d : sub.boundary) sub.t.row(d).setZero();
+        sub.interior_solve(sub.t, sub.z);
+        sub.w -= sub.z;
+        sub.mult(sub.w, sub.z);
+      }
+      sub.gather(sub.z, y);
     }
-    sub.gather(sub.z, y);
-  }
+  });
   sum_over_ranks(y.data(), y.size());
 }
 
@@ -353,20 +380,22 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
   // Right-hand sides per subdomain: each body dof's load on the copy of its owner.
   f.assign(subs_.size(), Block{});
   Block d = Block::Zero(m_, k), e = Block::Zero(n_kernel_, k);
-  for (int s = first_owned_; s < last_owned_; ++s) {
-    const auto& sub = *subs_[static_cast<size_t>(s)];
-    auto& fs = f[static_cast<size_t>(s)];
-    fs.setZero(sub.n(), k);
-    for (PetscInt i = 0; i < sub.n(); ++i) {
-      const PetscInt g = sub.global_dof[static_cast<size_t>(i)];
-      if (owner_[static_cast<size_t>(g / block_)] == s) fs.row(i) = f_global.row(g);
+  core::collective_check(options_.comm, "FETI right-hand side", [&] {
+    for (int s = first_owned_; s < last_owned_; ++s) {
+      const auto& sub = *subs_[static_cast<size_t>(s)];
+      auto& fs = f[static_cast<size_t>(s)];
+      fs.setZero(sub.n(), k);
+      for (PetscInt i = 0; i < sub.n(); ++i) {
+        const PetscInt g = sub.global_dof[static_cast<size_t>(i)];
+        if (owner_[static_cast<size_t>(g / block_)] == s) fs.row(i) = f_global.row(g);
+      }
+      if (singular_ && sub.r.cols() > 0)
+        e.middleRows(sub.kernel_offset, sub.r.cols()) = sub.r.transpose() * fs;
+      sub.w = fs;
+      sub.pseudo_solve(sub.w, sub.z);
+      sub.gather(sub.z, d);
     }
-    if (singular_ && sub.r.cols() > 0)
-      e.middleRows(sub.kernel_offset, sub.r.cols()) = sub.r.transpose() * fs;
-    sub.w = fs;
-    sub.pseudo_solve(sub.w, sub.z);
-    sub.gather(sub.z, d);
-  }
+  });
   sum_over_ranks(d.data(), d.size());
   sum_over_ranks(e.data(), e.size());
   d -= c;
@@ -386,7 +415,13 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
   Block pd = d;
   project(pd);
   const Eigen::ArrayXd scale = pd.colwise().norm().transpose().array().max(1e-300);
-  const Eigen::ArrayXd zero_rhs = (pd.colwise().norm().transpose().array() == 0.0).cast<double>();
+  // A column whose P d is at the round-off of d is solved by λ₀: the relative criterion could
+  // never be met there. It happens when the Dirichlet data move a floating body rigidly (a
+  // slave block pressed down before contact: u = the translation, λ = 0, ‖Pd‖ = 1e-15‖d‖).
+  const Eigen::ArrayXd zero_rhs =
+      (pd.colwise().norm().transpose().array() <=
+       1e3 * std::numeric_limits<double>::epsilon() * d.colwise().norm().transpose().array())
+          .cast<double>();
   Eigen::ArrayXd rz = Eigen::ArrayXd::Ones(k);
   int it = 0;
   double worst = 0;
@@ -432,23 +467,34 @@ Feti::Block Feti::primal(const Block& solution, const std::vector<Block>& f) con
   const Eigen::Index k = solution.cols();
   const Block lambda = solution.topRows(m_);
   Block u = Block::Zero(static_cast<Eigen::Index>(owner_.size()) * block_, k);
-  for (int s = first_owned_; s < last_owned_; ++s) {
-    const auto& sub = *subs_[static_cast<size_t>(s)];
-    sub.scatter_transpose(lambda, sub.w);
-    sub.w = f[static_cast<size_t>(s)] - sub.w;
-    sub.pseudo_solve(sub.w, sub.z);
-    if (singular_ && sub.r.cols() > 0)
-      sub.z += sub.r * solution.middleRows(m_ + sub.kernel_offset, sub.r.cols());
-    for (PetscInt i = 0; i < sub.n(); ++i) {
-      const PetscInt gdof = sub.global_dof[static_cast<size_t>(i)];
-      if (owner_[static_cast<size_t>(gdof / block_)] == s) u.row(gdof) = sub.z.row(i);
+  core::collective_check(options_.comm, "FETI primal solution", [&] {
+    for (int s = first_owned_; s < last_owned_; ++s) {
+      const auto& sub = *subs_[static_cast<size_t>(s)];
+      sub.scatter_transpose(lambda, sub.w);
+      sub.w = f[static_cast<size_t>(s)] - sub.w;
+      sub.pseudo_solve(sub.w, sub.z);
+      if (singular_ && sub.r.cols() > 0)
+        sub.z += sub.r * solution.middleRows(m_ + sub.kernel_offset, sub.r.cols());
+      for (PetscInt i = 0; i < sub.n(); ++i) {
+        const PetscInt gdof = sub.global_dof[static_cast<size_t>(i)];
+        if (owner_[static_cast<size_t>(gdof / block_)] == s) u.row(gdof) = sub.z.row(i);
+      }
     }
-  }
+  });
   sum_over_ranks(u.data(), u.size());
   return u;
 }
 
+void Feti::record_time(double seconds, Eigen::Index columns) const {
+  stats_.seconds += seconds;
+  if (columns != 1) return;
+  ++stats_.single_solves;
+  stats_.single_iterations += stats_.last_iterations;
+  stats_.single_seconds += seconds;
+}
+
 void Feti::solve(const core::Vector& b, core::Vector& x) const {
+  const auto t0 = std::chrono::steady_clock::now();
   Block f(b.size(), 1), c = Block::Zero(m_, 1);
   {
     const auto bv = b.read();
@@ -462,9 +508,11 @@ void Feti::solve(const core::Vector& b, core::Vector& x) const {
   auto xv = x.view();
   for (PetscInt i = 0; i < x.size(); ++i)
     if (!std::binary_search(dirichlet_dofs_.begin(), dirichlet_dofs_.end(), i)) xv[i] = u(i, 0);
+  record_time(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1);
 }
 
 void Feti::solve_homogeneous_many(::Mat b, ::Mat x) const {
+  const auto t0 = std::chrono::steady_clock::now();
   PetscInt n = 0, k = 0;
   TC_PETSC(MatGetSize(b, &n, &k));
   Block f(n, k);
@@ -481,6 +529,7 @@ void Feti::solve_homogeneous_many(::Mat b, ::Mat x) const {
   TC_PETSC(MatDenseGetArrayWrite(x, &xv));
   Eigen::Map<Block>(xv, n, k) = u;
   TC_PETSC(MatDenseRestoreArrayWrite(x, &xv));
+  record_time(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), k);
 }
 
 }  // namespace tc::feti

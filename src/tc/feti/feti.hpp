@@ -20,6 +20,9 @@
 // a rank assembles and factorises only its own. Dual vectors (the size of the interface) are
 // replicated: F·x is the sum over ranks of the owned subdomains' products (MPI_Allreduce), the
 // coarse problem GGᵀ is factorised on every rank. Primal vectors (b, x) are replicated too.
+// Every rank-local phase (assembly, factorisation, the subdomain solves of F, the
+// preconditioner, the right-hand side and the primal solution) runs in core::collective_check:
+// a failure on one rank throws on all, "rank r: <phase>: <message>".
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <functional>
@@ -51,9 +54,15 @@ enum class Preconditioner {
 };
 [[nodiscard]] const char* name(Preconditioner p);
 
+/// The first of the contiguous block of subdomains that `rank` of `size` owns (rank + 1: one
+/// past its last): the dealing of Feti, which the output's pieces follow too.
+[[nodiscard]] inline int first_subdomain(int n_subdomains, int rank, int size) {
+  return static_cast<int>(static_cast<long>(n_subdomains) * rank / size);
+}
+
 struct FetiOptions {
   /// Stop when ‖B u − c‖ (the projected dual gradient: gluing jumps and Dirichlet misfit)
-  /// ≤ tolerance · ‖P d‖.
+  /// ≤ tolerance · ‖P d‖ (at once when ‖P d‖ is at the round-off of ‖d‖).
   double tolerance = 1e-10;
   int max_iterations = 2000;
   Preconditioner preconditioner = Preconditioner::dirichlet;
@@ -70,6 +79,18 @@ struct FetiStatistics {
   long iterations = 0;        // PCG iterations over all solves (shared by a block's columns)
   int last_iterations = 0;    // of the last solve
   double last_residual = 0;   // ‖B u − c‖ / ‖P d‖ at the end of the last solve
+  double seconds = 0;         // wall time in the solves (dual and primal), this rank
+  // The solves with one right-hand side alone (an iteration of a block costs k columns):
+  long single_solves = 0, single_iterations = 0;
+  double single_seconds = 0;
+  /// Sums the counters and times (the `last_` entries are those of `o`).
+  FetiStatistics& operator+=(const FetiStatistics& o) {
+    solves += o.solves, right_hand_sides += o.right_hand_sides, iterations += o.iterations;
+    last_iterations = o.last_iterations, last_residual = o.last_residual;
+    seconds += o.seconds, single_solves += o.single_solves;
+    single_iterations += o.single_iterations, single_seconds += o.single_seconds;
+    return *this;
+  }
 };
 
 class Feti {
@@ -113,6 +134,7 @@ class Feti {
   /// and Dirichlet data c (m × k); f is split into the subdomains' loads on the way.
   Block solve_dual(const Block& f_global, const Block& c, std::vector<Block>& f) const;
   Block primal(const Block& solution, const std::vector<Block>& f) const;
+  void record_time(double seconds, Eigen::Index columns) const;
   void sum_over_ranks(double* data, Eigen::Index n) const;
 
   int block_;
@@ -128,6 +150,7 @@ class Feti {
   Eigen::MatrixXd w_, fw_;  // deflation only: W (orthonormal basis of range Gᵀ) and F W
   int first_owned_ = 0, last_owned_ = 0;  // [first, last) subdomains of this rank
   std::string package_;
+  PetscInt fail_after_ = -1;  // -tc_fail_on_rank, -tc_fail_phase solve (core/collective.hpp)
   mutable FetiStatistics stats_;
 };
 

@@ -5,6 +5,7 @@
 #include <fmt/os.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/fem/element.hpp"
@@ -157,19 +159,25 @@ OutputWriter::~OutputWriter() {
 }
 
 void OutputWriter::start(const physics::Simulation& sim) {
-  if (!root_) return;
-  std::error_code ec;
-  std::filesystem::create_directories(dir_, ec);
-  if (ec)
-    throw Error(fmt::format("cannot create output directory {}: {}", dir_.string(), ec.message()));
-  pvd_ = std::make_unique<PvdCollection>(dir_ / "result.pvd");
-  if (resume_) {
-    resumed_step_ = sim.step();
-    // Data sets up to the restored step stay (half a step of slack for the printed times).
-    pvd_->load(sim.time() + 0.5 * sim.problem().time.step);
-  }
-  open_history(sim);
-  write_summary(sim, "running", "");
+  // Rank 0 alone writes here; the check makes a failure stop every rank (and orders the
+  // directory's creation before any rank writes its piece).
+  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+    if (!root_) return;
+    std::error_code ec;
+    std::filesystem::create_directories(dir_, ec);
+    if (ec)
+      throw Error(
+          fmt::format("cannot create output directory {}: {}", dir_.string(), ec.message()));
+    pvd_ = std::make_unique<PvdCollection>(dir_ / "result.pvd");
+    if (resume_) {
+      resumed_step_ = sim.step();
+      // Data sets up to the restored step stay (half a step of slack for the printed times).
+      pvd_->load(sim.time() + 0.5 * sim.problem().time.step);
+    }
+    open_history(sim);
+    write_summary(sim, "running", "");
+  });
+  if (resume_) resumed_step_ = sim.step();
 }
 
 void OutputWriter::open_history(const physics::Simulation& sim) {
@@ -213,32 +221,75 @@ void OutputWriter::append_history(const std::string& line) {
 }
 
 void OutputWriter::step(const physics::Simulation& sim) {
-  if (!root_) return;
   const double t0 = now_seconds();
-  std::string line;
-  for (const double v : sim.history_row())
-    line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
-  append_history(line + '\n');  // a run killed later still leaves every completed row
+  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+    if (!root_) return;
+    std::string line;
+    for (const double v : sim.history_row())
+      line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
+    append_history(line + '\n');  // a run killed later still leaves every completed row
+  });
   // The restored step's fields are those the first run wrote (its contact rows are gone).
   if (sim.step() % every_ == 0 && sim.step() != resumed_step_) write_fields(sim);
   output_seconds_ += now_seconds() - t0;
 }
 
 void OutputWriter::write_fields(const physics::Simulation& sim) {
+  const int size = core::PetscSession::size(), rank = core::PetscSession::rank();
   for (int b = 0; b < sim.n_bodies(); ++b) {
+    const auto& sys = sim.system(b);
+    const auto& mesh = sys.body().mesh;
     std::vector<Field> point_data, cell_data;
-    body_fields(sim, b, point_data, cell_data);
-    const auto name = fmt::format("{}_{:06d}.vtu", sim.system(b).body().name, sim.step());
-    write_vtu(dir_ / name, sim.system(b).body().mesh, point_data, cell_data);
-    pvd_->add(sim.time(), b, name);
+    const auto stem = fmt::format("{}_{:06d}", sys.body().name, sim.step());
+    if (size == 1) {
+      core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+        body_fields(sim, b, point_data, cell_data);
+        write_vtu(dir_ / (stem + ".vtu"), mesh, point_data, cell_data);
+        pvd_->add(sim.time(), b, stem + ".vtu");
+      });
+      continue;
+    }
+    // More ranks: each writes the cells of the subdomains it owns in FETI (the same dealing,
+    // feti::first_subdomain; an undecomposed body is one subdomain) as <stem>_<rank>.vtu, and
+    // rank 0 lists the pieces in <stem>.pvtu once all are written. The state is replicated,
+    // so every rank has the fields of its cells and points.
+    const int n_sub = std::max(1, static_cast<int>(sys.subdomains().size()));
+    std::vector<int> piece_of(static_cast<size_t>(n_sub));  // subdomain → rank
+    for (int r = 0; r < size; ++r)
+      for (int s = feti::first_subdomain(n_sub, r, size);
+           s < feti::first_subdomain(n_sub, r + 1, size); ++s)
+        piece_of[static_cast<size_t>(s)] = r;
+    std::vector<std::vector<int>> cells(static_cast<size_t>(size));
+    const auto& part = sys.cell_subdomain();
+    for (int c = 0; c < mesh.n_cells(); ++c)
+      cells[static_cast<size_t>(piece_of[static_cast<size_t>(part[static_cast<size_t>(c)])])]
+          .push_back(c);
+    const auto piece = [&](int r) { return fmt::format("{}_{}.vtu", stem, r); };
+    core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+      if (core::injected_failure("output"))
+        throw Error(fmt::format("cannot write {} (injected by -tc_fail_on_rank)", piece(rank)));
+      body_fields(sim, b, point_data, cell_data);
+      if (!cells[static_cast<size_t>(rank)].empty())  // a rank without cells writes no piece
+        write_vtu_piece(dir_ / piece(rank), mesh, cells[static_cast<size_t>(rank)], point_data,
+                        cell_data);
+    });
+    core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+      if (!root_) return;
+      std::vector<std::string> pieces;
+      for (int r = 0; r < size; ++r)
+        if (!cells[static_cast<size_t>(r)].empty()) pieces.push_back(piece(r));
+      write_pvtu(dir_ / (stem + ".pvtu"), point_data, cell_data, pieces);
+      pvd_->add(sim.time(), b, stem + ".pvtu");
+    });
   }
 }
 
 void OutputWriter::finish(const physics::Simulation& sim, const physics::RunStatus& status) {
-  if (!root_) return;
   // The last state is always written, even when `every` skipped it.
   if (sim.step() % every_ != 0 && sim.step() != resumed_step_) write_fields(sim);
-  write_summary(sim, status.completed ? "completed" : "stopped", status.message);
+  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+    if (root_) write_summary(sim, status.completed ? "completed" : "stopped", status.message);
+  });
 }
 
 void OutputWriter::write_summary(const physics::Simulation& sim, const std::string& status,

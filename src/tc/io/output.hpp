@@ -1,7 +1,10 @@
 #pragma once
 // What a run leaves in its output directory (case-format.md): result.pvd with one .vtu per
 // body and written step, history.csv (one row per step), summary.json (rewritten at start,
-// "running", and at the end, "completed" or "stopped"). Only MPI rank 0 writes.
+// "running", and at the end, "completed" or "stopped"). Only MPI rank 0 writes, except the
+// fields on more than one rank: each rank writes the cells of its own subdomains as a piece
+// (<body>_<step>_<rank>.vtu) and rank 0 the .pvtu that lists them, which result.pvd names.
+// Every writing phase is collective (core::collective_check): a failure on one rank stops all.
 // Every file is whole whenever the run stops, even by SIGKILL: history.csv gets one write()
 // per row (a row is there or not, never half), result.pvd and summary.json are replaced by
 // a rename, and a .vtu is listed in result.pvd only once it is written.

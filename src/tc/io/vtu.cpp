@@ -37,10 +37,12 @@ void write_field(fmt::ostream& out, const Field& f) {
   out.print("        </DataArray>\n");
 }
 
-}  // namespace
-
-void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
-               const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
+/// The grid of `cells` of m with the points `points` (ascending; local[global] their new
+/// numbers, or identity when empty) and the fields restricted to them.
+void write_grid(const std::filesystem::path& file, const mesh::Mesh& m,
+                const std::vector<int>& points, const std::vector<int>& cells,
+                const std::vector<int>& local, const std::vector<Field>& point_data,
+                const std::vector<Field>& cell_data) {
   auto out = fmt::output_file(file.string());
   out.print(R"(<?xml version="1.0"?>
 <VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
@@ -49,15 +51,19 @@ void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
       <Points>
         <DataArray type="Float64" NumberOfComponents="3" format="ascii">
 )",
-            m.n_nodes(), m.n_cells());
-  for (const auto& p : m.points()) out.print("{:.15g} {:.15g} {:.15g}\n", p[0], p[1], p[2]);
+            points.size(), cells.size());
+  for (const int a : points) {
+    const auto& p = m.point(a);
+    out.print("{:.15g} {:.15g} {:.15g}\n", p[0], p[1], p[2]);
+  }
   out.print("        </DataArray>\n      </Points>\n      <Cells>\n");
   out.print(R"(        <DataArray type="Int64" Name="connectivity" format="ascii">)");
   out.print("\n");
   long offset = 0;
   std::string offsets, types;
-  for (int c = 0; c < m.n_cells(); ++c) {
-    for (const int n : m.cell(c)) out.print("{} ", n);
+  for (const int c : cells) {
+    for (const int n : m.cell(c))
+      out.print("{} ", local.empty() ? n : local[static_cast<size_t>(n)]);
     out.print("\n");
     offset += static_cast<long>(m.cell(c).size());
     offsets += fmt::format("{}\n", offset);
@@ -68,11 +74,75 @@ void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
   out.print("\n{}        </DataArray>\n", offsets);
   out.print(R"(        <DataArray type="UInt8" Name="types" format="ascii">)");
   out.print("\n{}        </DataArray>\n      </Cells>\n", types);
+  auto restricted = [](const Field& f, const std::vector<int>& rows, size_t all) {
+    if (rows.size() == all) return f;
+    Field r{f.name, f.components, {}};
+    r.values.reserve(rows.size() * static_cast<size_t>(f.components));
+    for (const int i : rows)
+      for (int k = 0; k < f.components; ++k)
+        r.values.push_back(f.values[static_cast<size_t>(f.components * i + k)]);
+    return r;
+  };
   out.print("      <PointData>\n");
-  for (const auto& f : point_data) write_field(out, f);
+  for (const auto& f : point_data)
+    write_field(out, restricted(f, points, static_cast<size_t>(m.n_nodes())));
   out.print("      </PointData>\n      <CellData>\n");
-  for (const auto& f : cell_data) write_field(out, f);
+  for (const auto& f : cell_data)
+    write_field(out, restricted(f, cells, static_cast<size_t>(m.n_cells())));
   out.print("      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+}
+
+std::vector<int> iota(int n) {
+  std::vector<int> v(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) v[static_cast<size_t>(i)] = i;
+  return v;
+}
+
+void write_data_arrays(fmt::ostream& out, const char* tag, const std::vector<Field>& fields) {
+  out.print("    <{}>\n", tag);
+  for (const auto& f : fields)
+    out.print(R"(      <PDataArray type="Float64" Name="{}" NumberOfComponents="{}"/>)"
+              "\n",
+              f.name, f.components);
+  out.print("    </{}>\n", tag);
+}
+
+}  // namespace
+
+void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
+               const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
+  write_grid(file, m, iota(m.n_nodes()), iota(m.n_cells()), {}, point_data, cell_data);
+}
+
+void write_vtu_piece(const std::filesystem::path& file, const mesh::Mesh& m,
+                     const std::vector<int>& cells, const std::vector<Field>& point_data,
+                     const std::vector<Field>& cell_data) {
+  std::vector<int> local(static_cast<size_t>(m.n_nodes()), -1), points;
+  for (const int c : cells)
+    for (const int n : m.cell(c)) local[static_cast<size_t>(n)] = 0;
+  for (int a = 0; a < m.n_nodes(); ++a)
+    if (local[static_cast<size_t>(a)] == 0) {
+      local[static_cast<size_t>(a)] = static_cast<int>(points.size());
+      points.push_back(a);
+    }
+  write_grid(file, m, points, cells, local, point_data, cell_data);
+}
+
+void write_pvtu(const std::filesystem::path& file, const std::vector<Field>& point_data,
+                const std::vector<Field>& cell_data, const std::vector<std::string>& pieces) {
+  auto out = fmt::output_file(file.string());
+  out.print(R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <PUnstructuredGrid GhostLevel="0">
+)");
+  write_data_arrays(out, "PPointData", point_data);
+  write_data_arrays(out, "PCellData", cell_data);
+  out.print(R"(    <PPoints>
+      <PDataArray type="Float64" NumberOfComponents="3"/>
+    </PPoints>
+)");
+  for (const auto& p : pieces) out.print("    <Piece Source=\"{}\"/>\n", p);
+  out.print("  </PUnstructuredGrid>\n</VTKFile>\n");
 }
 
 void PvdCollection::add(double time, int part, const std::string& relative_file) {

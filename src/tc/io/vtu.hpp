@@ -1,5 +1,6 @@
 #pragma once
-// VTK XML unstructured grids (.vtu, ASCII) and ParaView collections (.pvd).
+// VTK XML unstructured grids (.vtu, ASCII), their parallel form (.pvtu listing one .vtu piece
+// per rank) and ParaView collections (.pvd).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -18,6 +19,18 @@ struct Field {
 /// Writes one mesh with point and cell data. Points are written in 3D (z = 0 in 2D).
 void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
                const std::vector<Field>& point_data, const std::vector<Field>& cell_data);
+
+/// Writes the cells `cells` of m as one piece of a parallel data set: the points they use
+/// (renumbered in ascending order) and the fields restricted to those points and cells; the
+/// fields are given on the whole mesh.
+void write_vtu_piece(const std::filesystem::path& file, const mesh::Mesh& m,
+                     const std::vector<int>& cells, const std::vector<Field>& point_data,
+                     const std::vector<Field>& cell_data);
+
+/// Writes a .pvtu listing `pieces` (file names relative to it) with the fields' names and
+/// components.
+void write_pvtu(const std::filesystem::path& file, const std::vector<Field>& point_data,
+                const std::vector<Field>& cell_data, const std::vector<std::string>& pieces);
 
 /// A .pvd collection, rewritten whole (through a temporary file and a rename) after every
 /// added entry, so it is valid whenever the run stops.

@@ -233,11 +233,7 @@ feti::FetiStatistics Simulation::feti_statistics() const {
   feti::FetiStatistics total;
   for (const auto& s : solvers_)
     for (const auto* solver : {s->mech.get(), s->heat.get(), s->mass.get()})
-      if (solver && solver->feti()) {
-        total.solves += solver->feti()->statistics().solves;
-        total.right_hand_sides += solver->feti()->statistics().right_hand_sides;
-        total.iterations += solver->feti()->statistics().iterations;
-      }
+      if (solver && solver->feti()) total += solver->feti()->statistics();
   return total;
 }
 
