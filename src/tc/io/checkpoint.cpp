@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "tc/core/bytes.hpp"
+#include "tc/core/collective.hpp"
 #include "tc/core/petsc.hpp"
 
 namespace tc::io {
@@ -215,7 +216,10 @@ CheckpointWriter::CheckpointWriter(std::filesystem::path directory, std::uint64_
       root_(core::PetscSession::rank() == 0) {}
 
 void CheckpointWriter::step(const physics::Simulation& sim) {
-  if (root_) write_checkpoint(file_, sim, case_hash_);
+  // Rank 0 writes; a failure there (disk full) must stop every rank, not leave them waiting.
+  core::collective_check(PETSC_COMM_WORLD, "checkpoint", [&] {
+    if (root_) write_checkpoint(file_, sim, case_hash_);
+  });
 }
 
 }  // namespace tc::io
