@@ -15,6 +15,7 @@
 
 #include "../../tests/support/problems.hpp"  // steel(): the constants the tests use
 #include "../support/growth.hpp"
+#include "../support/sliding_blocks.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/physics/simulation.hpp"
@@ -47,19 +48,8 @@ physics::Problem sliding_block(std::array<int, 3> master, std::array<int, 3> sla
     body.initial_temperature = p.physics.reference_temperature;
     p.bodies.push_back(std::move(body));
   }
-  physics::BoundaryCondition clamp;
-  clamp.body = 0;
-  clamp.where = "zmin";
-  for (auto& d : clamp.displacement) d = core::TimeTable(0.0);
-  p.boundaries.push_back(clamp);
-  physics::BoundaryCondition top;
-  top.body = 1;
-  top.where = "zmax";
-  top.displacement[0] = core::TimeTable(0.0);
   const double end = 0.1 * steps;
-  top.displacement[1] = core::TimeTable({0.0, 0.2, end}, {0.0, 0.0, 0.3 / 35 * (steps - 2)});
-  top.displacement[2] = core::TimeTable({0.0, 0.2}, {0.0, -1e-4});
-  p.boundaries.push_back(top);
+  bench::clamp_and_drag(p, 0.2, 1e-4, end, 0.3 / 35 * (steps - 2));
   auto c = test::contact_pair(1, "zmin", 0, "zmax", 0.3);
   p.contact = c;
   p.solver.qp_tolerance = 1e-10;

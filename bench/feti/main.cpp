@@ -26,6 +26,7 @@
 #include <string>
 
 #include "../../tests/support/problems.hpp"
+#include "../support/sliding_blocks.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/physics/body_system.hpp"
@@ -176,19 +177,8 @@ physics::Problem contact_blocks(int h, int s, int steps) {
     body.subdomains = s * s * s;
     p.bodies.push_back(std::move(body));
   }
-  physics::BoundaryCondition clamp;
-  clamp.body = 0;
-  clamp.where = "zmin";
-  for (auto& d : clamp.displacement) d = core::TimeTable(0.0);
-  p.boundaries.push_back(clamp);
-  physics::BoundaryCondition top;
-  top.body = 1;
-  top.where = "zmax";
-  top.displacement[0] = core::TimeTable(0.0);
   const double end = 0.1 * steps;
-  top.displacement[1] = core::TimeTable({0.0, 0.1, end}, {0.0, 0.0, 2e-4 * (steps - 1)});
-  top.displacement[2] = core::TimeTable({0.0, 0.1}, {0.0, -1e-3});
-  p.boundaries.push_back(top);
+  bench::clamp_and_drag(p, 0.1, 1e-3, end, 2e-4 * (steps - 1));
   p.contact = test::contact_pair(1, "zmin", 0, "zmax", 0.3);
   p.solver.qp_tolerance = 1e-8;
   p.solver.coupling_tolerance = 1e-6;
