@@ -32,22 +32,9 @@ double since(Clock::time_point t0) {
 /// The example's bodies and loads with the given cells; `steps` of 0.1 s: pressed by 0.1 mm
 /// over the first two, then dragged along y by 8.6 mm per step (the example's speed).
 physics::Problem sliding_block(std::array<int, 3> master, std::array<int, 3> slave, int steps) {
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme = physics::Scheme::Quasistatic;
-  p.time.step = 0.1;
-  p.time.end = 0.1 * steps;
-  p.physics.thermal_expansion = false;
-  p.physics.thermoelastic_heating = false;
-  for (int b = 0; b < 2; ++b) {
-    physics::Body body;
-    body.name = b == 0 ? "master" : "slave";
-    body.material = test::steel();
-    body.mesh = b == 0 ? mesh::make_box(3, {-0.15, -0.15, -0.2}, {0.15, 0.85, 0.0}, master)
-                       : mesh::make_box(3, {-0.1, -0.1, 0.0}, {0.1, 0.1, 0.2}, slave);
-    body.initial_temperature = p.physics.reference_temperature;
-    p.bodies.push_back(std::move(body));
-  }
+  auto p =
+      bench::two_steel_blocks(mesh::make_box(3, {-0.15, -0.15, -0.2}, {0.15, 0.85, 0.0}, master),
+                              mesh::make_box(3, {-0.1, -0.1, 0.0}, {0.1, 0.1, 0.2}, slave), steps);
   const double end = 0.1 * steps;
   bench::clamp_and_drag(p, 0.2, 1e-4, end, 0.3 / 35 * (steps - 2));
   auto c = test::contact_pair(1, "zmin", 0, "zmax", 0.3);

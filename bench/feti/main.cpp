@@ -159,24 +159,10 @@ void size(int n, int subdomains) {
 /// body kernels, the contact QP on top (explicit F while it has at most 1500 rows).
 physics::Problem contact_blocks(int h, int s, int steps) {
   const int n = h * s;
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme =
-      std::getenv("TC_BENCH_DYNAMIC") ? physics::Scheme::Dynamic : physics::Scheme::Quasistatic;
-  p.time.step = 0.1;
-  p.time.end = 0.1 * steps;
-  p.physics.thermal_expansion = false;
-  p.physics.thermoelastic_heating = false;
-  for (int b = 0; b < 2; ++b) {
-    physics::Body body;
-    body.name = b == 0 ? "master" : "slave";
-    body.material = test::steel();
-    body.mesh = b == 0 ? mesh::make_box(3, {0, 0, -1}, {1, 1, 0}, {n, n, n})
-                       : mesh::make_box(3, {0, 0, 0}, {1, 1, 1}, {n, n, n});
-    body.initial_temperature = p.physics.reference_temperature;
-    body.subdomains = s * s * s;
-    p.bodies.push_back(std::move(body));
-  }
+  auto p =
+      bench::two_steel_blocks(mesh::make_box(3, {0, 0, -1}, {1, 1, 0}, {n, n, n}),
+                              mesh::make_box(3, {0, 0, 0}, {1, 1, 1}, {n, n, n}), steps, s * s * s);
+  if (std::getenv("TC_BENCH_DYNAMIC")) p.time.scheme = physics::Scheme::Dynamic;
   const double end = 0.1 * steps;
   bench::clamp_and_drag(p, 0.1, 1e-3, end, 2e-4 * (steps - 1));
   p.contact = test::contact_pair(1, "zmin", 0, "zmax", 0.3);

@@ -81,9 +81,13 @@ inline std::vector<double> column(const History& h, const std::string& name) {
 /// largest of the three (a tangential reaction that is round-off next to the normal one is
 /// judged against that). Counters and wall times are left out.
 inline std::map<std::string, double> column_differences(const History& a, const History& b) {
-  static const std::vector<std::string> skip{
-      "step",        "time", "coupling_iterations", "qp_iterations", "operator_applications",
-      "wall_seconds", "friction_iterations"};
+  static const std::vector<std::string> skip{"step",
+                                             "time",
+                                             "coupling_iterations",
+                                             "qp_iterations",
+                                             "operator_applications",
+                                             "wall_seconds",
+                                             "friction_iterations"};
   auto peak = [&](const std::string& name) {
     double m = 0;
     for (const double v : column(a, name)) m = std::max(m, std::abs(v));

@@ -168,7 +168,7 @@ class MortarPair {
   // Filled by the first thermal_conductance after an update.
   struct ConductanceMoments {
     int segment;  // index in segments_
-    int ns, nm;  // nodes of the slave and the master facet
+    int ns, nm;   // nodes of the slave and the master facet
     double ss[4][4][4], sm[4][4][4], mm[4][4][4];
   };
   mutable std::vector<ConductanceMoments> conductance_moments_;
