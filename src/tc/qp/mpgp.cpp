@@ -362,38 +362,22 @@ struct State {
   }
 };
 
-/// y = S F S x: the operator in the scaled variables (QpOptions::scaling).
-class ScaledOperator final : public LinearOperator {
+/// y = D A D x for a diagonal D: the operator in the scaled variables x̂ = S⁻¹x
+/// (QpOptions::scaling) is S F S, and the preconditioned direction z = M⁻¹g seen in x̂ is
+/// ẑ = S⁻¹ M⁻¹ S⁻¹ ĝ (ĝ = Sg).
+class DiagonalSandwich final : public LinearOperator {
  public:
-  ScaledOperator(const LinearOperator& f, const Vector& s) : f_(f), s_(s), t_(s.duplicate()) {}
+  DiagonalSandwich(const LinearOperator& a, const Vector& d) : a_(a), d_(d), t_(d.duplicate()) {}
   void apply(const Vector& x, Vector& y) const override {
-    TC_PETSC(VecPointwiseMult(t_.get(), s_.get(), x.get()));
-    f_.apply(t_, y);
-    TC_PETSC(VecPointwiseMult(y.get(), s_.get(), y.get()));
+    TC_PETSC(VecPointwiseMult(t_.get(), d_.get(), x.get()));
+    a_.apply(t_, y);
+    TC_PETSC(VecPointwiseMult(y.get(), d_.get(), y.get()));
   }
-  [[nodiscard]] Vector make_vector() const override { return f_.make_vector(); }
+  [[nodiscard]] Vector make_vector() const override { return a_.make_vector(); }
 
  private:
-  const LinearOperator& f_;
-  const Vector& s_;
-  mutable Vector t_;
-};
-
-/// ẑ = S⁻¹ M⁻¹ S⁻¹ ĝ: the preconditioned direction z = M⁻¹g seen in x̂ = S⁻¹x (ĝ = Sg).
-class UnscaledPreconditioner final : public LinearOperator {
- public:
-  UnscaledPreconditioner(const LinearOperator& m, const Vector& inverse_s)
-      : m_(m), inv_(inverse_s), t_(inverse_s.duplicate()) {}
-  void apply(const Vector& x, Vector& y) const override {
-    TC_PETSC(VecPointwiseMult(t_.get(), inv_.get(), x.get()));
-    m_.apply(t_, y);
-    TC_PETSC(VecPointwiseMult(y.get(), inv_.get(), y.get()));
-  }
-  [[nodiscard]] Vector make_vector() const override { return m_.make_vector(); }
-
- private:
-  const LinearOperator& m_;
-  const Vector& inv_;
+  const LinearOperator& a_;
+  const Vector& d_;
   mutable Vector t_;
 };
 
@@ -407,14 +391,14 @@ QpResult Mpgp::solve(const Vector& d, Vector& x) const {
   const Vector& s = *options_.scaling;
   Vector inverse_s = s.clone();
   TC_PETSC(VecReciprocal(inverse_s.get()));
-  const ScaledOperator f_hat(f_, s);
+  const DiagonalSandwich f_hat(f_, s);
   const FeasibleSet set_hat = set_.scaled(s);
   Vector d_hat = d.duplicate();
   TC_PETSC(VecPointwiseMult(d_hat.get(), s.get(), d.get()));
   TC_PETSC(VecPointwiseMult(x.get(), inverse_s.get(), x.get()));
   QpOptions o = options_;
   o.scaling = nullptr;
-  std::optional<UnscaledPreconditioner> pc;
+  std::optional<DiagonalSandwich> pc;
   if (options_.preconditioner) o.preconditioner = &pc.emplace(*options_.preconditioner, inverse_s);
   QpResult r = run(f_hat, set_hat, o, d_hat, x, tolerance, &inverse_s);
   TC_PETSC(VecPointwiseMult(x.get(), s.get(), x.get()));
