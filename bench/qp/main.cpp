@@ -88,6 +88,8 @@ std::vector<Variant> strategy_variants() {
     v.push_back({std::move(name), o});
   };
   add("ᾱ fixed, Γ = 1 (default)", [](auto&) {});
+  add("λ_max up front (before)",
+      [](auto& o) { o.eigenvalue_estimate = tc::qp::EigenvalueEstimate::upfront; });
   add("BB length", [](auto& o) {
     o.expansion_step = ExpansionStep::barzilai_borwein;
     o.arc_step = ExpansionStep::barzilai_borwein;
@@ -112,6 +114,9 @@ std::vector<Variant> strategy_variants() {
   add("per-node Jacobi in face", [](auto&) {});
   v.back().node_jacobi_in_face = true;
   add("Jacobi change of variables", [](auto&) {});
+  v.back().jacobi_scaling = true;
+  add("Jacobi variables, λ_max up front",
+      [](auto& o) { o.eigenvalue_estimate = tc::qp::EigenvalueEstimate::upfront; });
   v.back().jacobi_scaling = true;
   add("slide + Jacobi in face", [](auto& o) { o.circle_face = tc::qp::CircleFace::slide; });
   v.back().node_jacobi_in_face = true;
@@ -158,8 +163,9 @@ struct Row {
   long n = 0;
   std::string kappa, active;
   Cell mprgp, mprgp_pc, bqpip, gpcg, blmvm, cg;  // mprgp_pc: preconditioned in face
-  int n_active = 0;                              // active bounds at MPRGP's solution
-  std::vector<Cell> variants;                    // Settings::variants, in order
+  Cell mprgp_jv;     // QpOptions::scaling = Jacobi factors (the physics path's configuration)
+  int n_active = 0;  // active bounds at MPRGP's solution
+  std::vector<Cell> variants;  // Settings::variants, in order
 };
 
 double relative_difference(const Vector& x, const Vector& ref) {
@@ -183,19 +189,17 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
   const auto rm = tc::qp::Mpgp(f, set, opt).solve(d, x_m);  // = Mprgp without discs
   row.mprgp.seconds = since(t0);
   row.mprgp.applications = rm.operator_applications;
-  // The share of the λ_max estimate (deterministic: the same call again, not counted).
-  row.mprgp.estimate = opt.max_eigenvalue > 0 ? 0
-                                              : tc::qp::estimate_max_eigenvalue(
-                                                    f, opt.lanczos_steps, opt.lanczos_tolerance)
-                                                    .applications;
+  // The share of the λ_max estimate, as counted by the solver (0 when ᾱ was never needed).
+  row.mprgp.estimate = rm.estimate_applications;
   row.mprgp.converged = rm.converged();
   row.mprgp.capped = rm.status == tc::qp::QpStatus::max_iterations;
   row.n_active = static_cast<int>(set.count_active(x_m));
   fmt::print(stderr,
              "  MPRGP {} ({} cg, {} expansion ({} long, {} fall-backs), {} proportioning, {} "
-             "halvings) {:.2f} s\n",
+             "halvings, {} for λ_max{}, {} re-estimates) {:.2f} s\n",
              rm.operator_applications, rm.cg_steps, rm.expansion_steps, rm.long_expansions,
-             rm.fallbacks, rm.proportioning_steps, rm.step_halvings, row.mprgp.seconds);
+             rm.fallbacks, rm.proportioning_steps, rm.step_halvings, rm.estimate_applications,
+             rm.face_eigenvalue ? " of a face" : "", rm.reestimates, row.mprgp.seconds);
   // Per-node Jacobi factors (FeasibleSet::jacobi_scaling) for the variants that need them.
   std::optional<Vector> scaling, squared;
   std::optional<tc::qp::FunctionOperator> node_jacobi;
@@ -237,6 +241,27 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
                v.name, c.applications, rv.cg_steps, rv.expansion_steps, rv.proportioning_steps,
                rv.cauchy_steps, rv.slides, rv.long_expansions, rv.fallbacks, c.seconds);
   }
+  if (scaling) {
+    tc::qp::QpOptions jv = opt;
+    jv.scaling = &*scaling;
+    Vector x = d.duplicate();
+    t0 = Clock::now();
+    const auto rj = tc::qp::Mpgp(f, set, jv).solve(d, x);
+    row.mprgp_jv.seconds = since(t0);
+    row.mprgp_jv.applications = rj.operator_applications;
+    row.mprgp_jv.estimate = rj.estimate_applications;
+    row.mprgp_jv.converged = rj.converged();
+    row.mprgp_jv.capped = rj.status == tc::qp::QpStatus::max_iterations;
+    row.mprgp_jv.difference = relative_difference(x, x_m);
+    fmt::print(stderr,
+               "  MPRGP, Jacobi variables {} ({} cg, {} expansion, {} proportioning, {} for "
+               "λ_max{}, {} re-estimates) {:.2f} s, differs by {:.1e}\n",
+               rj.operator_applications, rj.cg_steps, rj.expansion_steps, rj.proportioning_steps,
+               rj.estimate_applications, rj.face_eigenvalue ? " of a face" : "", rj.reestimates,
+               row.mprgp_jv.seconds, row.mprgp_jv.difference);
+  } else {
+    row.mprgp_jv.skipped = true;
+  }
   if (preconditioner) {
     tc::qp::QpOptions pc = opt;
     pc.preconditioner = preconditioner;
@@ -245,7 +270,7 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
     const auto rp = tc::qp::Mpgp(f, set, pc).solve(d, x);
     row.mprgp_pc.seconds = since(t0);
     row.mprgp_pc.applications = rp.operator_applications;
-    row.mprgp_pc.estimate = row.mprgp.estimate;
+    row.mprgp_pc.estimate = rp.estimate_applications;
     row.mprgp_pc.converged = rp.converged();
     row.mprgp_pc.capped = rp.status == tc::qp::QpStatus::max_iterations;
     row.mprgp_pc.difference = relative_difference(x, x_m);
@@ -559,10 +584,10 @@ int main(int argc, char** argv) {
     for (PetscInt i = 0; i < c.n_contact; ++i) set.set_interval(i, {0.0, tc::qp::infinity});
     const tc::qp::FunctionOperator lumped([&c](const Vector& x, Vector& y) { c.lumped(x, y); },
                                           c.d);
-    // diag(F) for the variants that need it: one application per unit vector, outside the
+    // diag(F) for the Jacobi variables: one application per unit vector, outside the
     // counts (physics::DualContactSolver forms F explicitly below 1500 rows, so it has it).
     std::optional<Vector> diagonal;
-    if (!s.variants.empty()) {
+    {
       diagonal = c.d.duplicate();
       Vector unit = c.d.duplicate(), column = c.d.duplicate();
       for (PetscInt i = 0; i < c.n_contact; ++i) {
@@ -587,10 +612,11 @@ int main(int argc, char** argv) {
   fmt::print(
       "| instance | n | κ ≤ | active | MPRGP | BQPIP | GPCG | BLMVM | CG (no bounds) | "
       "MPRGP/CG | MPRGP < every TAO | MPRGP + precond. in face | that < every TAO | "
-      "max rel. diff. to MPRGP |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "MPRGP, Jacobi variables | that < every TAO | max rel. diff. to MPRGP |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& r : rows) {
     double diff = r.mprgp_pc.converged ? r.mprgp_pc.difference : 0;
+    if (r.mprgp_jv.converged) diff = std::max(diff, r.mprgp_jv.difference);
     auto fewer_than_tao = [&](const Cell& m) {
       if (r.bqpip.skipped) return std::string("—");
       bool fewer = m.converged;
@@ -602,13 +628,15 @@ int main(int argc, char** argv) {
     };
     for (const Cell* t : {&r.bqpip, &r.gpcg, &r.blmvm})
       if (t->converged) diff = std::max(diff, t->difference);
-    fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1e} |\n",
-               r.name, r.n, r.kappa, r.active, r.mprgp.text(), r.bqpip.text(), r.gpcg.text(),
-               r.blmvm.text(), r.cg.text(),
-               r.cg.converged ? fmt::format("{:.2f}", static_cast<double>(r.mprgp.applications) /
-                                                          r.cg.applications)
-                              : "—",
-               fewer_than_tao(r.mprgp), r.mprgp_pc.text(), fewer_than_tao(r.mprgp_pc), diff);
+    fmt::print(
+        "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1e} |\n",
+        r.name, r.n, r.kappa, r.active, r.mprgp.text(), r.bqpip.text(), r.gpcg.text(),
+        r.blmvm.text(), r.cg.text(),
+        r.cg.converged
+            ? fmt::format("{:.2f}", static_cast<double>(r.mprgp.applications) / r.cg.applications)
+            : "—",
+        fewer_than_tao(r.mprgp), r.mprgp_pc.text(), fewer_than_tao(r.mprgp_pc), r.mprgp_jv.text(),
+        fewer_than_tao(r.mprgp_jv), diff);
   }
   if (!s.variants.empty()) {
     fmt::print(

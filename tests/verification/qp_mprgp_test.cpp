@@ -217,6 +217,8 @@ const StrategyCase strategies[] = {
        o.expansion = qp::Expansion::projected_cg;
        o.gamma = 4;
      }},
+    {"lambda_upfront",
+     [](QpOptions& o) { o.eigenvalue_estimate = qp::EigenvalueEstimate::upfront; }},
     {"slide_on_circles", [](QpOptions& o) { o.circle_face = qp::CircleFace::slide; }},
     {"slide_bb_length",
      [](QpOptions& o) {
@@ -504,6 +506,89 @@ TEST(Qp, LanczosStopsOnceTheBoundIsWithinTolerance) {
   EXPECT_LE(est.ritz, 1000.0 * (1 + 1e-12));
   EXPECT_LE(est.bound, 1.05 * est.ritz);
   EXPECT_GT(est.bound, est.ritz);
+}
+
+// ------------------------------------------------- λ_max deferred (EigenvalueEstimate)
+
+/// λ_max(F) to 1e-6 relative: 300 Lanczos steps without early stop on n ≤ 1000 (the bound
+/// ritz + residual; the residual of a converged Ritz pair is far below 1e-6·λ).
+double reference_max_eigenvalue(::Mat f) {
+  const auto est = qp::estimate_max_eigenvalue(qp::MatrixOperator(f), 300, 1e-9);
+  return est.bound;
+}
+
+TEST(Qp, DeferredEstimateIsNotPaidWithoutExpansions) {
+  // No constraints: CG alone, never an expansion step, so ᾱ is never needed and no
+  // application of F goes to λ_max (the up-front estimate pays for it anyway).
+  auto p = random_qp(PETSC_COMM_SELF, 500, QpKind::free, 1e3, 0.0, 0.0, 11);
+  QpOptions opt;
+  opt.rtol = 1e-10;
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  EXPECT_EQ(o.result.expansion_steps, 0);
+  EXPECT_EQ(o.result.estimate_applications, 0);
+  EXPECT_EQ(o.result.max_eigenvalue, 0.0);
+  EXPECT_LT(o.error, 1e-6);  // κ ≤ 1e3, rtol 1e-10, as in Kkt
+
+  opt.eigenvalue_estimate = qp::EigenvalueEstimate::upfront;
+  const auto u = solve(p, opt);
+  ASSERT_TRUE(u.result.converged()) << u.result.message;
+  EXPECT_GT(u.result.estimate_applications, 0);
+  EXPECT_EQ(u.result.operator_applications,
+            o.result.operator_applications + u.result.estimate_applications);
+}
+
+TEST(Qp, EstimateFromTheConjugateGradientsBracketsTheFace) {
+  // Bounds with expansions: ᾱ comes from the CG run before the first expansion (its
+  // Lanczos tridiagonal, continued in that face while the bound is loose). That is λ_max of
+  // a face, at most λ_max(F): the Ritz value is below it and the bound at most
+  // lanczos_tolerance above the Ritz value, so ≤ 1.05 λ_max(F) (+ the reference's 1e-6).
+  // It must cost fewer applications than the up-front estimate on F, and the solve must
+  // meet the same KKT bounds as Kkt.
+  auto p = random_qp(PETSC_COMM_SELF, 1000, QpKind::lower, 1e3, 0.5, 0.1, 4321);
+  const double lambda = reference_max_eigenvalue(p.f.get());
+  QpOptions opt;
+  opt.rtol = 1e-10;
+  opt.max_iterations = 20000;
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  ASSERT_GT(o.result.expansion_steps, 0);
+  EXPECT_TRUE(o.result.face_eigenvalue);
+  EXPECT_EQ(o.result.reestimates, 0);
+  EXPECT_GT(o.result.max_eigenvalue, 0.0);
+  EXPECT_LE(o.result.max_eigenvalue, 1.05 * lambda * (1 + 1e-6));
+  EXPECT_LE(o.residual, 2 * o.result.tolerance + 1e-13 * p.d.norm());
+  EXPECT_LT(o.error, 1e-6);
+  EXPECT_LT(o.complementarity, 1e-6 * p.d.norm());
+
+  opt.eigenvalue_estimate = qp::EigenvalueEstimate::upfront;
+  const auto u = solve(p, opt);
+  ASSERT_TRUE(u.result.converged()) << u.result.message;
+  EXPECT_FALSE(u.result.face_eigenvalue);
+  EXPECT_LT(o.result.estimate_applications, u.result.estimate_applications);
+}
+
+TEST(Qp, AnUnderestimatedEigenvalueIsReplacedByAFullEstimate) {
+  // λ_max given 10× too small (ᾱ = 19/λ_max, far outside (0, 2/λ_max]): an expansion raises
+  // f, which triggers one full Lanczos estimate on F (not a cascade of halvings), after
+  // which ᾱ = 1.9/bound with bound ≥ the Ritz value of F. The solution is still reached.
+  auto p = random_qp(PETSC_COMM_SELF, 1000, QpKind::lower, 1e3, 0.5, 0.1, 4321);
+  const double lambda = reference_max_eigenvalue(p.f.get());
+  QpOptions opt;
+  opt.rtol = 1e-10;
+  opt.max_iterations = 20000;
+  opt.max_eigenvalue = 0.1 * lambda;
+  const auto o = solve(p, opt);
+  ASSERT_TRUE(o.result.converged()) << o.result.message;
+  EXPECT_EQ(o.result.reestimates, 1);
+  EXPECT_EQ(o.result.step_halvings, 0);
+  EXPECT_FALSE(o.result.face_eigenvalue);
+  EXPECT_GT(o.result.estimate_applications, 0);
+  // A full estimate with lanczos_tolerance 0.05: Ritz value ≥ 0.5 λ_max on any start vector
+  // with weight on the top eigenvectors is far below what Lanczos gives after ≥ 2 steps;
+  // 0.9 is the margin used here (the estimate tests above find it within 1 %).
+  EXPECT_GE(o.result.max_eigenvalue, 0.9 * lambda);
+  EXPECT_LT(o.error, 1e-6);
 }
 
 }  // namespace

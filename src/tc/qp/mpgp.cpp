@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 namespace tc::qp {
 
@@ -47,6 +48,97 @@ struct State {
   Vector g, phi, beta, gp, p, fp, z, work, x_save, g_save, e, hp;
   double alpha_bar = 0;
   QpResult r;
+
+  // ---- λ_max and ᾱ (QpOptions::eigenvalue_estimate)
+  bool alpha_known = false;
+  /// Whether λ_max came from a full Lanczos estimate on F in this solve (else: given, or of
+  /// one face): an expansion that raises f then halves ᾱ rather than estimating again.
+  bool full_estimate = false;
+  /// The Lanczos tridiagonal of F in the face of the current CG run, from its coefficients
+  /// (Saad 2003, §6.7.3): with r_j = φ_j, α_j = φ_jᵀφ_j/p_jᵀFp_j and
+  /// β_j = φ_{j+1}ᵀφ_{j+1}/φ_jᵀφ_j, T_jj = 1/α_j + β_{j−1}/α_{j−1} and
+  /// T_{j,j+1} = √β_j/α_j. Kept only while ᾱ is unknown and the run is plain CG on F.
+  bool track_lanczos = false;
+  std::vector<double> lz_diag, lz_off;
+  double lz_alpha = 0, lz_beta = 0, phi_norm2 = 0;  // α_{j−1}, β_{j−1}, φ_jᵀφ_j
+
+  void set_lambda(double lambda) {
+    r.max_eigenvalue = lambda;
+    alpha_bar = opt.alpha_factor / lambda;
+    alpha_known = true;
+  }
+  /// Lanczos on the whole of F (operator.hpp), counted; λ_max never decreases.
+  void estimate_full() {
+    const auto est = estimate_max_eigenvalue(f, opt.lanczos_steps, opt.lanczos_tolerance);
+    r.operator_applications += est.applications;
+    r.estimate_applications += est.applications;
+    r.face_eigenvalue = false;
+    full_estimate = true;
+    set_lambda(std::max(est.bound, alpha_known ? r.max_eigenvalue : 0.0));
+  }
+  void ensure_alpha() {
+    if (!alpha_known) estimate_full();
+  }
+  /// A new CG run starts along z: the tridiagonal starts again.
+  void restart_cg() {
+    p.copy_from(z);
+    lz_diag.clear();
+    lz_off.clear();
+    if (track_lanczos && !alpha_known) phi_norm2 = phi.dot(phi);
+  }
+  /// Records CG's α_j (the step just taken) and β_j (from the new φ) in the tridiagonal.
+  void record_cg_step(double a) {
+    if (!track_lanczos || alpha_known || !(phi_norm2 > 0)) return;
+    lz_diag.push_back(1 / a + (lz_diag.empty() ? 0.0 : lz_beta / lz_alpha));
+    const double next = phi.dot(phi);
+    lz_alpha = a;
+    lz_beta = next / phi_norm2;
+    lz_off.push_back(std::sqrt(lz_beta) / a);
+    phi_norm2 = next;
+  }
+  /// λ_max of the face from the CG run that ends here, at the step α = a_cg that would leave
+  /// the set (fp = Fp at hand, x still in the face): T_k from the run plus this step, whose
+  /// residual φ − α (Fp restricted to the face) needs no application. If its bound is not
+  /// within lanczos_tolerance, Lanczos goes on in the face from the last two residuals (one
+  /// masked application each) up to lanczos_steps in all.
+  void estimate_from_cg(double a) {
+    if (!(phi_norm2 > 0) || !(a > 0)) return estimate_full();
+    std::vector<double> diag = lz_diag, off = lz_off;
+    diag.push_back(1 / a + (diag.empty() ? 0.0 : lz_beta / lz_alpha));
+    Vector q_prev = phi.clone(), q = g.duplicate(), w = g.duplicate();
+    q.copy_from(g);
+    q.axpy(-a, fp);
+    set.restrict_to_free(x, q);
+    const double next = q.norm();
+    off.push_back(next / std::sqrt(phi_norm2) / a);
+    q_prev.scale(1 / std::sqrt(phi_norm2));
+    auto est = largest_ritz_value(diag, off);
+    int apps = 0;
+    while (next > 0 && static_cast<int>(diag.size()) < opt.lanczos_steps &&
+           est.bound - est.ritz > opt.lanczos_tolerance * est.ritz) {
+      if (apps == 0) q.scale(1 / next);
+      apply(q, w);
+      ++apps;
+      set.restrict_to_free(x, w);
+      // Orthogonal to the last two basis vectors; the signs of the CG residuals (which
+      // alternate against the Lanczos vectors) only flip off-diagonal signs, which the
+      // eigenvalues of T do not see.
+      const double delta = q.dot(w), gamma = q_prev.dot(w);
+      w.axpy(-delta, q);
+      w.axpy(-gamma, q_prev);
+      const double b = w.norm();
+      diag.push_back(delta);
+      off.push_back(b);
+      est = largest_ritz_value(diag, off);
+      if (!(b > 1e-12 * std::abs(delta))) break;  // an invariant subspace of the face
+      q_prev.copy_from(q);
+      q.copy_from(w);
+      q.scale(1 / b);
+    }
+    r.estimate_applications += apps;
+    r.face_eigenvalue = true;
+    set_lambda(est.bound);
+  }
 
   /// With a change of variables, 1/s: ‖g^P‖ = ‖S⁻¹ĝ^P‖ in the original variables, since the
   /// splitting commutes with a positive diagonal scaling (one factor per disc).
@@ -110,7 +202,7 @@ struct State {
   /// Dostál's proportioning test ‖β‖² ≤ Γ² g̃ᵀφ with the reduced free gradient
   /// g̃ = (x − P(x − ᾱ φ))/ᾱ, which never lets a step of length ᾱ leave the set.
   bool proportional() {
-    if (opt.proportioning_test == ProportioningTest::free)
+    if (opt.proportioning_test == ProportioningTest::free || !alpha_known)
       return beta.dot(beta) <= opt.gamma * opt.gamma * phi.dot(phi);
     work.copy_from(x);
     work.axpy(-alpha_bar, phi);
@@ -144,11 +236,18 @@ struct State {
       x.axpy(-a_cg, p);
       g.axpy(-a_cg, fp);
       split();
+      record_cg_step(a_cg);
       precondition();
       const double b = z.dot(fp) / pfp;  // keeps p F-conjugate to the previous direction
       p.scale(-b);
       p.axpy(1.0, z);
       return true;
+    }
+    if (!alpha_known) {
+      if (track_lanczos)
+        estimate_from_cg(a_cg);
+      else
+        estimate_full();
     }
     ++r.expansion_steps;
     if (opt.expansion == Expansion::projected_cg && projected_cg_step(a_cg)) return true;
@@ -231,7 +330,7 @@ struct State {
       ++r.long_expansions;
       split();
       precondition();
-      p.copy_from(z);
+      restart_cg();
       return true;
     }
     ++r.fallbacks;
@@ -276,6 +375,7 @@ struct State {
   /// f cannot rise for ᾱ ≤ 2/λ_max; if it does, λ_max was underestimated: undo, halve ᾱ, go
   /// on.
   void expand(const Vector& direction, ExpansionStep kind) {
+    ensure_alpha();
     x_save.copy_from(x);
     g_save.copy_from(g);
     e.copy_from(direction);  // direction may be g, which the trial moves overwrite
@@ -286,18 +386,28 @@ struct State {
       ++(moved ? r.long_expansions : r.fallbacks);
     }
     if (!moved && !projected_move(alpha_bar, false)) {
-      alpha_bar *= 0.5;
-      ++r.step_halvings;
+      // f rose: ᾱ > 2/sᵀFs·sᵀs on this move, λ_max was underestimated. A value given or of
+      // one face (deferred) is replaced by a full Lanczos estimate on F first; only if f
+      // rose with that one as well is ᾱ halved. Either way x stays, and the next iteration
+      // tries again.
+      if (!full_estimate) {
+        estimate_full();
+        ++r.reestimates;
+      } else {
+        alpha_bar *= 0.5;
+        ++r.step_halvings;
+      }
     }
     split();
     precondition();
-    p.copy_from(z);
+    restart_cg();
   }
 
   /// P(x − α*β) with α* the exact minimiser along β; true (and the step taken) when it
   /// lowers f by more than the fixed-step projected gradient step is guaranteed to (½ᾱ‖β‖²
   /// is a cheap proxy: the ᾱ step lowers f by at least about that on the chopped part).
   bool cauchy_on_circle() {
+    ensure_alpha();
     apply(beta, fp);
     const double bb = beta.dot(beta), bfb = beta.dot(fp);
     if (!(bfb > 0) || !(bb > 0) || bb / bfb <= alpha_bar) {
@@ -322,7 +432,7 @@ struct State {
     ++r.cauchy_steps;
     split();
     precondition();
-    p.copy_from(z);
+    restart_cg();
     return true;
   }
 
@@ -357,7 +467,7 @@ struct State {
     g.axpy(-a, fp);
     split();
     precondition();
-    p.copy_from(z);
+    restart_cg();
     return true;
   }
 };
@@ -410,21 +520,19 @@ QpResult Mpgp::run(const LinearOperator& f, const FeasibleSet& set, const QpOpti
   State s(f, set, options, d, x);
   s.unscale = unscale;
   s.slide = options.circle_face == CircleFace::slide && set.has_discs();
-  double lambda_max = options.max_eigenvalue;
-  if (!(lambda_max > 0)) {
-    const auto est = estimate_max_eigenvalue(f, options.lanczos_steps, options.lanczos_tolerance);
-    s.r.operator_applications += est.applications;
-    lambda_max = est.bound;
-  }
-  s.r.max_eigenvalue = lambda_max;
-  s.alpha_bar = options.alpha_factor / lambda_max;
+  if (options.max_eigenvalue > 0)
+    s.set_lambda(options.max_eigenvalue);
+  else if (options.eigenvalue_estimate == EigenvalueEstimate::upfront)
+    s.estimate_full();
+  // Deferred: from the CG coefficients when the face iterations are plain CG on F.
+  s.track_lanczos = !s.alpha_known && !options.preconditioner && !s.slide;
   s.r.tolerance = tolerance;
 
   set.project(x);
   s.gradient();
   s.split();
   s.precondition();
-  s.p.copy_from(s.z);
+  s.restart_cg();
 
   for (;;) {
     s.r.projected_gradient = s.stop_norm();

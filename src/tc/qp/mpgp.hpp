@@ -51,6 +51,22 @@ enum class CircleFace {
   slide,
 };
 
+/// When λ_max(F), which fixes ᾱ, is estimated (if QpOptions::max_eigenvalue is not given).
+enum class EigenvalueEstimate {
+  /// Lanczos on F before the first step (lanczos_steps, lanczos_tolerance): always paid.
+  upfront,
+  /// Only when ᾱ is first needed (the first expansion step; a solve without one never pays
+  /// for it), and then from the conjugate gradient steps already taken: their coefficients
+  /// are the Lanczos tridiagonal of F restricted to the face, continued by Lanczos steps in
+  /// that face only while its residual bound exceeds lanczos_tolerance (docs/theory.md).
+  /// λ_max of the face bounds the curvature of that expansion move; a later move in a larger
+  /// face that raises f triggers one full Lanczos estimate on F. Until ᾱ is known the
+  /// proportioning test is ProportioningTest::free. With a preconditioner in face or
+  /// CircleFace::slide the CG coefficients belong to another operator: then the full
+  /// Lanczos estimate, at the first need.
+  deferred,
+};
+
 struct QpOptions {
   double rtol = 1e-8;         // stop when ‖g^P‖ ≤ max(rtol ‖d‖, atol)
   double atol = 1e-30;        // absolute floor (d = 0 has the solution of the set alone)
@@ -81,6 +97,7 @@ struct QpOptions {
   /// result are in them; `max_eigenvalue` (given or returned) is λ_max(SFS). null = none.
   const Vector* scaling = nullptr;
   CircleFace circle_face = CircleFace::chopped;
+  EigenvalueEstimate eigenvalue_estimate = EigenvalueEstimate::deferred;
 };
 
 enum class QpStatus { converged, max_iterations, breakdown };
@@ -92,14 +109,21 @@ struct [[nodiscard]] QpResult {
   int operator_applications = 0;  // including the eigenvalue estimate
   double projected_gradient = 0;  // final ‖g^P‖
   double tolerance = 0;           // the ‖g^P‖ required
-  double max_eigenvalue = 0;      // the λ_max used (to reuse)
+  double max_eigenvalue = 0;      // the λ_max used (to reuse); 0 if ᾱ was never needed
   int cg_steps = 0, expansion_steps = 0, proportioning_steps = 0;
-  int cauchy_steps = 0;     // proportioning steps taken as projected Cauchy steps along an arc
-  int step_halvings = 0;    // ᾱ halved after an expansion that raised f (λ_max underestimated)
+  int cauchy_steps = 0;  // proportioning steps taken as projected Cauchy steps along an arc
+  /// ᾱ halved after an expansion that raised f although λ_max came from a full estimate.
+  int step_halvings = 0;
   std::string message;      // why it stopped, with the numbers
   int long_expansions = 0;  // expansion moves longer than ᾱ (ExpansionStep, projected CG) kept
   int fallbacks = 0;        // ... and rejected because f rose (the ᾱ move taken instead)
   int slides = 0;           // CG steps that moved nodes along their circles (CircleFace::slide)
+  int estimate_applications = 0;  // the share of operator_applications spent on λ_max
+  /// max_eigenvalue is λ_max of a face (EigenvalueEstimate::deferred, from CG), ≤ λ_max(F).
+  bool face_eigenvalue = false;
+  /// Full Lanczos estimates made because an expansion raised f with a λ_max given or of a
+  /// face (then ᾱ is not halved but recomputed).
+  int reestimates = 0;
   [[nodiscard]] bool converged() const { return status == QpStatus::converged; }
 };
 

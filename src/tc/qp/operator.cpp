@@ -83,4 +83,13 @@ EigenEstimate estimate_max_eigenvalue(const LinearOperator& f, int steps, double
   return est;
 }
 
+EigenEstimate largest_ritz_value(const std::vector<double>& diag, const std::vector<double>& off) {
+  EigenEstimate est;
+  if (diag.empty() || off.size() != diag.size()) return est;
+  const auto [ritz, residual] = largest_ritz(diag, off);
+  est.ritz = ritz;
+  est.bound = ritz + residual;
+  return est;
+}
+
 }  // namespace tc::qp

@@ -2,6 +2,7 @@
 // The dual operator F of the QP (6.9), applied and never stored: later its application is a
 // set of subdomain solves (F = B K⁻¹ Bᵀ), here any SPD linear map on PETSc vectors.
 #include <functional>
+#include <vector>
 
 #include "tc/core/petsc.hpp"
 
@@ -57,5 +58,11 @@ struct EigenEstimate {
 };
 [[nodiscard]] EigenEstimate estimate_max_eigenvalue(const LinearOperator& f, int steps = 20,
                                                     double tolerance = 0);
+
+/// The largest Ritz value of a Lanczos tridiagonal T_k (diagonal `diag`, off-diagonal
+/// `off`, off[k−1] the coupling β_k to the next Lanczos vector) and its residual bound
+/// β_k |s_k| (s the Ritz vector in the Lanczos basis). `applications` is left 0.
+[[nodiscard]] EigenEstimate largest_ritz_value(const std::vector<double>& diag,
+                                               const std::vector<double>& off);
 
 }  // namespace tc::qp
