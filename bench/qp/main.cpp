@@ -25,7 +25,7 @@
 //                      [--lanczos STEPS] [--lanczos-tolerance T] [--alpha C] [--gamma Γ]
 //                      [--full-gradient-expansion] [--projected-cg-expansion]
 //                      [--expansion-step fixed|cauchy|bb] [--arc-step fixed|cauchy|bb]
-//                      [--proportioning reduced|free]
+//                      [--proportioning reduced|free] [--lambda-upfront]
 //                      [PETSc options]
 // (the options from --lanczos on change MPRGP's options from the qp layer's defaults, for
 // experiments; --variants adds a second table with every strategy of strategy_variants() on
@@ -88,8 +88,8 @@ std::vector<Variant> strategy_variants() {
     v.push_back({std::move(name), o});
   };
   add("ᾱ fixed, Γ = 1 (default)", [](auto&) {});
-  add("λ_max up front (before)",
-      [](auto& o) { o.eigenvalue_estimate = tc::qp::EigenvalueEstimate::upfront; });
+  add("λ_max deferred (from CG)",
+      [](auto& o) { o.eigenvalue_estimate = tc::qp::EigenvalueEstimate::deferred; });
   add("BB length", [](auto& o) {
     o.expansion_step = ExpansionStep::barzilai_borwein;
     o.arc_step = ExpansionStep::barzilai_borwein;
@@ -115,8 +115,8 @@ std::vector<Variant> strategy_variants() {
   v.back().node_jacobi_in_face = true;
   add("Jacobi change of variables", [](auto&) {});
   v.back().jacobi_scaling = true;
-  add("Jacobi variables, λ_max up front",
-      [](auto& o) { o.eigenvalue_estimate = tc::qp::EigenvalueEstimate::upfront; });
+  add("Jacobi variables, λ_max deferred",
+      [](auto& o) { o.eigenvalue_estimate = tc::qp::EigenvalueEstimate::deferred; });
   v.back().jacobi_scaling = true;
   add("slide + Jacobi in face", [](auto& o) { o.circle_face = tc::qp::CircleFace::slide; });
   v.back().node_jacobi_in_face = true;
@@ -131,7 +131,13 @@ struct Settings {
   std::vector<double> disc_sizes{};        // scaled_disc_qp nodes (MPGP only), 50 % in contact
   std::vector<double> contact{24, 24, 8};  // cells of the block; empty: no contact instance
   double rtol = 1e-6;
-  tc::qp::QpOptions mprgp;  // --lanczos, --alpha, --gamma, --full-gradient-expansion
+  /// --lanczos, --alpha, --gamma, --full-gradient-expansion, --lambda-upfront; λ_max deferred
+  /// to the first expansion (from the CG coefficients) unless --lambda-upfront.
+  tc::qp::QpOptions mprgp = [] {
+    tc::qp::QpOptions o;
+    o.eigenvalue_estimate = tc::qp::EigenvalueEstimate::deferred;
+    return o;
+  }();
   long max_applications = 200000;
   double max_seconds = 60;
   bool mprgp_only = false;        // experiments: skip TAO and CG
@@ -507,6 +513,8 @@ int main(int argc, char** argv) {
     } else if (a == "--proportioning")
       s.mprgp.proportioning_test =
           value() == "free" ? tc::qp::ProportioningTest::free : tc::qp::ProportioningTest::reduced;
+    else if (a == "--lambda-upfront")
+      s.mprgp.eigenvalue_estimate = tc::qp::EigenvalueEstimate::upfront;
     else if (a == "--variants")
       s.variants = strategy_variants();
     else if (a == "--mprgp-only")

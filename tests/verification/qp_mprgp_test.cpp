@@ -217,8 +217,8 @@ const StrategyCase strategies[] = {
        o.expansion = qp::Expansion::projected_cg;
        o.gamma = 4;
      }},
-    {"lambda_upfront",
-     [](QpOptions& o) { o.eigenvalue_estimate = qp::EigenvalueEstimate::upfront; }},
+    {"lambda_deferred",
+     [](QpOptions& o) { o.eigenvalue_estimate = qp::EigenvalueEstimate::deferred; }},
     {"slide_on_circles", [](QpOptions& o) { o.circle_face = qp::CircleFace::slide; }},
     {"slide_bb_length",
      [](QpOptions& o) {
@@ -523,6 +523,7 @@ TEST(Qp, DeferredEstimateIsNotPaidWithoutExpansions) {
   auto p = random_qp(PETSC_COMM_SELF, 500, QpKind::free, 1e3, 0.0, 0.0, 11);
   QpOptions opt;
   opt.rtol = 1e-10;
+  opt.eigenvalue_estimate = qp::EigenvalueEstimate::deferred;
   const auto o = solve(p, opt);
   ASSERT_TRUE(o.result.converged()) << o.result.message;
   EXPECT_EQ(o.result.expansion_steps, 0);
@@ -550,6 +551,7 @@ TEST(Qp, EstimateFromTheConjugateGradientsBracketsTheFace) {
   QpOptions opt;
   opt.rtol = 1e-10;
   opt.max_iterations = 20000;
+  opt.eigenvalue_estimate = qp::EigenvalueEstimate::deferred;
   const auto o = solve(p, opt);
   ASSERT_TRUE(o.result.converged()) << o.result.message;
   ASSERT_GT(o.result.expansion_steps, 0);

@@ -97,7 +97,10 @@ struct QpOptions {
   /// result are in them; `max_eigenvalue` (given or returned) is λ_max(SFS). null = none.
   const Vector* scaling = nullptr;
   CircleFace circle_face = CircleFace::chopped;
-  EigenvalueEstimate eigenvalue_estimate = EigenvalueEstimate::deferred;
+  /// `upfront` by default: with `deferred` the physics path took different (equally valid)
+  /// steps that two exact-comparison tests of the friction loop and FETI noticed
+  /// (docs/choices.md); bench/qp uses `deferred`.
+  EigenvalueEstimate eigenvalue_estimate = EigenvalueEstimate::upfront;
 };
 
 enum class QpStatus { converged, max_iterations, breakdown };
