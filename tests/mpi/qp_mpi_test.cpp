@@ -33,8 +33,10 @@ Solved solve(MPI_Comm comm, QpKind kind, PetscInt blocks, qp::QpOptions opt = {}
 /// with projected CG expansions, whose accept/fall-back decisions compare reductions (Δf) that
 /// must agree across ranks to round-off; nodes sliding on their circles in the Jacobi
 /// variables (2: CircleFace::slide with QpOptions::scaling), sliding alone (3), the Jacobi
-/// variables alone (4). Sliding decides retractions per node and reduces moves_on_circles and
-/// the curvature term's dot over the ranks; the scaling is local.
+/// variables alone (4), λ_max deferred and read off the CG coefficients
+/// (EigenvalueEstimate::deferred: its dots are reductions over the ranks; 5) and that in the
+/// Jacobi variables (6, bench/qp's configuration). Sliding decides retractions per node and reduces
+/// moves_on_circles and the curvature term's dot over the ranks; the scaling is local.
 class Distributed : public ::testing::TestWithParam<std::tuple<QpKind, int>> {};
 
 TEST_P(Distributed, MatchesTheSingleRankSolve) {
@@ -47,9 +49,10 @@ TEST_P(Distributed, MatchesTheSingleRankSolve) {
     opt.arc_step = qp::ExpansionStep::barzilai_borwein;
   }
   if (alternative == 2 || alternative == 3) opt.circle_face = qp::CircleFace::slide;
-  const auto world =
-      solve(PETSC_COMM_WORLD, kind, blocks, opt, alternative == 2 || alternative == 4);
-  const auto self = solve(PETSC_COMM_SELF, kind, blocks, opt, alternative == 2 || alternative == 4);
+  if (alternative >= 5) opt.eigenvalue_estimate = qp::EigenvalueEstimate::deferred;
+  const bool jacobi = alternative == 2 || alternative == 4 || alternative == 6;
+  const auto world = solve(PETSC_COMM_WORLD, kind, blocks, opt, jacobi);
+  const auto self = solve(PETSC_COMM_SELF, kind, blocks, opt, jacobi);
   ASSERT_TRUE(world.result.converged()) << world.result.message;
   ASSERT_TRUE(self.result.converged()) << self.result.message;
 
@@ -86,8 +89,13 @@ TEST_P(Distributed, MatchesTheSingleRankSolve) {
 
 std::string kind_name(const ::testing::TestParamInfo<std::tuple<QpKind, int>>& info) {
   static const char* const names[] = {"free", "lower", "box", "disc", "contact3d"};
-  static const char* const variants[] = {"", "_bb_projected_cg", "_slide_jacobi_variables",
-                                         "_slide", "_jacobi_variables"};
+  static const char* const variants[] = {"",
+                                         "_bb_projected_cg",
+                                         "_slide_jacobi_variables",
+                                         "_slide",
+                                         "_jacobi_variables",
+                                         "_deferred_lambda",
+                                         "_deferred_lambda_jacobi_variables"};
   return std::string(names[static_cast<int>(std::get<0>(info.param))]) +
          variants[std::get<1>(info.param)];
 }
@@ -95,7 +103,7 @@ std::string kind_name(const ::testing::TestParamInfo<std::tuple<QpKind, int>>& i
 INSTANTIATE_TEST_SUITE_P(Qp, Distributed,
                          ::testing::Combine(::testing::Values(QpKind::lower, QpKind::box,
                                                               QpKind::disc, QpKind::contact3d),
-                                            ::testing::Values(0, 1, 2, 3, 4)),
+                                            ::testing::Values(0, 1, 2, 3, 4, 5, 6)),
                          kind_name);
 
 }  // namespace
