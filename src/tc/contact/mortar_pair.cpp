@@ -93,6 +93,7 @@ MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
 void MortarPair::update(std::span<const double> u_slave, std::span<const double> u_master) {
   timings_ = {};
   conductance_moments_.clear();
+  conductance_.clear();
   auto t0 = Clock::now();
   set_positions(u_slave, u_master);
   timings_.geometry += since(t0);
@@ -347,37 +348,89 @@ const std::vector<std::array<double, 3>>& MortarPair::tangents(int l) const {
   return tangents_[l];
 }
 
+void MortarPair::build_conductance() const {
+  const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
+  conductance_moments_.clear();
+  for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
+                       bool warped, const PlacedFacet& m) {
+    ConductanceMoments t{};
+    t.segment = static_cast<int>(&seg - segments_.data());
+    t.ns = s.facet->n;
+    t.nm = m.facet->n;
+    for_each_point(dim_, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
+      double ps[4], pm[4];  // local copies: the compiler cannot know t does not alias q
+      std::copy_n(q.slave.phi.begin(), 4, ps);
+      std::copy_n(q.master.phi.begin(), 4, pm);
+      for (int c = 0; c < q.slave.n; ++c) {
+        const double w = ps[c] * q.weight;
+        double ws[4], wm[4];
+        for (int a = 0; a < 4; ++a) ws[a] = w * ps[a], wm[a] = w * pm[a];
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b) {
+            t.ss[c][a][b] += ws[a] * ps[b];
+            t.sm[c][a][b] -= ws[a] * pm[b];
+            t.mm[c][a][b] += wm[a] * pm[b];
+          }
+      }
+    });
+    conductance_moments_.push_back(t);
+  });
+  // The pattern of each block (every (a, b) of every segment), then each (a, b)'s position.
+  const int n_s = slave_->n_nodes(), n_m = master_->n_nodes();
+  Triplets pattern[4] = {Triplets(n_s), Triplets(n_s), Triplets(n_m), Triplets(n_m)};
+  for (const auto& t : conductance_moments_) {
+    const MortarSegment& seg = segments_[t.segment];
+    const auto& sn = slave_facets_[seg.slave].nodes;
+    const auto& mn = master_facets_[seg.master].nodes;
+    for (int a = 0; a < t.ns; ++a)
+      for (int b = 0; b < t.ns; ++b) pattern[0].add(sn[a], sn[b], 0.0);
+    for (int a = 0; a < t.ns; ++a)
+      for (int b = 0; b < t.nm; ++b) {
+        pattern[1].add(sn[a], mn[b], 0.0);
+        pattern[2].add(mn[b], sn[a], 0.0);
+      }
+    for (int a = 0; a < t.nm; ++a)
+      for (int b = 0; b < t.nm; ++b) pattern[3].add(mn[a], mn[b], 0.0);
+  }
+  Csr csr[4];
+  for (int i = 0; i < 4; ++i) csr[i] = pattern[i].compress();
+  auto at = [&](int i, int row, int col) {
+    const auto first = csr[i].cols.begin() + csr[i].offsets[row];
+    const auto last = csr[i].cols.begin() + csr[i].offsets[row + 1];
+    return static_cast<int>(std::lower_bound(first, last, col) - csr[i].cols.begin());
+  };
+  for (auto& t : conductance_moments_) {
+    const MortarSegment& seg = segments_[t.segment];
+    const auto& sn = slave_facets_[seg.slave].nodes;
+    const auto& mn = master_facets_[seg.master].nodes;
+    for (int a = 0; a < t.ns; ++a)
+      for (int b = 0; b < t.ns; ++b) t.at_ss[a][b] = at(0, sn[a], sn[b]);
+    for (int a = 0; a < t.ns; ++a)
+      for (int b = 0; b < t.nm; ++b) {
+        t.at_sm[a][b] = at(1, sn[a], mn[b]);
+        t.at_ms[a][b] = at(2, mn[b], sn[a]);
+      }
+    for (int a = 0; a < t.nm; ++a)
+      for (int b = 0; b < t.nm; ++b) t.at_mm[a][b] = at(3, mn[a], mn[b]);
+  }
+  conductance_.clear();
+  for (int i = 0; i < 4; ++i) conductance_.push_back(to_matrix(csr[i], i % 2 == 0 ? n_s : n_m));
+}
+
 ThermalContact MortarPair::thermal_conductance(std::span<const double> gamma, double beta_c) const {
   check_size(gamma, contact_nodes_.size(), "gamma (one per contact node)");
-  const int n_s = slave_->n_nodes(), n_m = master_->n_nodes();
-  if (conductance_moments_.empty() && !segments_.empty()) {
-    const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
-    for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
-                         bool warped, const PlacedFacet& m) {
-      ConductanceMoments t{};
-      t.segment = static_cast<int>(&seg - segments_.data());
-      t.ns = s.facet->n;
-      t.nm = m.facet->n;
-      for_each_point(dim_, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
-        for (int c = 0; c < q.slave.n; ++c) {
-          const double w = q.slave.phi[c] * q.weight;
-          for (int a = 0; a < 4; ++a)
-            for (int b = 0; b < 4; ++b) {
-              t.ss[c][a][b] += w * q.slave.phi[a] * q.slave.phi[b];
-              t.sm[c][a][b] -= w * q.slave.phi[a] * q.master.phi[b];
-              t.mm[c][a][b] += w * q.master.phi[a] * q.master.phi[b];
-            }
-        }
-      });
-      conductance_moments_.push_back(t);
-    });
+  if (conductance_.empty()) build_conductance();
+  PetscScalar* values[4] = {};
+  for (int i = 0; i < 4; ++i) {
+    TC_PETSC(MatSeqAIJGetArray(conductance_[i].get(), &values[i]));
+    MatInfo info;
+    TC_PETSC(MatGetInfo(conductance_[i].get(), MAT_LOCAL, &info));
+    std::fill(values[i], values[i] + static_cast<PetscInt>(info.nz_used), 0.0);
   }
-  Triplets ss(n_s), sm(n_s), ms(n_m), mm(n_m);
   for (const auto& t : conductance_moments_) {
     const MortarSegment& seg = segments_[t.segment];
     const int ns = t.ns, nm = t.nm;
     const auto& sn = slave_facets_[seg.slave].nodes;
-    const auto& mn = master_facets_[seg.master].nodes;
     double g[4] = {};  // β_C γ_c, γ = Σ_c γ_c φ_c^s (0 at slave nodes that are not contact nodes)
     for (int c = 0; c < ns; ++c)
       if (contact_index_[sn[c]] >= 0) g[c] = beta_c * gamma[contact_index_[sn[c]]];
@@ -387,18 +440,22 @@ ThermalContact MortarPair::thermal_conductance(std::span<const double> gamma, do
       return v;
     };
     for (int a = 0; a < ns; ++a)
-      for (int b = 0; b < ns; ++b) ss.add(sn[a], sn[b], block(t.ss, a, b));
+      for (int b = 0; b < ns; ++b) values[0][t.at_ss[a][b]] += block(t.ss, a, b);
     for (int a = 0; a < ns; ++a)
       for (int b = 0; b < nm; ++b) {
-        const double v = block(t.sm, a, b);
-        sm.add(sn[a], mn[b], v);
-        ms.add(mn[b], sn[a], v);
+        const double v = block(t.sm, a, b);  // L_ms = L_smᵀ to the bit: the same sums
+        values[1][t.at_sm[a][b]] += v;
+        values[2][t.at_ms[a][b]] += v;
       }
     for (int a = 0; a < nm; ++a)
-      for (int b = 0; b < nm; ++b) mm.add(mn[a], mn[b], block(t.mm, a, b));
+      for (int b = 0; b < nm; ++b) values[3][t.at_mm[a][b]] += block(t.mm, a, b);
   }
-  return {to_matrix(ss.compress(), n_s), to_matrix(sm.compress(), n_m),
-          to_matrix(ms.compress(), n_s), to_matrix(mm.compress(), n_m)};
+  core::SparseMatrix out[4];
+  for (int i = 0; i < 4; ++i) {
+    TC_PETSC(MatSeqAIJRestoreArray(conductance_[i].get(), &values[i]));
+    out[i] = conductance_[i].share();
+  }
+  return {std::move(out[0]), std::move(out[1]), std::move(out[2]), std::move(out[3])};
 }
 
 FrictionalHeat MortarPair::frictional_heat(std::span<const double> gamma, double friction,

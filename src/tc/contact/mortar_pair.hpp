@@ -109,7 +109,9 @@ class MortarPair {
   [[nodiscard]] const core::SparseMatrix& d_matrix() const { return d_; }
   [[nodiscard]] const core::SparseMatrix& m_matrix() const { return m_; }
 
-  /// L_θγ of §4.4: β_C ∫ γ [θ][χ] dS with γ = Σ_k γ_k φ_k^s (γ per contact node).
+  /// L_θγ of §4.4: β_C ∫ γ [θ][χ] dS with γ = Σ_k γ_k φ_k^s (γ per contact node). The
+  /// matrices are the pair's own: the next call overwrites their values (update() leaves the
+  /// returned ones as they are); copy them to keep them.
   [[nodiscard]] ThermalContact thermal_conductance(std::span<const double> gamma,
                                                    double beta_c) const;
   /// d_θγ of §4.4: ∫ 𝔉 γ ‖[u̇]_τ‖ χ dS, δ_C of it to the slave and 1 − δ_C to the master;
@@ -163,15 +165,20 @@ class MortarPair {
   core::SparseMatrix d_, m_, b_slave_, b_master_;
   MortarTimings timings_;
   // L_θγ is linear in γ and the geometry is fixed between updates, while the fixed point
-  // (6.3) asks for L at every iteration: per segment the
-  // integrals ∫ φ_c^s φ_a φ_b dS over the slave facet's nodes c, for the ss, sm, mm blocks.
-  // Filled by the first thermal_conductance after an update.
+  // (6.3) asks for L at every iteration. The first thermal_conductance after an update stores
+  // per segment the integrals ∫ φ_c^s φ_a φ_b dS over the slave facet's nodes c (ss, sm, mm
+  // blocks) with the positions of their (a, b) entries in L's values, and PETSc matrices
+  // with L's pattern; each call then sums β_C γ_c times the integrals into the values
+  // (composing and assembling L anew per call was 5 % of example 05).
   struct ConductanceMoments {
     int segment;  // index in segments_
     int ns, nm;   // nodes of the slave and the master facet
     double ss[4][4][4], sm[4][4][4], mm[4][4][4];
+    int at_ss[4][4], at_sm[4][4], at_ms[4][4], at_mm[4][4];  // (a, b) → entry in the values
   };
+  void build_conductance() const;
   mutable std::vector<ConductanceMoments> conductance_moments_;
+  mutable std::vector<core::SparseMatrix> conductance_;  // ss, sm, ms, mm; empty until built
 };
 
 }  // namespace tc::contact

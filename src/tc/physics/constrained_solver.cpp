@@ -1,10 +1,37 @@
 #include "tc/physics/constrained_solver.hpp"
 
+#include <algorithm>
+
 namespace tc::physics {
 
 ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
                                      const std::string& package)
-    : a_(a.share()), dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)), reduced_(a.copy()) {
+    : dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)), reduced_(a.copy()) {
+  std::sort(dofs_.begin(), dofs_.end());  // the lifting sums in column order, as MatMult
+  dofs_.erase(std::unique(dofs_.begin(), dofs_.end()), dofs_.end());
+  std::vector<PetscInt> position(static_cast<size_t>(a.rows()), -1);
+  for (size_t k = 0; k < dofs_.size(); ++k)
+    position[static_cast<size_t>(dofs_[k])] = static_cast<PetscInt>(k);
+  std::vector<std::vector<std::pair<PetscInt, double>>> columns(dofs_.size());
+  for (PetscInt r = 0; r < a.rows(); ++r) {
+    if (position[static_cast<size_t>(r)] >= 0) continue;  // overwritten by diag · x_D
+    PetscInt n = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    TC_PETSC(MatGetRow(a.get(), r, &n, &cols, &vals));
+    for (PetscInt k = 0; k < n; ++k)
+      if (const PetscInt d = position[static_cast<size_t>(cols[k])]; d >= 0 && vals[k] != 0.0)
+        columns[static_cast<size_t>(d)].emplace_back(r, vals[k]);
+    TC_PETSC(MatRestoreRow(a.get(), r, &n, &cols, &vals));
+  }
+  lift_start_.assign(1, 0);
+  for (const auto& col : columns) {
+    for (const auto& [r, v] : col) {
+      lift_row_.push_back(r);
+      lift_value_.push_back(v);
+    }
+    lift_start_.push_back(static_cast<PetscInt>(lift_row_.size()));
+  }
   reduced_.zero_rows_columns(dofs_, diag_);
   factor_ = core::CholeskySolver(reduced_, package);
   lift_ = core::Vector(a.rows());
@@ -35,19 +62,25 @@ void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
     factor_.solve(b, x);
     return;
   }
+  // rhs = b − A(:, D) x_D on the free rows (A x_D summed first, row by row in column order, as
+  // a product with A would), diag · x_D on the constrained ones.
   lift_.zero();
   {
-    auto xv = x.view();
+    const auto xv = x.read();
     auto lv = lift_.view();
-    for (const PetscInt d : dofs_) lv[d] = xv[d];
+    for (size_t k = 0; k < dofs_.size(); ++k) {
+      const double value = xv[dofs_[k]];
+      if (value == 0.0) continue;
+      for (PetscInt e = lift_start_[k]; e < lift_start_[k + 1]; ++e)
+        lv[lift_row_[static_cast<size_t>(e)]] += lift_value_[static_cast<size_t>(e)] * value;
+    }
   }
-  a_.mult(lift_, rhs_);  // rhs = b − A·lift on the free rows
-  rhs_.scale(-1.0);
-  rhs_.axpy(1.0, b);
+  rhs_.copy_from(b);
+  rhs_.axpy(-1.0, lift_);
   {
+    const auto xv = x.read();
     auto rv = rhs_.view();
-    auto lv = lift_.view();
-    for (const PetscInt d : dofs_) rv[d] = diag_ * lv[d];
+    for (const PetscInt d : dofs_) rv[d] = diag_ * xv[d];
   }
   factor_.solve(rhs_, x);
 }

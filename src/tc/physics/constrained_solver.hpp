@@ -35,8 +35,12 @@ class ConstrainedSolver {
   [[nodiscard]] const feti::Feti* feti() const { return feti_.get(); }
 
  private:
-  core::SparseMatrix a_;  // the full matrix (shared), for the lifting
   std::vector<PetscInt> dofs_;
+  // A(:, D) on the free rows, column by column (CSC): the lifting b − A·x_D touches only
+  // these entries (a full product with A cost 3.6 % of the ch. 7 example, where x_D = 0 on
+  // the clamped body and |D| is a face).
+  std::vector<PetscInt> lift_start_, lift_row_;
+  std::vector<double> lift_value_;
   double diag_ = 1.0;  // of the constrained rows: the mean diagonal keeps the scale uniform
   core::SparseMatrix reduced_;
   core::CholeskySolver factor_;

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <map>
+#include <Eigen/SparseCore>
 
 #include "tc/core/error.hpp"
 
@@ -46,8 +46,13 @@ const std::vector<double>& InterfaceHeatSolver::column(int g) {
 }
 
 void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
-  // L_Γ entries (global interface indices) from the four blocks, rows of Γ only.
-  std::map<std::pair<int, int>, double> entries;
+  // L_Γ entries (global interface indices) from the four blocks, rows of Γ only. The blocks
+  // cover disjoint (row, column) pairs and a row lists a column once: no entry repeats.
+  struct Entry {
+    int row, col;
+    double value;
+  };
+  std::vector<Entry> entries;
   const core::SparseMatrix* blocks[2][2] = {{&l.ss, &l.sm}, {&l.ms, &l.mm}};
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j) {
@@ -69,15 +74,14 @@ void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
                 "contact surface",
                 r, cols[k]));
           }
-          entries[{index_[i][r], gc}] += vals[k];
+          entries.push_back({index_[i][r], gc, vals[k]});
         }
         TC_PETSC(MatRestoreRow(m.get(), r, &n, &cols, &vals));
       }
     }
   // The active set J: interface nodes with a row or a column of L.
   std::vector<int> position(static_cast<size_t>(n_gamma_), -1);
-  for (const auto& [rc, v] : entries)
-    for (const int g : {rc.first, rc.second}) position[g] = 0;
+  for (const auto& e : entries) position[e.row] = position[e.col] = 0;
   active_.clear();
   for (int g = 0; g < n_gamma_; ++g)
     if (position[g] == 0) {
@@ -86,7 +90,7 @@ void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
     }
   const auto na = static_cast<Eigen::Index>(active_.size());
   l_active_ = Eigen::MatrixXd::Zero(na, na);
-  for (const auto& [rc, v] : entries) l_active_(position[rc.first], position[rc.second]) = v;
+  for (const auto& e : entries) l_active_(position[e.row], position[e.col]) = e.value;
   if (na == 0) return;
   // I + S_JJ L_JJ, S block diagonal (the bodies do not see each other through A).
   const int n_s = static_cast<int>(nodes_[0].size());
@@ -100,7 +104,13 @@ void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
       if ((ga < n_s) == slave_b) s(a, b) = col[slave_b ? ga : ga - n_s];
     }
   }
-  Eigen::MatrixXd k = s * l_active_;
+  // L_JJ has a few entries per row (the facets around a node): S L as dense × sparse
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(entries.size());
+  for (const auto& e : entries) triplets.emplace_back(position[e.row], position[e.col], e.value);
+  Eigen::SparseMatrix<double> l_sparse(na, na);
+  l_sparse.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::MatrixXd k = s * l_sparse;
   k.diagonal().array() += 1.0;
   lu_.compute(k);
 }
