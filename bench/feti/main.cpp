@@ -17,6 +17,13 @@
 //                                        per solve, contact QP iterations, time per
 //                                        subdomain·iteration (TC_BENCH_DYNAMIC=1 in the
 //                                        environment: dynamic steps, the deflated FETI)
+//   build/bin/bench_feti combined H S [S_min [lumped]]
+//                                        one quasistatic contact solve of the two blocks
+//                                        (bench/support/two_block_feti.hpp), each cut into s³
+//                                        subdomains of H/h = H for s = S_min (2) … S, by the
+//                                        nested form (contact dual on each body's FETI) and the
+//                                        combined one (feti::ContactFeti, SMALBE): iterations,
+//                                        applications, time, and the difference of the results
 //   mpirun -n 2 build/bin/bench_feti ... the subdomains dealt to two ranks
 #include <fmt/format.h>
 #include <sys/resource.h>
@@ -27,6 +34,7 @@
 
 #include "../../tests/support/problems.hpp"
 #include "../support/sliding_blocks.hpp"
+#include "../support/two_block_feti.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/physics/body_system.hpp"
@@ -226,6 +234,75 @@ void contact_blocks_bench(int h, int s_max, int steps, int s_min) {
   }
 }
 
+double max_rel_diff(const core::Vector& a, const core::Vector& b) {
+  auto d = a.clone();
+  d.axpy(-1.0, b);
+  return d.max_abs() / std::max(b.max_abs(), 1e-300);
+}
+
+/// Nested against combined on one solve with the Tresca bound 0.3 λ_n of the frictionless
+/// nested solution (not timed). Both at 1e-8: FETI and the contact QP (nested), SMALBE's
+/// gradient and equality (combined, ρ = 100 λ_max(F)). "FETI its": the PCG iterations of the
+/// nested form's FETI solves (a block of k columns counts once, though it solves k
+/// right-hand sides per subdomain); an application of the combined F solves one right-hand
+/// side on every subdomain of both bodies.
+void combined_bench(int h, int s_max, int s_min, bool lumped) {
+  const bool root = core::PetscSession::rank() == 0;
+  if (root)
+    fmt::print(
+        "H/h = {}, {} rank(s), combined {}preconditioned\n\n"
+        "| subdomains per body | cells per body | dofs | contact rows | combined multipliers | "
+        "coarse dim | nested: operator | QP its | FETI solves | FETI its | time (s) | combined: "
+        "outer its | inner its | F applications | time (s) | max Δu/‖u‖∞ | max Δλ/‖λ‖∞ |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        h, core::PetscSession::size(), lumped ? "lumped-" : "un");
+  for (int s = s_min; s <= s_max; ++s) {
+    bench::TwoBlockFeti p(h * s, s, PETSC_COMM_WORLD, 1e-8);
+    // TC_BENCH_SKIP_NESTED=1: the combined form alone, the bound from its own frictionless
+    // solution (for the sizes where the nested one would take hours).
+    const bool skip = std::getenv("TC_BENCH_SKIP_NESTED") != nullptr;
+    feti::ContactFetiOptions o;
+    o.smalbe.rtol = o.smalbe.equality_rtol = 1e-8;
+    o.lumped_preconditioner = lumped;
+    qp::QpResult rn;
+    qp::SmalbeResult rc;
+    p.set_friction_bound(std::vector<double>(static_cast<size_t>(p.rows().n_nodes()), 0.0));
+    const auto frictionless = skip ? p.combined(o, rc) : p.nested(1e-8, rn);
+    {
+      const auto l = frictionless.lambda.to_std();
+      std::vector<double> bound(l.size() / 3);
+      for (size_t k = 0; k < bound.size(); ++k) bound[k] = 0.3 * std::max(l[3 * k], 0.0);
+      p.set_friction_bound(bound);
+    }
+    const auto before = p.slave_feti().statistics();
+    auto before_m = p.master_feti().statistics();
+    physics::DualContactSettings settings;
+    const auto nested = skip ? bench::ContactSolution{} : p.nested(1e-8, rn, settings);
+    auto fs = p.slave_feti().statistics(), fm = p.master_feti().statistics();
+    const long solves = fs.solves - before.solves + fm.solves - before_m.solves;
+    const long its = fs.iterations - before.iterations + fm.iterations - before_m.iterations;
+    const char* kind = p.rows().n_rows() <= settings.explicit_limit ? "explicit" : "matrix-free";
+    int applications = 0;
+    const auto combined = p.combined(o, rc, &applications);
+    const feti::ContactFeti shape(p.slave_feti(), p.master_feti(), p.rows().slave, p.rows().master,
+                                  3);
+    const double du = skip ? 0.0
+                           : std::max(max_rel_diff(combined.u_slave, nested.u_slave),
+                                      max_rel_diff(combined.u_master, nested.u_master));
+    const double dl = skip ? 0.0 : max_rel_diff(combined.lambda, nested.lambda);
+    if (!skip && !rn.converged() && root) fmt::print("  nested: {}\n", rn.message);
+    if (!rc.converged() && root) fmt::print("  combined: {}\n", rc.message);
+    if (root)
+      fmt::print(
+          "| {} | {}³ | {} | {} | {} | {} | {} | {} | {} | {} | {:.2f} | {} | {} | {} | {:.2f} | "
+          "{:.1e} | {:.1e} |\n",
+          s * s * s, h * s, p.n_dofs(), p.rows().n_rows(), shape.n_multipliers(),
+          shape.coarse_dimension(), kind, rn.iterations, solves, its, nested.seconds,
+          rc.outer_iterations, rc.inner_iterations, applications, combined.seconds, du, dl);
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -235,6 +312,9 @@ int main(int argc, char** argv) {
   if (argc >= 4 && std::string(argv[1]) == "contact")
     contact_blocks_bench(std::stoi(argv[2]), std::stoi(argv[3]), argc >= 5 ? std::stoi(argv[4]) : 3,
                          argc >= 6 ? std::stoi(argv[5]) : 2);
+  else if (argc >= 4 && std::string(argv[1]) == "combined")
+    combined_bench(std::stoi(argv[2]), std::stoi(argv[3]), argc >= 5 ? std::stoi(argv[4]) : 2,
+                   argc >= 6 && std::string(argv[5]) == "lumped");
   else if (argc >= 4 && std::string(argv[1]) == "size")
     size(std::stoi(argv[2]), std::stoi(argv[3]));
   else

@@ -10,6 +10,7 @@
 
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/feti/subdomain.hpp"
 
 namespace tc::feti {
 
@@ -24,88 +25,6 @@ const char* name(Preconditioner p) {
   }
   return "?";
 }
-
-namespace {
-
-struct Entry {  // one nonzero of B_s: row of B, local dof, value
-  Eigen::Index row;
-  PetscInt dof;
-  double value;
-};
-
-}  // namespace
-
-/// A column-major Eigen block seen as a PETSc MATSEQDENSE (no copy), for multi-RHS solves.
-class DenseView {
- public:
-  explicit DenseView(Eigen::MatrixXd& m) {
-    TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, static_cast<PetscInt>(m.rows()),
-                               static_cast<PetscInt>(m.cols()), m.data(), mat_.out()));
-  }
-  [[nodiscard]] ::Mat get() const { return mat_.get(); }
-
- private:
-  core::Handle<::Mat, MatDestroy> mat_;
-};
-
-struct Feti::Subdomain {
-  std::vector<PetscInt> global_dof;  // local dof → body dof
-  std::vector<Entry> b;              // B_s, sorted by row
-  Eigen::MatrixXd r;                 // kernel basis, orthonormal columns (local dofs × k)
-  Eigen::Index kernel_offset = 0;    // first row of G belonging to this subdomain
-  bool owned = false;
-  // Owned subdomains only:
-  core::SparseMatrix a;
-  std::vector<PetscInt> fixing;    // dofs set to zero in A⁺ (the fixing-node generalised inverse)
-  core::CholeskySolver factor;     // of A with the fixing dofs eliminated
-  std::vector<PetscInt> boundary;  // local dofs with a row of B (Dirichlet preconditioner)
-  core::CholeskySolver interior;   // of A with the boundary dofs eliminated
-  mutable Block w, z, t;           // work blocks, n × k
-
-  [[nodiscard]] PetscInt n() const { return static_cast<PetscInt>(global_dof.size()); }
-
-  void scatter_transpose(const Block& x, Block& out) const {  // out = B_sᵀ x
-    out.setZero(n(), x.cols());
-    for (const auto& e : b) out.row(e.dof) += e.value * x.row(e.row);
-  }
-  void gather(const Block& in, Block& y) const {  // y += B_s in
-    for (const auto& e : b) y.row(e.row) += e.value * in.row(e.dof);
-  }
-  /// out = A_s⁺ in, column by column through one multi-RHS solve (in is zeroed at the
-  /// fixing dofs).
-  void pseudo_solve(Block& in, Block& out) const {
-    for (const PetscInt d : fixing) in.row(d).setZero();
-    solve_with(factor, in, out);
-  }
-  void interior_solve(Block& in, Block& out) const { solve_with(interior, in, out); }
-  /// One right-hand side through KSPSolve (KSPMatSolve costs several times more for one
-  /// column), more through one multi-RHS solve.
-  void solve_with(const core::CholeskySolver& c, Block& in, Block& out) const {
-    out.resize(in.rows(), in.cols());
-    if (in.cols() == 1) {
-      core::Handle<::Vec, VecDestroy> x, y;
-      TC_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n(), in.data(), x.out()));
-      TC_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n(), out.data(), y.out()));
-      c.solve_raw(x.get(), y.get());
-      return;
-    }
-    const DenseView bi(in), xo(out);
-    c.solve_many(bi.get(), xo.get());
-  }
-  void mult(Block& in, Block& out) const {  // out = A_s in
-    out.resize(in.rows(), in.cols());
-    core::Handle<::Vec, VecDestroy> x, y;
-    TC_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n(), nullptr, x.out()));
-    TC_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n(), nullptr, y.out()));
-    for (Eigen::Index j = 0; j < in.cols(); ++j) {
-      TC_PETSC(VecPlaceArray(x.get(), in.col(j).data()));
-      TC_PETSC(VecPlaceArray(y.get(), out.col(j).data()));
-      TC_PETSC(MatMult(a.get(), x.get(), y.get()));
-      TC_PETSC(VecResetArray(x.get()));
-      TC_PETSC(VecResetArray(y.get()));
-    }
-  }
-};
 
 Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
            std::vector<PetscInt> dirichlet_dofs, Kernel kernel, Singular singular,
@@ -414,13 +333,26 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
   project(w);
   Block pd = d;
   project(pd);
-  const Eigen::ArrayXd scale = pd.colwise().norm().transpose().array().max(1e-300);
-  // A column whose P d is at the round-off of d is solved by λ₀: the relative criterion could
-  // never be met there. It happens when the Dirichlet data move a floating body rigidly (a
-  // slave block pressed down before contact: u = the translation, λ = 0, ‖Pd‖ = 1e-15‖d‖).
+  // The scale of the criterion: ‖Pd‖, or ‖PFλ₀‖ = ‖P(g₀ + d)‖ when the load enters through
+  // e = Rᵀf rather than d. A load on a fixing dof has A_s⁺f = 0 (d = 0, e ≠ 0): against ‖Pd‖
+  // alone that column counted as solved by λ₀, which is only feasible (a unit load there came
+  // back with a residual ‖Ku − f‖ of 3, the compliance of DofCompliance 40% off).
+  const Block pf0 = w + pd;
+  const Eigen::ArrayXd scale = pd.colwise()
+                                   .norm()
+                                   .transpose()
+                                   .array()
+                                   .max(pf0.colwise().norm().transpose().array())
+                                   .max(1e-300);
+  // A column whose initial residual P(Fλ₀ − d) is at the round-off of d and Fλ₀ is solved by
+  // λ₀: the relative criterion could never be met there. It happens when the Dirichlet data
+  // move a floating body rigidly (a slave block pressed down before contact: u = the
+  // translation, λ = 0, ‖Pd‖ = 1e-15‖d‖).
+  const Block f0 = g + d;
   const Eigen::ArrayXd zero_rhs =
-      (pd.colwise().norm().transpose().array() <=
-       1e3 * std::numeric_limits<double>::epsilon() * d.colwise().norm().transpose().array())
+      (w.colwise().norm().transpose().array() <=
+       1e3 * std::numeric_limits<double>::epsilon() *
+           d.colwise().norm().transpose().array().max(f0.colwise().norm().transpose().array()))
           .cast<double>();
   Eigen::ArrayXd rz = Eigen::ArrayXd::Ones(k);
   int it = 0;

@@ -119,6 +119,7 @@ class Feti {
   [[nodiscard]] const std::string& package() const { return package_; }
 
  private:
+  friend class ContactFeti;  // one dual problem over the subdomains of two bodies
   struct Subdomain;
   using Block = Eigen::MatrixXd;  // k dual or primal vectors, one per column
   void build_rows(int n_nodes, const std::vector<PetscInt>& dirichlet);

@@ -1,0 +1,285 @@
+#include "tc/feti/contact_feti.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "tc/core/collective.hpp"
+#include "tc/core/error.hpp"
+#include "tc/feti/subdomain.hpp"
+
+namespace tc::feti {
+
+struct ContactFeti::Part {
+  const Feti* body;
+  const Feti::Subdomain* sub;
+  std::vector<Entry> b;        // its rows of B: the body's (shifted) and the contact ones
+  Eigen::Index kernel_offset;  // first row of the combined G
+  [[nodiscard]] bool owned() const { return sub->owned; }
+};
+
+namespace {
+
+/// The nonzeros of a sequential AIJ matrix, row by row.
+template <class F>
+void for_each_entry(const core::SparseMatrix& a, F&& f) {
+  for (PetscInt i = 0; i < a.rows(); ++i) {
+    PetscInt nc = 0;
+    const PetscInt* cols = nullptr;
+    const double* vals = nullptr;
+    TC_PETSC(MatGetRow(a.get(), i, &nc, &cols, &vals));
+    for (PetscInt k = 0; k < nc; ++k)
+      if (vals[k] != 0) f(i, cols[k], vals[k]);
+    TC_PETSC(MatRestoreRow(a.get(), i, &nc, &cols, &vals));
+  }
+}
+
+}  // namespace
+
+ContactFeti::ContactFeti(const Feti& slave, const Feti& master, const core::SparseMatrix& b_slave,
+                         const core::SparseMatrix& b_master, int dim)
+    : body_{&slave, &master}, dim_(dim), comm_(slave.options_.comm) {
+  if (!slave.singular_ || !master.singular_)
+    throw Error("ContactFeti: quasistatic only (both bodies' FETI with Singular::yes)");
+  if (b_slave.rows() != b_master.rows() || b_slave.rows() % dim != 0)
+    throw Error("ContactFeti: the contact rows of the two bodies disagree");
+  const Eigen::Index mc = b_slave.rows();
+  offset_[0] = 0;
+  offset_[1] = slave.m_;
+  offset_[2] = slave.m_ + master.m_;
+  m_ = offset_[2] + mc;
+
+  // One scale per contact node, 1/‖normal row‖: the gluing rows are orthonormal and the
+  // Dirichlet rows unit, while mortar rows carry the nodal areas (∼h^(dim−1)); unit contact
+  // rows keep F's diagonal of one size. One factor for all rows of a node keeps a disc a disc.
+  const auto n_nodes = static_cast<size_t>(mc / dim);
+  std::vector<double> sq(n_nodes, 0.0);
+  for (const auto* b : {&b_slave, &b_master})
+    for_each_entry(*b, [&](PetscInt i, PetscInt, double v) {
+      if (i % dim == 0) sq[static_cast<size_t>(i / dim)] += v * v;
+    });
+  node_scale_.resize(n_nodes);
+  for (size_t k = 0; k < n_nodes; ++k) node_scale_[k] = sq[k] > 0 ? 1 / std::sqrt(sq[k]) : 1.0;
+
+  Eigen::Index kernel_base = 0;
+  for (int bi = 0; bi < 2; ++bi) {
+    const Feti& body = *body_[bi];
+    const size_t first = parts_.size();
+    for (const auto& sub : body.subs_) {
+      Part p{&body, sub.get(), sub->b, kernel_base + sub->kernel_offset};
+      for (auto& e : p.b) e.row += offset_[bi];
+      parts_.push_back(std::move(p));
+    }
+    kernel_base += body.n_kernel_;
+    // Each body dof of a contact row goes on the copy of its owner, the subdomain that also
+    // carries its load: the local node of that copy for every body node.
+    const int block = body.block_;
+    std::vector<PetscInt> owner_local(body.owner_.size(), -1);
+    for (int s = 0; s < body.n_subdomains(); ++s) {
+      const auto& sub = *body.subs_[static_cast<size_t>(s)];
+      for (PetscInt a = 0; a < sub.n() / block; ++a) {
+        const auto node =
+            static_cast<size_t>(sub.global_dof[static_cast<size_t>(block * a)] / block);
+        if (body.owner_[node] == s) owner_local[node] = a;
+      }
+    }
+    for_each_entry(bi == 0 ? b_slave : b_master, [&](PetscInt i, PetscInt j, double v) {
+      const auto node = static_cast<size_t>(j / block);
+      auto& part = parts_[first + static_cast<size_t>(body.owner_[node])];
+      part.b.push_back({offset_[2] + i, block * owner_local[node] + j % block,
+                        v * node_scale_[static_cast<size_t>(i / dim)]});
+    });
+  }
+
+  // G = RᵀBᵀ (6.4) over the subdomains of both bodies, contact columns included.
+  std::vector<Eigen::Triplet<double>> t;
+  for (const auto& p : parts_)
+    for (const auto& e : p.b)
+      for (Eigen::Index j = 0; j < p.sub->r.cols(); ++j)
+        t.emplace_back(p.kernel_offset + j, e.row, e.value * p.sub->r(e.dof, j));
+  g_.resize(kernel_base, m_);
+  g_.setFromTriplets(t.begin(), t.end());
+}
+
+ContactFeti::~ContactFeti() = default;
+
+void ContactFeti::sum_over_ranks(double* data, Eigen::Index n) const {
+  int size = 1;
+  if (MPI_Comm_size(comm_, &size) != MPI_SUCCESS) throw Error("ContactFeti: MPI_Comm_size failed");
+  if (size == 1) return;
+  if (MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, comm_) !=
+      MPI_SUCCESS)
+    throw Error("ContactFeti: MPI_Allreduce failed");
+}
+
+void ContactFeti::precondition(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  y.setZero(m_);
+  core::collective_check(comm_, "combined FETI preconditioner", [&] {
+    for (const auto& p : parts_) {
+      if (!p.owned()) continue;
+      auto& w = p.sub->w;
+      w.setZero(p.sub->n(), 1);
+      for (const auto& e : p.b) w(e.dof, 0) += e.value * x[e.row];
+      p.sub->mult(w, p.sub->z);
+      for (const auto& e : p.b) y[e.row] += e.value * p.sub->z(e.dof, 0);
+    }
+  });
+  sum_over_ranks(y.data(), y.size());
+}
+
+void ContactFeti::apply_f(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  // y = Σ_s B_s A_s⁺ B_sᵀ x: one solve per subdomain this rank owns, of either body.
+  y.setZero(m_);
+  core::collective_check(comm_, "combined FETI subdomain solve", [&] {
+    for (const auto& p : parts_) {
+      if (!p.owned()) continue;
+      auto& w = p.sub->w;
+      w.setZero(p.sub->n(), 1);
+      for (const auto& e : p.b) w(e.dof, 0) += e.value * x[e.row];
+      p.sub->pseudo_solve(w, p.sub->z);
+      for (const auto& e : p.b) y[e.row] += e.value * p.sub->z(e.dof, 0);
+    }
+  });
+  sum_over_ranks(y.data(), y.size());
+  ++stats_.applications;
+}
+
+qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vector& b_master,
+                                    std::span<const double> c,
+                                    std::span<const double> friction_bound, core::Vector& x_slave,
+                                    core::Vector& x_master, core::Vector& lambda,
+                                    const ContactFetiOptions& options) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  stats_.applications = 0;
+  const core::Vector* b[2] = {&b_slave, &b_master};
+  core::Vector* x[2] = {&x_slave, &x_master};
+  const auto n_contact = static_cast<size_t>(m_ - offset_[2]);
+  if (c.size() != n_contact || friction_bound.size() != node_scale_.size())
+    throw Error("ContactFeti: targets or friction bounds of the wrong size");
+
+  // The loads of every subdomain on the copies of the owners; d = Σ B_s A_s⁺ f_s − c and
+  // e = Rᵀf (6.4).
+  std::vector<Eigen::MatrixXd> fs(parts_.size());
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(m_), e = Eigen::VectorXd::Zero(g_.rows());
+  std::vector<std::vector<double>> bv(2), xv(2);
+  for (int bi = 0; bi < 2; ++bi) bv[bi] = b[bi]->to_std(), xv[bi] = x[bi]->to_std();
+  core::collective_check(comm_, "combined FETI right-hand side", [&] {
+    for (size_t k = 0; k < parts_.size(); ++k) {
+      const auto& p = parts_[k];
+      if (!p.owned()) continue;
+      const int bi = p.body == body_[0] ? 0 : 1;
+      const int block = p.body->block_;
+      auto& f = fs[k];
+      f.setZero(p.sub->n(), 1);
+      const auto s =
+          static_cast<int>(k - (bi == 0 ? 0 : static_cast<size_t>(body_[0]->n_subdomains())));
+      for (PetscInt i = 0; i < p.sub->n(); ++i) {
+        const PetscInt g = p.sub->global_dof[static_cast<size_t>(i)];
+        if (p.body->owner_[static_cast<size_t>(g / block)] == s)
+          f(i, 0) = bv[bi][static_cast<size_t>(g)];
+      }
+      if (p.sub->r.cols() > 0)
+        e.segment(p.kernel_offset, p.sub->r.cols()) = p.sub->r.transpose() * f;
+      Eigen::MatrixXd w = f;
+      p.sub->pseudo_solve(w, p.sub->z);
+      for (const auto& en : p.b) d[en.row] += en.value * p.sub->z(en.dof, 0);
+    }
+  });
+  sum_over_ranks(d.data(), d.size());
+  sum_over_ranks(e.data(), e.size());
+  for (int bi = 0; bi < 2; ++bi) {
+    const Feti& body = *body_[bi];
+    for (size_t i = 0; i < body.dirichlet_row_dof_.size(); ++i)
+      d[offset_[bi] + body.m_gluing_ + static_cast<Eigen::Index>(i)] -=
+          xv[bi][static_cast<size_t>(body.dirichlet_row_dof_[i])];
+  }
+  for (size_t i = 0; i < n_contact; ++i)
+    d[offset_[2] + static_cast<Eigen::Index>(i)] -=
+        node_scale_[i / static_cast<size_t>(dim_)] * c[i];
+
+  // Ω: gluing and Dirichlet multipliers free; per contact node λ_n ≥ 0 and the Tresca bound
+  // on the tangents, in the scaled multipliers λ̂ = λ/σ_k (bound 𝔉γ_k/σ_k).
+  const auto dv = core::Vector::from(std::span<const double>(d.data(), static_cast<size_t>(m_)));
+  qp::FeasibleSet set(dv);
+  for (size_t k = 0; k < node_scale_.size(); ++k) {
+    const auto row = static_cast<PetscInt>(offset_[2]) + dim_ * static_cast<PetscInt>(k);
+    set.set_interval(row, {0.0, qp::infinity});
+    const double r = std::max(friction_bound[k], 0.0) / node_scale_[k];
+    if (dim_ == 2)
+      set.set_interval(row + 1, {-r, r});
+    else
+      set.add_disc({row + 1, row + 2, {r}});
+  }
+  Eigen::VectorXd xe(m_), ye(m_);
+  const qp::FunctionOperator f(
+      [&](const core::Vector& in, core::Vector& out) {
+        {
+          const auto iv = in.read();
+          xe = Eigen::Map<const Eigen::VectorXd>(iv.span().data(), m_);
+        }
+        apply_f(xe, ye);
+        auto ov = out.view();
+        for (Eigen::Index i = 0; i < m_; ++i) ov[static_cast<PetscInt>(i)] = ye[i];
+      },
+      dv);
+  Eigen::VectorXd xp(m_), yp(m_);
+  const qp::FunctionOperator lumped(
+      [&](const core::Vector& in, core::Vector& out) {
+        {
+          const auto iv = in.read();
+          xp = Eigen::Map<const Eigen::VectorXd>(iv.span().data(), m_);
+        }
+        precondition(xp, yp);
+        auto ov = out.view();
+        for (Eigen::Index i = 0; i < m_; ++i) ov[static_cast<PetscInt>(i)] = yp[i];
+      },
+      dv);
+  qp::SmalbeOptions so = options.smalbe;
+  if (options.lumped_preconditioner) so.inner.preconditioner = &lumped;
+  core::Vector lam = dv.duplicate();
+  Eigen::VectorXd mu;
+  const auto r = qp::Smalbe(f, set, g_, e, PETSC_COMM_SELF, so).solve(dv, lam, mu);
+
+  // u_s = A_s⁺(f_s − B_sᵀλ) + R_s α_s with α = −μ: the Lagrangian gradient Fλ − d + Gᵀμ is the
+  // one of (6.4)'s Fλ − Gᵀα − d, so SMALBE's multiplier of Gλ = e is the amplitude of the
+  // subdomains' rigid motions.
+  const auto lv = lam.to_std();
+  std::vector<Eigen::VectorXd> u(2);
+  for (int bi = 0; bi < 2; ++bi) u[bi] = Eigen::VectorXd::Zero(x[bi]->size());
+  core::collective_check(comm_, "combined FETI primal solution", [&] {
+    for (size_t k = 0; k < parts_.size(); ++k) {
+      const auto& p = parts_[k];
+      if (!p.owned()) continue;
+      const int bi = p.body == body_[0] ? 0 : 1;
+      const int block = p.body->block_;
+      Eigen::MatrixXd w = fs[k];
+      for (const auto& en : p.b) w(en.dof, 0) -= en.value * lv[static_cast<size_t>(en.row)];
+      p.sub->pseudo_solve(w, p.sub->z);
+      if (p.sub->r.cols() > 0) p.sub->z -= p.sub->r * mu.segment(p.kernel_offset, p.sub->r.cols());
+      const auto s =
+          static_cast<int>(k - (bi == 0 ? 0 : static_cast<size_t>(body_[0]->n_subdomains())));
+      for (PetscInt i = 0; i < p.sub->n(); ++i) {
+        const PetscInt g = p.sub->global_dof[static_cast<size_t>(i)];
+        if (p.body->owner_[static_cast<size_t>(g / block)] == s) u[bi][g] = p.sub->z(i, 0);
+      }
+    }
+  });
+  for (int bi = 0; bi < 2; ++bi) {
+    sum_over_ranks(u[bi].data(), u[bi].size());
+    const auto& dir = body_[bi]->dirichlet_dofs_;
+    auto out = x[bi]->view();
+    for (PetscInt i = 0; i < x[bi]->size(); ++i)
+      if (!std::binary_search(dir.begin(), dir.end(), i)) out[i] = u[bi][i];
+  }
+  {
+    auto out = lambda.view();
+    for (size_t i = 0; i < n_contact; ++i)
+      out[static_cast<PetscInt>(i)] =
+          node_scale_[i / static_cast<size_t>(dim_)] * lv[static_cast<size_t>(offset_[2]) + i];
+  }
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace tc::feti
