@@ -2,9 +2,9 @@
 // Node-to-node contact rows between matching faces (the slave's lower face on the master's
 // upper one, each slave node paired with the master node at the same horizontal position),
 // weighted by the slave's nodal areas, normal −e_vertical, tangents along the other axes, gap
-// in the reference configuration. The rows of tests/support/contact_rows.hpp, without gtest,
-// for the benchmarks and the combined FETI tests (which compare two solvers on the same rows,
-// so the mortar layer is not needed).
+// in the configuration X + u (the reference one without u). For the benchmarks and the tests
+// of the dual solves (tests/support/contact_rows.hpp), which compare solvers on the same rows,
+// so the mortar layer is not needed.
 #include <cmath>
 #include <string>
 
@@ -15,12 +15,16 @@
 
 namespace tc::bench {
 
-inline contact::ContactRows matching_rows(const mesh::Mesh& slave, const mesh::Mesh& master) {
+inline contact::ContactRows matching_rows(const mesh::Mesh& slave, const mesh::Mesh& master,
+                                          const core::Vector* u_slave = nullptr,
+                                          const core::Vector* u_master = nullptr) {
   const int dim = slave.dim();
   const std::string bottom = dim == 3 ? "zmin" : "ymin", top = dim == 3 ? "zmax" : "ymax";
   const auto weights = fem::boundary_integrals(slave, bottom);
   const auto s_nodes = slave.boundary_nodes(bottom);
   const auto m_nodes = master.boundary_nodes(top);
+  const std::vector<double> us = u_slave ? u_slave->to_std() : std::vector<double>{};
+  const std::vector<double> um = u_master ? u_master->to_std() : std::vector<double>{};
   contact::ContactRows rows;
   rows.dim = dim;
   const PetscInt m = dim * static_cast<PetscInt>(s_nodes.size());
@@ -39,7 +43,9 @@ inline contact::ContactRows matching_rows(const mesh::Mesh& slave, const mesh::M
     }
     if (partner < 0) throw Error("matching_rows: the meshes do not match");
     const double w = weights[static_cast<size_t>(s_nodes[k])];
-    rows.gap.push_back(w * (xs[v] - master.point(partner)[v]));  // (x_m − x_s)·n, n = −e_v
+    const double zs = xs[v] + (us.empty() ? 0.0 : us[dim * s_nodes[k] + v]);
+    const double zm = master.point(partner)[v] + (um.empty() ? 0.0 : um[dim * partner + v]);
+    rows.gap.push_back(w * (zs - zm));  // (x_m − x_s)·n, n = −e_v
     rows.weights.push_back(w);
     rows.nodes.push_back(s_nodes[k]);
     for (int r = 0; r < dim; ++r) {
