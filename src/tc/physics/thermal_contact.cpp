@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/SparseCore>
-
 #include "tc/core/error.hpp"
 
 namespace tc::physics {
@@ -89,8 +87,12 @@ void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
       active_.push_back(g);
     }
   const auto na = static_cast<Eigen::Index>(active_.size());
-  l_active_ = Eigen::MatrixXd::Zero(na, na);
-  for (const auto& e : entries) l_active_(position[e.row], position[e.col]) = e.value;
+  // L_JJ has a few entries per row (the facets around a node): sparse
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(entries.size());
+  for (const auto& e : entries) triplets.emplace_back(position[e.row], position[e.col], e.value);
+  l_active_.resize(na, na);
+  l_active_.setFromTriplets(triplets.begin(), triplets.end());
   if (na == 0) return;
   // I + S_JJ L_JJ, S block diagonal (the bodies do not see each other through A).
   const int n_s = static_cast<int>(nodes_[0].size());
@@ -104,13 +106,7 @@ void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
       if ((ga < n_s) == slave_b) s(a, b) = col[slave_b ? ga : ga - n_s];
     }
   }
-  // L_JJ has a few entries per row (the facets around a node): S L as dense × sparse
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(entries.size());
-  for (const auto& e : entries) triplets.emplace_back(position[e.row], position[e.col], e.value);
-  Eigen::SparseMatrix<double> l_sparse(na, na);
-  l_sparse.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::MatrixXd k = s * l_sparse;
+  Eigen::MatrixXd k = s * l_active_;
   k.diagonal().array() += 1.0;
   lu_.compute(k);
 }

@@ -19,6 +19,7 @@
 // A column of S costs one solve with A_i; columns are computed when their node first carries
 // conductance and kept for the run (the matrices do not change while τ does not).
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "tc/contact/mortar_pair.hpp"
@@ -63,7 +64,7 @@ class InterfaceHeatSolver {
   long setup_solves_ = 0;
 
   std::vector<int> active_;                  // global interface indices with a row of L
-  Eigen::MatrixXd l_active_;                 // L_Γ on the active nodes
+  Eigen::SparseMatrix<double> l_active_;     // L_Γ on the active nodes
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  // of I + S_JJ L_JJ
   mutable core::Vector rhs_[2];
 };
