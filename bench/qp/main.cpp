@@ -182,6 +182,17 @@ double relative_difference(const Vector& x, const Vector& ref) {
 
 /// Runs all solvers on min ½xᵀFx − xᵀd, x ≥ 0; `preconditioner` (may be null) for the
 /// second MPRGP run, applied to the free gradient in the face.
+/// A cell of one MPGP solve (its applications with the λ_max estimate's share).
+Cell mpgp_cell(const tc::qp::QpResult& r, double seconds) {
+  Cell c;
+  c.seconds = seconds;
+  c.applications = r.operator_applications;
+  c.estimate = r.estimate_applications;
+  c.converged = r.converged();
+  c.capped = r.status == tc::qp::QpStatus::max_iterations;
+  return c;
+}
+
 void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
                   const tc::qp::FeasibleSet& set, const Settings& s,
                   const tc::qp::LinearOperator* preconditioner, const Vector* diagonal) {
@@ -193,12 +204,8 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
   Vector x_m = d.duplicate();
   auto t0 = Clock::now();
   const auto rm = tc::qp::Mpgp(f, set, opt).solve(d, x_m);  // = Mprgp without discs
-  row.mprgp.seconds = since(t0);
-  row.mprgp.applications = rm.operator_applications;
   // The share of the λ_max estimate, as counted by the solver (0 when ᾱ was never needed).
-  row.mprgp.estimate = rm.estimate_applications;
-  row.mprgp.converged = rm.converged();
-  row.mprgp.capped = rm.status == tc::qp::QpStatus::max_iterations;
+  row.mprgp = mpgp_cell(rm, since(t0));
   row.n_active = static_cast<int>(set.count_active(x_m));
   fmt::print(stderr,
              "  MPRGP {} ({} cg, {} expansion ({} long, {} fall-backs), {} proportioning, {} "
@@ -253,11 +260,7 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
     Vector x = d.duplicate();
     t0 = Clock::now();
     const auto rj = tc::qp::Mpgp(f, set, jv).solve(d, x);
-    row.mprgp_jv.seconds = since(t0);
-    row.mprgp_jv.applications = rj.operator_applications;
-    row.mprgp_jv.estimate = rj.estimate_applications;
-    row.mprgp_jv.converged = rj.converged();
-    row.mprgp_jv.capped = rj.status == tc::qp::QpStatus::max_iterations;
+    row.mprgp_jv = mpgp_cell(rj, since(t0));
     row.mprgp_jv.difference = relative_difference(x, x_m);
     fmt::print(stderr,
                "  MPRGP, Jacobi variables {} ({} cg, {} expansion, {} proportioning, {} for "
@@ -274,11 +277,7 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
     Vector x = d.duplicate();
     t0 = Clock::now();
     const auto rp = tc::qp::Mpgp(f, set, pc).solve(d, x);
-    row.mprgp_pc.seconds = since(t0);
-    row.mprgp_pc.applications = rp.operator_applications;
-    row.mprgp_pc.estimate = rp.estimate_applications;
-    row.mprgp_pc.converged = rp.converged();
-    row.mprgp_pc.capped = rp.status == tc::qp::QpStatus::max_iterations;
+    row.mprgp_pc = mpgp_cell(rp, since(t0));
     row.mprgp_pc.difference = relative_difference(x, x_m);
     fmt::print(
         stderr,

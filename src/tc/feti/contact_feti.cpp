@@ -113,35 +113,30 @@ void ContactFeti::sum_over_ranks(double* data, Eigen::Index n) const {
     throw Error("ContactFeti: MPI_Allreduce failed");
 }
 
-void ContactFeti::precondition(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+void ContactFeti::sum_subdomain_products(const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                                         const char* phase, Local local) const {
+  // y = Σ_s B_s X_s B_sᵀ x over the subdomains this rank owns, of either body, summed over the
+  // ranks (X_s = A_s⁺ for F, A_s for the lumped preconditioner).
   y.setZero(m_);
-  core::collective_check(comm_, "combined FETI preconditioner", [&] {
+  core::collective_check(comm_, phase, [&] {
     for (const auto& p : parts_) {
       if (!p.owned()) continue;
       auto& w = p.sub->w;
       w.setZero(p.sub->n(), 1);
       for (const auto& e : p.b) w(e.dof, 0) += e.value * x[e.row];
-      p.sub->mult(w, p.sub->z);
+      (p.sub->*local)(w, p.sub->z);
       for (const auto& e : p.b) y[e.row] += e.value * p.sub->z(e.dof, 0);
     }
   });
   sum_over_ranks(y.data(), y.size());
 }
 
+void ContactFeti::precondition(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  sum_subdomain_products(x, y, "combined FETI preconditioner", &Feti::Subdomain::mult);
+}
+
 void ContactFeti::apply_f(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  // y = Σ_s B_s A_s⁺ B_sᵀ x: one solve per subdomain this rank owns, of either body.
-  y.setZero(m_);
-  core::collective_check(comm_, "combined FETI subdomain solve", [&] {
-    for (const auto& p : parts_) {
-      if (!p.owned()) continue;
-      auto& w = p.sub->w;
-      w.setZero(p.sub->n(), 1);
-      for (const auto& e : p.b) w(e.dof, 0) += e.value * x[e.row];
-      p.sub->pseudo_solve(w, p.sub->z);
-      for (const auto& e : p.b) y[e.row] += e.value * p.sub->z(e.dof, 0);
-    }
-  });
-  sum_over_ranks(y.data(), y.size());
+  sum_subdomain_products(x, y, "combined FETI subdomain solve", &Feti::Subdomain::pseudo_solve);
   ++stats_.applications;
 }
 
