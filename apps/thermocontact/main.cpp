@@ -36,6 +36,21 @@ class StopAfter : public tc::physics::Observer {
   int steps_;
 };
 
+/// The options on the command line that nothing read: `-o dir` (for --output) or a mistyped
+/// PETSc option would otherwise pass silently to PETSc's database and be ignored. Printed after
+/// the run, when every option that the run could query has been queried (PETSc's
+/// -options_left, as a warning).
+void warn_unused_options() {
+  PetscInt n = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  if (PetscOptionsLeftGet(nullptr, &n, &names, &values) != 0) return;
+  for (PetscInt i = 0; i < n; ++i)
+    fmt::print(stderr, "warning: option -{}{}{} was not used (run options: --output, --restart)\n",
+               names[i], values[i] ? " " : "", values[i] ? values[i] : "");
+  PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+}
+
 int report_input_error(const tc::InputError& e) {
   for (const auto& issue : e.issues()) fmt::print(stderr, "error: {}\n", issue.str());
   fmt::print(stderr, "{} error{} in the case file; nothing was run.\n", e.issues().size(),
@@ -91,6 +106,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     tc::io::Observers observers({&writer, &checkpoint, &progress, &stop});
     const auto status = sim.run(observers, &g_stop);
     if (tc::core::PetscSession::rank() == 0) {
+      warn_unused_options();
       if (status.completed)
         fmt::print("done: {} steps; output in {}\n", status.steps_done,
                    problem.output.directory.string());

@@ -124,6 +124,43 @@ initial_temperature = 400.0
   EXPECT_EQ(count_lines(tc::test::read_file(dir / "out/history.csv")), 2);  // header + t = 0
 }
 
+TEST(Cli, AnOptionNothingReadIsReportedAfterTheRun) {
+  // Unknown single-dash options go to PETSc's database (for PETSc options); one that nothing
+  // reads, such as `-o dir` for --output, used to vanish without a word. One that the run
+  // reads (-tc_factor_package) must not be reported.
+  const auto dir = tc::test::fresh_dir("unused_option");
+  std::ofstream(dir / "case.toml") << R"(
+dimension = 2
+[time]
+scheme = "quasistatic"
+step = 1.0
+end = 1.0
+[materials.m]
+density = 7850.0
+young_modulus = 2.0e11
+poisson_ratio = 0.3
+thermal_expansion = 0.0
+specific_heat = 450.0
+thermal_conductivity = 50.0
+[[bodies]]
+name = "b"
+material = "m"
+mesh = { box = { min = [0.0, 0.0], max = [0.01, 0.01], cells = [2, 2] } }
+[[boundary]]
+body = "b"
+where = "xmin"
+displacement = [0.0, 0.0]
+)";
+  const auto r = thermocontact("run " + (dir / "case.toml").string() + " --output " +
+                               (dir / "out").string() + " -o elsewhere -tc_factor_package petsc");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: option -o elsewhere was not used"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(count_lines(tc::test::read_file(dir / "out/history.csv")), 3) << r.output;
+  EXPECT_EQ(r.output.find("tc_factor_package"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "elsewhere"));
+}
+
 }  // namespace
 
 TEST(Cli, AContactCaseRunsWithTheMortarPairAndWritesContactOutput) {
