@@ -24,11 +24,20 @@
 //                                        nested form (contact dual on each body's FETI) and the
 //                                        combined one (feti::ContactFeti, SMALBE): iterations,
 //                                        applications, time, and the difference of the results
+//   build/bin/bench_feti block N S K     one quasistatic block solve of K right-hand sides on N³
+//                                        cells, S subdomains (solve_homogeneous_many): time;
+//                                        PETSC_OPTIONS=-tc_feti_sf_row_major moves the block
+//                                        through the star forest as rows of k doubles
+//   build/bin/bench_feti transfer M K    the star forest of Feti's dual rows alone: M rows split
+//                                        evenly, each rank also touching 5 % of the next
+//                                        rank's rows; 200 bcast + reduce of K columns, one SF
+//                                        call per column against one with k doubles per row
 //   mpirun -n 2 build/bin/bench_feti ... the subdomains dealt to two ranks
 #include <fmt/format.h>
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -36,6 +45,7 @@
 #include "../support/sliding_blocks.hpp"
 #include "../support/two_block_feti.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/feti/dual_distribution.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/simulation.hpp"
@@ -72,6 +82,7 @@ struct Run {
   int iterations = 0;
   double setup = 0, solve = 0;
   PetscInt multipliers = 0;
+  size_t owned = 0;  // the multipliers this rank stores
   int coarse = 0;
 };
 
@@ -101,6 +112,7 @@ Run feti_solve(const physics::BodySystem& sys, physics::Scheme scheme, feti::Pre
   r.solve = since(t0);
   r.iterations = f.statistics().last_iterations;
   r.multipliers = f.n_multipliers();
+  r.owned = f.owned_multipliers().size();
   r.coarse = f.coarse_dimension();
   return r;
 }
@@ -154,10 +166,69 @@ void size(int n, int subdomains) {
   const auto r = feti_solve(sys, physics::Scheme::Quasistatic, feti::Preconditioner::dirichlet);
   if (core::PetscSession::rank() == 0)
     fmt::print(
-        "| {}³ cells | {} dofs | {} subdomains | {} multipliers | assembly+partition {:.1f} s | "
-        "FETI set-up {:.1f} s | solve {:.1f} s | {} iterations | peak RSS {:.2f} GiB (rank 0) |\n",
-        n, sys.n_u(), subdomains, r.multipliers, assembly, r.setup, r.solve, r.iterations,
+        "| {}³ cells | {} dofs | {} subdomains | {} multipliers ({} on rank 0) | "
+        "assembly+partition "
+        "{:.1f} s | FETI set-up {:.1f} s | solve {:.2f} s | {} iterations | peak RSS {:.2f} GiB "
+        "(rank 0) |\n",
+        n, sys.n_u(), subdomains, r.multipliers, r.owned, assembly, r.setup, r.solve, r.iterations,
         peak_rss_gib());
+}
+
+void block(int n, int subdomains, int k) {
+  const auto p = cube(n, subdomains, physics::Scheme::Quasistatic);
+  const physics::BodySystem sys(p, 0);
+  feti::FetiOptions o;
+  o.tolerance = 1e-8;
+  const feti::Feti f(
+      sys.subdomains(), sys.body().mesh.n_nodes(), 3, sys.u_dirichlet_dofs(), feti::Kernel::rigid,
+      feti::Singular::yes, [&](int s) { return sys.subdomain_matrices(s).stiffness_u.copy(); }, o);
+  core::Vector load(sys.n_u());
+  sys.mechanical_load(0.0, load);
+  const auto lv = load.to_std();
+  const PetscInt nu = sys.n_u();
+  std::vector<double> rhs(static_cast<size_t>(nu * k));
+  for (int j = 0; j < k; ++j)  // k different loads of the size of the body's
+    for (PetscInt i = 0; i < nu; ++i)
+      rhs[static_cast<size_t>(j * nu + i)] = lv[static_cast<size_t>(i)] * std::cos(0.01 * j * i);
+  core::Handle<::Mat, MatDestroy> b, x;
+  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, nu, k, rhs.data(), b.out()));
+  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, nu, k, nullptr, x.out()));
+  const auto t0 = Clock::now();
+  f.solve_homogeneous_many(b.get(), x.get());
+  const double t = since(t0);
+  if (core::PetscSession::rank() == 0)
+    fmt::print(
+        "| {}³ cells | {} subdomains | {} multipliers | {} columns | block solve {:.2f} s | "
+        "{} iterations |\n",
+        n, subdomains, f.n_multipliers(), k, t, f.statistics().last_iterations);
+}
+
+void transfer(Eigen::Index m, Eigen::Index k) {
+  const int rank = core::PetscSession::rank(), size = core::PetscSession::size();
+  std::vector<int> row_rank(static_cast<size_t>(m));
+  for (Eigen::Index r = 0; r < m; ++r)
+    row_rank[static_cast<size_t>(r)] = static_cast<int>(r * size / m);
+  std::vector<Eigen::Index> leaves;
+  const Eigen::Index first = m * rank / size, last = m * (rank + 1) / size;
+  const Eigen::Index halo = size > 1 ? (last - first) / 20 : 0;
+  for (Eigen::Index r = first; r < last + halo; ++r) leaves.push_back(r % m);
+  feti::DualDistribution d(PETSC_COMM_WORLD, row_rank, leaves);
+  for (const auto t : {feti::DualDistribution::Transfer::per_column,
+                       feti::DualDistribution::Transfer::row_major}) {
+    d.set_transfer(t);
+    Eigen::MatrixXd x = Eigen::MatrixXd::Random(d.n_owned(), k), l, y;
+    const auto t0 = Clock::now();
+    for (int i = 0; i < 200; ++i) {
+      d.bcast(x, l);
+      d.reduce(l, y);
+    }
+    const double s = since(t0);
+    if (rank == 0)
+      fmt::print("| {} rows | {} ranks | {} columns | {} | {:.3f} ms per bcast + reduce |\n", m,
+                 size, k,
+                 t == feti::DualDistribution::Transfer::per_column ? "per column" : "row-major",
+                 s / 200 * 1e3);
+  }
 }
 
 /// Two blocks of s·H cells per edge, each cut into s³ subdomains: the master [0,1]²×[−1,0]
@@ -315,6 +386,10 @@ int main(int argc, char** argv) {
   else if (argc >= 4 && std::string(argv[1]) == "combined")
     combined_bench(std::stoi(argv[2]), std::stoi(argv[3]), argc >= 5 ? std::stoi(argv[4]) : 2,
                    argc >= 6 && std::string(argv[5]) == "lumped");
+  else if (argc >= 4 && std::string(argv[1]) == "transfer")
+    transfer(std::stol(argv[2]), std::stol(argv[3]));
+  else if (argc >= 5 && std::string(argv[1]) == "block")
+    block(std::stoi(argv[2]), std::stoi(argv[3]), std::stoi(argv[4]));
   else if (argc >= 4 && std::string(argv[1]) == "size")
     size(std::stoi(argv[2]), std::stoi(argv[3]));
   else

@@ -48,6 +48,7 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
   std::sort(dirichlet_dofs.begin(), dirichlet_dofs.end());
   dirichlet_dofs_ = dirichlet_dofs;
   build_rows(n_nodes, dirichlet_dofs);
+  build_distribution();
   build_kernels(subdomains, kernel);
   if (singular_) build_coarse();
   // Rank-local: a subdomain that fails to assemble or factorise on one rank stops every rank
@@ -187,21 +188,74 @@ void Feti::build_kernels(const std::vector<mesh::SubMesh>& subdomains, Kernel ke
   }
 }
 
-void Feti::build_g() {
-  // G = Rᵀ Bᵀ: row j of subdomain s is Σ over the entries of B_s of R_s(dof, j)·value.
-  std::vector<Eigen::Triplet<double>> t;
+void Feti::build_distribution() {
+  const int n_sub = n_subdomains();
+  int size = 1;
+  if (MPI_Comm_size(options_.comm, &size) != MPI_SUCCESS) throw Error("FETI: MPI_Comm_size failed");
+  std::vector<int> sub_rank(static_cast<size_t>(n_sub));
+  for (int p = 0; p < size; ++p)
+    for (int s = first_subdomain(n_sub, p, size); s < first_subdomain(n_sub, p + 1, size); ++s)
+      sub_rank[static_cast<size_t>(s)] = p;
+  // A row is owned by the rank of the lowest-numbered subdomain it touches (for a gluing row
+  // the node's first copy, which carries its load). A row inside one rank's block of
+  // subdomains then never travels; a row on an interface between two ranks travels once each
+  // way per product, whichever of its users owns it.
+  std::vector<int> row_rank(static_cast<size_t>(m_), size);
+  std::vector<char> touched(static_cast<size_t>(m_), 0);
+  for (int s = 0; s < n_sub; ++s)
+    for (const auto& e : subs_[static_cast<size_t>(s)]->b) {
+      auto& r = row_rank[static_cast<size_t>(e.row)];
+      r = std::min(r, sub_rank[static_cast<size_t>(s)]);
+      if (subs_[static_cast<size_t>(s)]->owned) touched[static_cast<size_t>(e.row)] = 1;
+    }
+  std::vector<Eigen::Index> leaf_rows, leaf_of(static_cast<size_t>(m_), -1);
+  for (Eigen::Index r = 0; r < m_; ++r)
+    if (touched[static_cast<size_t>(r)]) {
+      leaf_of[static_cast<size_t>(r)] = static_cast<Eigen::Index>(leaf_rows.size());
+      leaf_rows.push_back(r);
+    }
+  for (const auto& sub : subs_) {
+    if (!sub->owned) continue;
+    sub->leaf.clear();
+    for (const auto& e : sub->b) sub->leaf.push_back(leaf_of[static_cast<size_t>(e.row)]);
+  }
+  rows_ = DualDistribution(options_.comm, row_rank, leaf_rows);
+  // One SF call per column by default: 2–5× faster than a datatype of k doubles on row-major
+  // copies for k = 16 and 64 (bench/RESULTS.md); the option is kept for measuring.
+  PetscBool row_major = PETSC_FALSE;
+  TC_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-tc_feti_sf_row_major", &row_major, nullptr));
+  rows_.set_transfer(row_major ? DualDistribution::Transfer::row_major
+                               : DualDistribution::Transfer::per_column);
+}
+
+Eigen::SparseMatrix<double> Feti::build_g() {
+  // G = Rᵀ Bᵀ: row j of subdomain s is Σ over the entries of B_s of R_s(dof, j)·value. The
+  // whole G (replicated, as B is) makes GGᵀ the same on every rank; g_ keeps the columns of
+  // the owned rows.
+  std::vector<Eigen::Index> local(static_cast<size_t>(m_), -1);
+  const auto& owned = rows_.owned_rows();
+  for (size_t i = 0; i < owned.size(); ++i)
+    local[static_cast<size_t>(owned[i])] = static_cast<Eigen::Index>(i);
+  std::vector<Eigen::Triplet<double>> all, mine;
   for (const auto& sub : subs_)
     for (const auto& e : sub->b)
-      for (Eigen::Index j = 0; j < sub->r.cols(); ++j)
-        t.emplace_back(sub->kernel_offset + j, e.row, e.value * sub->r(e.dof, j));
-  g_.resize(n_kernel_, m_);
-  g_.setFromTriplets(t.begin(), t.end());
+      for (Eigen::Index j = 0; j < sub->r.cols(); ++j) {
+        const double v = e.value * sub->r(e.dof, j);
+        all.emplace_back(sub->kernel_offset + j, e.row, v);
+        if (const Eigen::Index l = local[static_cast<size_t>(e.row)]; l >= 0)
+          mine.emplace_back(sub->kernel_offset + j, l, v);
+      }
+  Eigen::SparseMatrix<double> g(n_kernel_, m_);
+  g.setFromTriplets(all.begin(), all.end());
+  g_.resize(n_kernel_, rows_.n_owned());
+  g_.setFromTriplets(mine.begin(), mine.end());
+  return g;
 }
 
 void Feti::build_coarse() {
   if (n_kernel_ == 0) return;
-  build_g();
-  const Eigen::MatrixXd ggt = Eigen::MatrixXd(g_ * g_.transpose());
+  const auto g = build_g();
+  const Eigen::MatrixXd ggt = Eigen::MatrixXd(g * g.transpose());
   coarse_.compute(ggt);
   if (coarse_.info() != Eigen::Success)
     throw Error(
@@ -211,11 +265,11 @@ void Feti::build_coarse() {
 
 void Feti::build_deflation() {
   if (n_kernel_ == 0) return;
-  build_g();
+  const auto g = build_g();
   // W spans the columns of Gᵀ = B R with the dependent ones dropped: a body without
   // Dirichlet data for the field (held by contact, or a slave's temperature) has a global
   // rigid motion or constant that B does not see. Orthonormal through the eigenvectors of GGᵀ.
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(g_ * g_.transpose()));
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(g * g.transpose()));
   const Eigen::VectorXd& ev = eig.eigenvalues();  // ascending
   Eigen::Index dropped = 0;
   while (dropped < ev.size() && ev[dropped] <= 1e-10 * ev[ev.size() - 1]) ++dropped;
@@ -224,7 +278,8 @@ void Feti::build_deflation() {
       eig.eigenvectors().rightCols(r) * ev.tail(r).cwiseSqrt().cwiseInverse().asDiagonal();
   w_ = g_.transpose() * v;
   apply_f(w_, fw_);  // one product with F per coarse vector, once per operator
-  const Eigen::MatrixXd e = w_.transpose() * fw_;
+  Eigen::MatrixXd e = w_.transpose() * fw_;
+  sum_over_ranks(e.data(), e.size());
   coarse_.compute(0.5 * (e + e.transpose()));
   if (coarse_.info() != Eigen::Success)
     throw Error("FETI: the deflation space is rank deficient (WᵀFW not positive definite)");
@@ -232,7 +287,8 @@ void Feti::build_deflation() {
 
 void Feti::deflate(Block& z) const {
   if (singular_ || w_.cols() == 0) return;
-  const Block c = fw_.transpose() * z;
+  Block c = fw_.transpose() * z;
+  sum_over_ranks(c.data(), c.size());
   z -= w_ * coarse_.solve(c);
 }
 
@@ -245,20 +301,37 @@ void Feti::sum_over_ranks(double* data, Eigen::Index n) const {
   if (rc != MPI_SUCCESS) throw Error("FETI: MPI_Allreduce failed");
 }
 
-void Feti::apply_f(const Block& x, Block& y) const {
-  y.setZero(m_, x.cols());
-  core::collective_check(options_.comm, "FETI subdomain solve", [&] {
-    if (fail_after_ >= 0 && stats_.solves > fail_after_)  // fault injection
-      throw NumericalError("FETI: a subdomain solve failed (injected by -tc_fail_on_rank)", -1, 0,
-                           std::nan(""));
+Eigen::ArrayXd Feti::column_dots(const Block& a, const Block& b) const {
+  Eigen::ArrayXd d = a.cwiseProduct(b).colwise().sum().transpose().array();
+  sum_over_ranks(d.data(), d.size());
+  return d;
+}
+
+void Feti::sum_subdomain_products(const Block& x, Block& y, const char* phase,
+                                  const std::function<void(const Subdomain&)>& local,
+                                  const std::function<void()>& before) const {
+  Block in, out = Block::Zero(rows_.n_leaves(), x.cols());
+  rows_.bcast(x, in);
+  core::collective_check(options_.comm, phase, [&] {
+    if (before) before();
     for (int s = first_owned_; s < last_owned_; ++s) {
       const auto& sub = *subs_[static_cast<size_t>(s)];
-      sub.scatter_transpose(x, sub.w);
-      sub.pseudo_solve(sub.w, sub.z);
-      sub.gather(sub.z, y);
+      sub.scatter_transpose_leaves(in, sub.w);
+      local(sub);
+      sub.gather_leaves(sub.z, out);
     }
   });
-  sum_over_ranks(y.data(), y.size());
+  rows_.reduce(out, y);
+}
+
+void Feti::apply_f(const Block& x, Block& y) const {
+  sum_subdomain_products(
+      x, y, "FETI subdomain solve", [](const Subdomain& sub) { sub.pseudo_solve(sub.w, sub.z); },
+      [&] {
+        if (fail_after_ >= 0 && stats_.solves > fail_after_)  // fault injection
+          throw NumericalError("FETI: a subdomain solve failed (injected by -tc_fail_on_rank)", -1,
+                               0, std::nan(""));
+      });
 }
 
 void Feti::precondition(const Block& x, Block& y) const {
@@ -266,29 +339,25 @@ void Feti::precondition(const Block& x, Block& y) const {
     y = x;
     return;
   }
-  y.setZero(m_, x.cols());
-  core::collective_check(options_.comm, "FETI preconditioner", [&] {
-    for (int s = first_owned_; s < last_owned_; ++s) {
-      const auto& sub = *subs_[static_cast<size_t>(s)];
-      sub.scatter_transpose(x, sub.w);
-      if (options_.preconditioner == Preconditioner::lumped) {
-        sub.mult(sub.w, sub.z);
-      } else {  // S v = (A (v̄ − A_red⁻¹ (A v̄)|_interior))|_boundary, v̄ = v on the boundary
-        sub.mult(sub.w, sub.t);
-        for (const PetscInt d : sub.boundary) sub.t.row(d).setZero();
-        sub.interior_solve(sub.t, sub.z);
-        sub.w -= sub.z;
-        sub.mult(sub.w, sub.z);
-      }
-      sub.gather(sub.z, y);
+  const bool lumped = options_.preconditioner == Preconditioner::lumped;
+  sum_subdomain_products(x, y, "FETI preconditioner", [lumped](const Subdomain& sub) {
+    if (lumped) {
+      sub.mult(sub.w, sub.z);
+      return;
     }
+    // S v = (A (v̄ − A_red⁻¹ (A v̄)|_interior))|_boundary, v̄ = v on the boundary
+    sub.mult(sub.w, sub.t);
+    for (const PetscInt d : sub.boundary) sub.t.row(d).setZero();
+    sub.interior_solve(sub.t, sub.z);
+    sub.w -= sub.z;
+    sub.mult(sub.w, sub.z);
   });
-  sum_over_ranks(y.data(), y.size());
 }
 
 void Feti::project(Block& x) const {
   if (!singular_ || n_kernel_ == 0) return;
-  const Block gx = g_ * x;
+  Block gx = g_ * x;
+  sum_over_ranks(gx.data(), gx.size());
   x -= g_.transpose() * coarse_.solve(gx);
 }
 
@@ -298,7 +367,7 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
   stats_.right_hand_sides += k;
   // Right-hand sides per subdomain: each body dof's load on the copy of its owner.
   f.assign(subs_.size(), Block{});
-  Block d = Block::Zero(m_, k), e = Block::Zero(n_kernel_, k);
+  Block d, d_leaves = Block::Zero(rows_.n_leaves(), k), e = Block::Zero(n_kernel_, k);
   core::collective_check(options_.comm, "FETI right-hand side", [&] {
     for (int s = first_owned_; s < last_owned_; ++s) {
       const auto& sub = *subs_[static_cast<size_t>(s)];
@@ -312,21 +381,26 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
         e.middleRows(sub.kernel_offset, sub.r.cols()) = sub.r.transpose() * fs;
       sub.w = fs;
       sub.pseudo_solve(sub.w, sub.z);
-      sub.gather(sub.z, d);
+      sub.gather_leaves(sub.z, d_leaves);
     }
   });
-  sum_over_ranks(d.data(), d.size());
+  rows_.reduce(d_leaves, d);
   sum_over_ranks(e.data(), e.size());
   d -= c;
 
   // Projected preconditioned CG on λ₀ + Ker G, λ₀ = Gᵀ(GGᵀ)⁻¹e; or deflated CG from
   // λ₀ = W E⁻¹ Wᵀ d, which makes the gradient orthogonal to W from the start. The k
   // right-hand sides run their own recurrences; only the products are shared.
-  Block lambda = Block::Zero(m_, k);
-  if (n_kernel_ > 0)
-    lambda = singular_ ? Block(g_.transpose() * coarse_.solve(e))
-                       : Block(w_ * coarse_.solve(Block(w_.transpose() * d)));
-  Block g, w, z, p = Block::Zero(m_, k), fp;
+  const Eigen::Index m = rows_.n_owned();
+  Block lambda = Block::Zero(m, k);
+  if (n_kernel_ > 0 && singular_) {
+    lambda = g_.transpose() * coarse_.solve(e);
+  } else if (n_kernel_ > 0) {
+    Block wd = w_.transpose() * d;
+    sum_over_ranks(wd.data(), wd.size());
+    lambda = w_ * coarse_.solve(wd);
+  }
+  Block g, w, z, p = Block::Zero(m, k), fp;
   apply_f(lambda, g);
   g -= d;
   w = g;
@@ -338,27 +412,29 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
   // alone that column counted as solved by λ₀, which is only feasible (a unit load there came
   // back with a residual ‖Ku − f‖ of 3, the compliance of DofCompliance 40% off).
   const Block pf0 = w + pd;
-  const Eigen::ArrayXd scale = pd.colwise()
-                                   .norm()
-                                   .transpose()
-                                   .array()
-                                   .max(pf0.colwise().norm().transpose().array())
-                                   .max(1e-300);
+  const Block f0 = g + d;
+  // The five norms of the set-up in one reduction: ‖w‖, ‖d‖, ‖Fλ₀‖, ‖Pd‖, ‖PFλ₀‖.
+  Eigen::MatrixXd sq(k, 5);
+  sq.col(0) = w.colwise().squaredNorm().transpose();
+  sq.col(1) = d.colwise().squaredNorm().transpose();
+  sq.col(2) = f0.colwise().squaredNorm().transpose();
+  sq.col(3) = pd.colwise().squaredNorm().transpose();
+  sq.col(4) = pf0.colwise().squaredNorm().transpose();
+  sum_over_ranks(sq.data(), sq.size());
+  const Eigen::ArrayXXd norm = sq.array().sqrt();
+  const Eigen::ArrayXd scale = norm.col(3).max(norm.col(4)).max(1e-300);
   // A column whose initial residual P(Fλ₀ − d) is at the round-off of d and Fλ₀ is solved by
   // λ₀: the relative criterion could never be met there. It happens when the Dirichlet data
   // move a floating body rigidly (a slave block pressed down before contact: u = the
   // translation, λ = 0, ‖Pd‖ = 1e-15‖d‖).
-  const Block f0 = g + d;
   const Eigen::ArrayXd zero_rhs =
-      (w.colwise().norm().transpose().array() <=
-       1e3 * std::numeric_limits<double>::epsilon() *
-           d.colwise().norm().transpose().array().max(f0.colwise().norm().transpose().array()))
+      (norm.col(0) <= 1e3 * std::numeric_limits<double>::epsilon() * norm.col(1).max(norm.col(2)))
           .cast<double>();
-  Eigen::ArrayXd rz = Eigen::ArrayXd::Ones(k);
+  Eigen::ArrayXd rz = Eigen::ArrayXd::Ones(k), w_norm = norm.col(0);
   int it = 0;
   double worst = 0;
   for (;; ++it) {
-    const Eigen::ArrayXd res = (w.colwise().norm().transpose().array() / scale) * (1.0 - zero_rhs);
+    const Eigen::ArrayXd res = (w_norm / scale) * (1.0 - zero_rhs);
     worst = res.maxCoeff();
     if (worst <= options_.tolerance) break;
     if (!std::isfinite(worst))
@@ -371,42 +447,48 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
     precondition(w, z);
     project(z);
     deflate(z);
-    const Eigen::ArrayXd rz_new = w.cwiseProduct(z).colwise().sum().transpose().array();
+    const Eigen::ArrayXd rz_new = column_dots(w, z);
     const Eigen::ArrayXd beta = it == 0 ? Eigen::ArrayXd::Zero(k) : Eigen::ArrayXd(rz_new / rz);
     p = z + p * beta.matrix().asDiagonal();
     rz = rz_new;
     apply_f(p, fp);
     // A converged column keeps α = 0: its λ stays where the criterion accepted it.
-    const Eigen::ArrayXd pfp = p.cwiseProduct(fp).colwise().sum().transpose().array();
+    const Eigen::ArrayXd pfp = column_dots(p, fp);
     const Eigen::ArrayXd alpha = (res > options_.tolerance).cast<double>() * rz / pfp.max(1e-300);
     lambda -= p * alpha.matrix().asDiagonal();
     g -= fp * alpha.matrix().asDiagonal();
     w = g;
     project(w);
+    w_norm = column_dots(w, w).sqrt();
   }
   stats_.last_iterations = it;
   stats_.iterations += it;
   stats_.last_residual = worst;
   // α = (GGᵀ)⁻¹G(Fλ − d) of the floating subdomains, returned in the last rows.
-  Block out(m_ + (singular_ ? n_kernel_ : 0), k);
-  out.topRows(m_) = lambda;
-  if (singular_ && n_kernel_ > 0) out.bottomRows(n_kernel_) = coarse_.solve(Block(g_ * g));
+  Block out(m + (singular_ ? n_kernel_ : 0), k);
+  out.topRows(m) = lambda;
+  if (singular_ && n_kernel_ > 0) {
+    Block gg = g_ * g;
+    sum_over_ranks(gg.data(), gg.size());
+    out.bottomRows(n_kernel_) = coarse_.solve(gg);
+  }
   return out;
 }
 
 Feti::Block Feti::primal(const Block& solution, const std::vector<Block>& f) const {
   // u_s = A_s⁺(f_s − B_sᵀλ) + R_s α_s; each body dof from the copy of its owner.
-  const Eigen::Index k = solution.cols();
-  const Block lambda = solution.topRows(m_);
+  const Eigen::Index k = solution.cols(), m = rows_.n_owned();
+  Block lambda;
+  rows_.bcast(solution.topRows(m), lambda);
   Block u = Block::Zero(static_cast<Eigen::Index>(owner_.size()) * block_, k);
   core::collective_check(options_.comm, "FETI primal solution", [&] {
     for (int s = first_owned_; s < last_owned_; ++s) {
       const auto& sub = *subs_[static_cast<size_t>(s)];
-      sub.scatter_transpose(lambda, sub.w);
+      sub.scatter_transpose_leaves(lambda, sub.w);
       sub.w = f[static_cast<size_t>(s)] - sub.w;
       sub.pseudo_solve(sub.w, sub.z);
       if (singular_ && sub.r.cols() > 0)
-        sub.z += sub.r * solution.middleRows(m_ + sub.kernel_offset, sub.r.cols());
+        sub.z += sub.r * solution.middleRows(m + sub.kernel_offset, sub.r.cols());
       for (PetscInt i = 0; i < sub.n(); ++i) {
         const PetscInt gdof = sub.global_dof[static_cast<size_t>(i)];
         if (owner_[static_cast<size_t>(gdof / block_)] == s) u.row(gdof) = sub.z.row(i);
@@ -427,13 +509,16 @@ void Feti::record_time(double seconds, Eigen::Index columns) const {
 
 void Feti::solve(const core::Vector& b, core::Vector& x) const {
   const auto t0 = std::chrono::steady_clock::now();
-  Block f(b.size(), 1), c = Block::Zero(m_, 1);
+  const auto& owned = rows_.owned_rows();
+  Block f(b.size(), 1), c = Block::Zero(rows_.n_owned(), 1);
   {
     const auto bv = b.read();
     for (PetscInt i = 0; i < b.size(); ++i) f(i, 0) = bv[i];
     const auto xv = x.read();
-    for (size_t i = 0; i < dirichlet_row_dof_.size(); ++i)
-      c(m_gluing_ + static_cast<Eigen::Index>(i), 0) = xv[dirichlet_row_dof_[i]];
+    for (size_t i = 0; i < owned.size(); ++i)
+      if (owned[i] >= m_gluing_)
+        c(static_cast<Eigen::Index>(i), 0) =
+            xv[dirichlet_row_dof_[static_cast<size_t>(owned[i] - m_gluing_)]];
   }
   std::vector<Block> fs;
   const Block u = primal(solve_dual(f, c, fs), fs);
@@ -455,7 +540,7 @@ void Feti::solve_homogeneous_many(::Mat b, ::Mat x) const {
     TC_PETSC(MatDenseRestoreArrayRead(b, &bv));
   }
   std::vector<Block> fs;
-  Block u = primal(solve_dual(f, Block::Zero(m_, k), fs), fs);
+  Block u = primal(solve_dual(f, Block::Zero(rows_.n_owned(), k), fs), fs);
   for (const PetscInt d : dirichlet_dofs_) u.row(d).setZero();
   double* xv = nullptr;
   TC_PETSC(MatDenseGetArrayWrite(x, &xv));

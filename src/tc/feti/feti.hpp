@@ -16,13 +16,19 @@
 // conjugate projector of Dostál, Kozubek, Brzobohatý et al. 2012), W an orthonormal basis
 // of the columns of Gᵀ.
 //
-// Parallel model: subdomains are dealt to the ranks of PETSC_COMM_WORLD in contiguous blocks;
-// a rank assembles and factorises only its own. Dual vectors (the size of the interface) are
-// replicated: F·x is the sum over ranks of the owned subdomains' products (MPI_Allreduce), the
-// coarse problem GGᵀ is factorised on every rank. Primal vectors (b, x) are replicated too.
-// Every rank-local phase (assembly, factorisation, the subdomain solves of F, the
-// preconditioner, the right-hand side and the primal solution) runs in core::collective_check:
-// a failure on one rank throws on all, "rank r: <phase>: <message>".
+// Parallel model: subdomains are dealt to the ranks of the communicator in contiguous blocks;
+// a rank assembles and factorises only its own. Every multiplier (row of B) is owned by one
+// rank, the rank of the lowest-numbered subdomain it touches, and a rank stores only its own
+// rows of every dual block (λ, the PCG vectors, the deflation space W and FW): m/ranks rows
+// each for an even cut. A PetscSF moves the rows between the owners and the ranks whose
+// subdomains touch them: F·x is the owners' x broadcast to the users, the owned subdomains'
+// products B_s A_s⁺ B_sᵀ x, and a reduction (sum) of those back to the owners, so only the
+// rows on interfaces between two ranks travel. Dots and norms are local sums and one
+// MPI_Allreduce of k values; the coarse problem (GGᵀ or E = WᵀFW, n_kernel²) is factorised
+// on every rank, and Gx is the owned columns' product summed by MPI_Allreduce. Primal vectors
+// (b, x) stay replicated. Every rank-local phase (assembly, factorisation, the subdomain
+// solves of F, the preconditioner, the right-hand side and the primal solution) runs in
+// core::collective_check: a failure on one rank throws on all, "rank r: <phase>: <message>".
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <functional>
@@ -31,6 +37,7 @@
 #include <vector>
 
 #include "tc/core/petsc.hpp"
+#include "tc/feti/dual_distribution.hpp"
 #include "tc/mesh/partition.hpp"
 
 namespace tc::feti {
@@ -114,6 +121,11 @@ class Feti {
   [[nodiscard]] int n_subdomains() const { return static_cast<int>(subs_.size()); }
   [[nodiscard]] PetscInt n_multipliers() const { return m_; }
   [[nodiscard]] PetscInt n_gluing() const { return m_gluing_; }
+  /// The multipliers this rank owns (rows of B, gluing first, then Dirichlet): every row is
+  /// owned by exactly one rank of the communicator.
+  [[nodiscard]] const std::vector<Eigen::Index>& owned_multipliers() const {
+    return rows_.owned_rows();
+  }
   [[nodiscard]] int coarse_dimension() const { return static_cast<int>(n_kernel_); }
   [[nodiscard]] const FetiStatistics& statistics() const { return stats_; }
   [[nodiscard]] const std::string& package() const { return package_; }
@@ -124,19 +136,28 @@ class Feti {
   using Block = Eigen::MatrixXd;  // k dual or primal vectors, one per column
   void build_rows(int n_nodes, const std::vector<PetscInt>& dirichlet);
   void build_kernels(const std::vector<mesh::SubMesh>& subdomains, Kernel kernel);
-  void build_g();
+  void build_distribution();
+  Eigen::SparseMatrix<double> build_g();
   void build_coarse();
   void build_deflation();
+  /// y = Σ_s B_s X_s B_sᵀ x over all subdomains (x, y: owned rows), X_s applied by `local`
+  /// from sub.w to sub.z on the owned ones; `before` runs first inside the checked phase.
+  void sum_subdomain_products(const Block& x, Block& y, const char* phase,
+                              const std::function<void(const Subdomain&)>& local,
+                              const std::function<void()>& before = {}) const;
   void apply_f(const Block& x, Block& y) const;
   void precondition(const Block& x, Block& y) const;
   void project(Block& x) const;  // x ← P x
   void deflate(Block& z) const;  // z ← z − W E⁻¹ (FW)ᵀ z
-  /// λ (and below it α of the floating subdomains) for k right-hand sides f (body dofs × k)
-  /// and Dirichlet data c (m × k); f is split into the subdomains' loads on the way.
+  /// λ (this rank's rows; below them α of the floating subdomains, replicated) for k
+  /// right-hand sides f (body dofs × k) and Dirichlet data c (owned rows × k); f is split
+  /// into the subdomains' loads on the way.
   Block solve_dual(const Block& f_global, const Block& c, std::vector<Block>& f) const;
   Block primal(const Block& solution, const std::vector<Block>& f) const;
   void record_time(double seconds, Eigen::Index columns) const;
   void sum_over_ranks(double* data, Eigen::Index n) const;
+  /// The dots a_jᵀb_j of the columns over all rows (local sums, one MPI_Allreduce).
+  [[nodiscard]] Eigen::ArrayXd column_dots(const Block& a, const Block& b) const;
 
   int block_;
   FetiOptions options_;
@@ -145,10 +166,12 @@ class Feti {
   std::vector<PetscInt> dirichlet_dofs_;     // sorted
   std::vector<PetscInt> dirichlet_row_dof_;  // body dof of each Dirichlet row
   std::vector<int> owner_;                   // subdomain that carries each body node's load
-  Eigen::SparseMatrix<double> g_;            // G = Rᵀ Bᵀ, n_kernel × m
+  DualDistribution rows_;                    // the owner of every row of B, the star forest
+  Eigen::SparseMatrix<double> g_;            // G = Rᵀ Bᵀ, its columns of the owned rows
   Eigen::LLT<Eigen::MatrixXd> coarse_;       // GGᵀ (singular) or E = GFGᵀ (deflation)
   bool singular_ = false;
-  Eigen::MatrixXd w_, fw_;  // deflation only: W (orthonormal basis of range Gᵀ) and F W
+  // Deflation only, owned rows: W (orthonormal basis of range Gᵀ) and F W.
+  Eigen::MatrixXd w_, fw_;
   int first_owned_ = 0, last_owned_ = 0;  // [first, last) subdomains of this rank
   std::string package_;
   PetscInt fail_after_ = -1;  // -tc_fail_on_rank, -tc_fail_phase solve (core/collective.hpp)

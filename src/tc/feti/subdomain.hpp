@@ -31,11 +31,12 @@ class DenseView {
 
 struct Feti::Subdomain {
   std::vector<PetscInt> global_dof;  // local dof → body dof
-  std::vector<Entry> b;              // B_s, sorted by row
+  std::vector<Entry> b;              // B_s, sorted by row (rows of B, 0..m−1, on every rank)
   Eigen::MatrixXd r;                 // kernel basis, orthonormal columns (local dofs × k)
   Eigen::Index kernel_offset = 0;    // first row of G belonging to this subdomain
   bool owned = false;
   // Owned subdomains only:
+  std::vector<Eigen::Index> leaf;  // per entry of b: its row's place in the rank's leaf block
   core::SparseMatrix a;
   std::vector<PetscInt> fixing;    // dofs set to zero in A⁺ (the fixing-node generalised inverse)
   core::CholeskySolver factor;     // of A with the fixing dofs eliminated
@@ -45,12 +46,20 @@ struct Feti::Subdomain {
 
   [[nodiscard]] PetscInt n() const { return static_cast<PetscInt>(global_dof.size()); }
 
-  void scatter_transpose(const Block& x, Block& out) const {  // out = B_sᵀ x
+  void scatter_transpose(const Block& x, Block& out) const {  // out = B_sᵀ x, x: m × k
     out.setZero(n(), x.cols());
     for (const auto& e : b) out.row(e.dof) += e.value * x.row(e.row);
   }
-  void gather(const Block& in, Block& y) const {  // y += B_s in
+  void gather(const Block& in, Block& y) const {  // y += B_s in, y: m × k
     for (const auto& e : b) y.row(e.row) += e.value * in.row(e.dof);
+  }
+  /// The same on the rank's leaf block (the rows its subdomains touch, DualDistribution).
+  void scatter_transpose_leaves(const Block& x, Block& out) const {
+    out.setZero(n(), x.cols());
+    for (size_t i = 0; i < b.size(); ++i) out.row(b[i].dof) += b[i].value * x.row(leaf[i]);
+  }
+  void gather_leaves(const Block& in, Block& y) const {
+    for (size_t i = 0; i < b.size(); ++i) y.row(leaf[i]) += b[i].value * in.row(b[i].dof);
   }
   /// out = A_s⁺ in, column by column through one multi-RHS solve (in is zeroed at the
   /// fixing dofs).
