@@ -84,6 +84,12 @@ class TwoBlockFeti {
     return worst;
   }
   [[nodiscard]] PetscInt n_dofs() const { return slave_.n_u() + master_.n_u(); }
+  /// The loads, prescribed values (the Dirichlet dofs of x) and contact targets of the solve.
+  [[nodiscard]] const core::Vector& b_slave() const { return b_slave_; }
+  [[nodiscard]] const core::Vector& b_master() const { return b_master_; }
+  [[nodiscard]] const core::Vector& x_slave() const { return x_slave_; }
+  [[nodiscard]] const core::Vector& x_master() const { return x_master_; }
+  [[nodiscard]] const std::vector<double>& targets() const { return targets_; }
   /// The Tresca bound per contact node (0 on construction: frictionless).
   void set_friction_bound(std::vector<double> b) { bound_ = std::move(b); }
   [[nodiscard]] const std::vector<double>& friction_bound() const { return bound_; }

@@ -128,5 +128,43 @@ TEST(ContactFeti, AllRanksGiveTheSingleRankSolution) {
   EXPECT_LE(std::abs(r1.inner_iterations - r2.inner_iterations), 5);
 }
 
+// Warm start (ContactFetiState, the simulation's Coulomb updates and steps): the same solve
+// started from its own solution (gluing, Dirichlet and contact λ, μ) is at the KKT point
+// already. SMALBE's first outer iteration then finds ‖g^P‖ and ‖Gλ − e‖ within the tolerance:
+// one outer iteration (≤ 2 allowed: the restarted inner solve may take one more step at the
+// bound's edge), and applications of F only for the gradient evaluations (λ_max reused by
+// the same ContactFeti: no Lanczos run), against hundreds cold.
+TEST(ContactFeti, WarmStartFromItsOwnSolutionStopsAtOnce) {
+  bench::TwoBlockFeti p(4, 2, PETSC_COMM_WORLD);
+  p.set_friction_bound(std::vector<double>(static_cast<size_t>(p.rows().n_nodes()), 0.0));
+  qp::QpResult rn;
+  p.set_friction_bound(tresca_bound(p.nested(1e-10, rn), 0.3));
+  const auto& rows = p.rows();
+  const feti::ContactFeti cf(p.slave_feti(), p.master_feti(), rows.slave, rows.master, rows.dim);
+  const auto& targets = p.targets();
+  const auto& bs = p.b_slave();
+  const auto& bm = p.b_master();
+  auto xs = p.x_slave().clone(), xm = p.x_master().clone();
+  core::Vector lambda(rows.n_rows());
+  feti::ContactFetiState state;
+  const auto cold =
+      cf.solve(bs, bm, targets, p.friction_bound(), xs, xm, lambda, smalbe(1e-10), &state);
+  ASSERT_TRUE(cold.converged()) << cold.message;
+  const int cold_applications = cf.statistics().applications;
+  EXPECT_EQ(state.body.size(), cf.n_multipliers() - cf.n_contact());
+  EXPECT_EQ(state.mu.size(), cf.coarse_dimension());
+  const auto u_cold = xs.clone();
+  const auto warm =
+      cf.solve(bs, bm, targets, p.friction_bound(), xs, xm, lambda, smalbe(1e-10), &state);
+  ASSERT_TRUE(warm.converged()) << warm.message;
+  EXPECT_LE(warm.outer_iterations, 2) << warm.message;
+  EXPECT_LE(cf.statistics().applications, 10) << warm.message;
+  EXPECT_GT(cold_applications, 50);  // the comparison means something
+  EXPECT_LT(max_abs_diff(u_cold, xs), 1e-8 * u_cold.max_abs());
+  if (core::PetscSession::rank() == 0)
+    std::printf("cold: %d applications (%s); warm: %d (%s)\n", cold_applications,
+                cold.message.c_str(), cf.statistics().applications, warm.message.c_str());
+}
+
 }  // namespace
 }  // namespace tc::test

@@ -144,7 +144,8 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
                                     std::span<const double> c,
                                     std::span<const double> friction_bound, core::Vector& x_slave,
                                     core::Vector& x_master, core::Vector& lambda,
-                                    const ContactFetiOptions& options) const {
+                                    const ContactFetiOptions& options,
+                                    ContactFetiState* warm) const {
   const auto t0 = std::chrono::steady_clock::now();
   stats_.applications = 0;
   const core::Vector* b[2] = {&b_slave, &b_master};
@@ -232,14 +233,35 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
       dv);
   qp::SmalbeOptions so = options.smalbe;
   if (options.lumped_preconditioner) so.inner.preconditioner = &lumped;
+  if (so.max_eigenvalue <= 0) so.max_eigenvalue = lambda_max_;
   core::Vector lam = dv.duplicate();
   Eigen::VectorXd mu;
+  if (warm) {
+    // The contact part in the scaled multipliers λ̂ = λ/σ_k; SMALBE projects λ onto Ω.
+    auto lw = lam.view();
+    const auto in = lambda.to_std();
+    if (in.size() == n_contact)
+      for (size_t i = 0; i < n_contact; ++i)
+        lw[static_cast<PetscInt>(offset_[2] + static_cast<Eigen::Index>(i))] =
+            in[i] / node_scale_[i / static_cast<size_t>(dim_)];
+    if (warm->body.size() == offset_[2])
+      for (Eigen::Index i = 0; i < offset_[2]; ++i) lw[static_cast<PetscInt>(i)] = warm->body[i];
+    if (warm->mu.size() == g_.rows()) {
+      mu = warm->mu;
+      so.initial_mu = true;
+    }
+  }
   const auto r = qp::Smalbe(f, set, g_, e, PETSC_COMM_SELF, so).solve(dv, lam, mu);
+  lambda_max_ = r.max_eigenvalue;
 
   // u_s = A_s⁺(f_s − B_sᵀλ) + R_s α_s with α = −μ: the Lagrangian gradient Fλ − d + Gᵀμ is the
   // one of (6.4)'s Fλ − Gᵀα − d, so SMALBE's multiplier of Gλ = e is the amplitude of the
   // subdomains' rigid motions.
   const auto lv = lam.to_std();
+  if (warm) {
+    warm->body = Eigen::Map<const Eigen::VectorXd>(lv.data(), offset_[2]);
+    warm->mu = mu;
+  }
   std::vector<Eigen::VectorXd> u(2);
   for (int bi = 0; bi < 2; ++bi) u[bi] = Eigen::VectorXd::Zero(x[bi]->size());
   core::collective_check(comm_, "combined FETI primal solution", [&] {

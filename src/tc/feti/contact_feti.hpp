@@ -37,6 +37,15 @@ struct ContactFetiOptions {
   bool lumped_preconditioner = false;
 };
 
+/// The dual state of a solve beyond the contact multipliers, to start the next one from
+/// (warm start): the gluing and Dirichlet multipliers of both bodies and SMALBE's μ. Their
+/// sizes depend only on the two decompositions, not on the contact rows, so a state carries
+/// over to a ContactFeti rebuilt on other rows (the contact part comes from `lambda`).
+struct ContactFetiState {
+  Eigen::VectorXd body;  // λ of the gluing and Dirichlet rows (body 0's, then body 1's)
+  Eigen::VectorXd mu;    // SMALBE's multiplier of Gλ = e (−α, the rigid motions' amplitudes)
+};
+
 struct ContactFetiStatistics {
   int applications = 0;  // of the combined F (each one solve per subdomain)
   double seconds = 0;    // wall time of the last solve, this rank
@@ -58,11 +67,16 @@ class ContactFeti {
   /// displacements on exit. c: the contact targets (B_c u ≤ c on the normal rows, = c on the
   /// tangential ones while sticking); friction_bound: 𝔉γ per contact node (0: frictionless).
   /// lambda: the contact multipliers on exit (in the rows' units, as the nested solver's).
-  /// Collective.
+  /// `warm`: null for a cold start (λ = 0, μ = 0); else SMALBE starts from the contact
+  /// multipliers of `lambda` on entry, and from warm's gluing/Dirichlet λ and μ when they
+  /// have this problem's sizes (0 otherwise); warm holds this solve's on exit. λ_max(F) is
+  /// estimated at the first solve of this object and reused by the next ones (F is fixed by
+  /// the rows). Collective.
   qp::SmalbeResult solve(const core::Vector& b_slave, const core::Vector& b_master,
                          std::span<const double> c, std::span<const double> friction_bound,
                          core::Vector& x_slave, core::Vector& x_master, core::Vector& lambda,
-                         const ContactFetiOptions& options = {}) const;
+                         const ContactFetiOptions& options = {},
+                         ContactFetiState* warm = nullptr) const;
 
   [[nodiscard]] Eigen::Index n_multipliers() const { return m_; }
   [[nodiscard]] Eigen::Index n_contact() const { return m_ - offset_[2]; }
@@ -86,6 +100,7 @@ class ContactFeti {
   Eigen::Index m_ = 0;
   std::vector<double> node_scale_;  // per contact node: 1/‖normal row‖ (unit contact rows)
   Eigen::SparseMatrix<double> g_;   // G = RᵀBᵀ, all kernels × m
+  mutable double lambda_max_ = 0;   // λ_max(F) of the first solve, reused
   mutable ContactFetiStatistics stats_;
 };
 

@@ -439,10 +439,11 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
 }
 
 void CaseReader::read_solver(const TableReader& root) {
-  const auto s = root.sub_table("solver", Need::Optional,
-                                {"coupling_tolerance", "max_coupling_iterations", "friction_loop",
-                                 "qp_tolerance", "max_qp_iterations", "factorization",
-                                 "feti_tolerance", "max_feti_iterations", "feti_preconditioner"});
+  const auto s =
+      root.sub_table("solver", Need::Optional,
+                     {"coupling_tolerance", "max_coupling_iterations", "friction_loop",
+                      "qp_tolerance", "max_qp_iterations", "factorization", "feti_tolerance",
+                      "max_feti_iterations", "feti_preconditioner", "contact_dual"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -468,6 +469,19 @@ void CaseReader::read_solver(const TableReader& root) {
     settings.feti_preconditioner = *v == "dirichlet" ? feti::Preconditioner::dirichlet
                                    : *v == "lumped"  ? feti::Preconditioner::lumped
                                                      : feti::Preconditioner::none;
+  if (const auto v = s->choice("contact_dual", Need::Optional, {"auto", "nested", "combined"})) {
+    settings.contact_dual = *v == "auto"     ? physics::ContactDual::automatic
+                            : *v == "nested" ? physics::ContactDual::nested
+                                             : physics::ContactDual::combined;
+    // A cross-key check: read after [time], [[bodies]] and [contact].
+    if (settings.contact_dual == physics::ContactDual::combined && issues_.empty())
+      if (const auto why = physics::combined_contact_dual_unavailable(p_); !why.empty())
+        s->issue("contact_dual",
+                 fmt::format("found \"combined\" but {}; expected \"combined\" only with "
+                             "[contact], scheme = \"quasistatic\" and both contact bodies "
+                             "decomposed (subdomains > 1), or \"auto\"/\"nested\"",
+                             why));
+  }
 }
 
 void CaseReader::read_output(const TableReader& root) {

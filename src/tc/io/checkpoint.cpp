@@ -106,6 +106,9 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
   e.put(static_cast<std::int64_t>(c.total_qp));
   e.put(static_cast<std::int64_t>(c.total_applications));
   e.put(static_cast<std::int32_t>(c.last_coupling));
+  e.put(c.feti_body_lambda);
+  e.put(c.feti_mu);
+  e.put(static_cast<std::int64_t>(c.total_smalbe_outer));
   const auto& s = c.contact;
   for (const int i : {s.qp_iterations, s.operator_applications, s.active_nodes, s.slip_nodes})
     e.put(static_cast<std::int32_t>(i));
@@ -166,6 +169,9 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
   c.total_qp = d.get<std::int64_t>();
   c.total_applications = d.get<std::int64_t>();
   c.last_coupling = d.get<std::int32_t>();
+  c.feti_body_lambda = d.get_vector<double>();
+  c.feti_mu = d.get_vector<double>();
+  c.total_smalbe_outer = d.get<std::int64_t>();
   auto& s = c.contact;
   for (int* i : {&s.qp_iterations, &s.operator_applications, &s.active_nodes, &s.slip_nodes})
     *i = d.get<std::int32_t>();

@@ -24,8 +24,9 @@ class CheckpointError : public Error {
   using Error::Error;
 };
 
-inline constexpr std::uint32_t checkpoint_version =
-    2;  // 2: + warm-start tangents, compliance records
+// 2: + warm-start tangents, compliance records; 3: + the combined contact dual's warm start
+// (gluing and Dirichlet λ, μ) and SMALBE's outer iterations
+inline constexpr std::uint32_t checkpoint_version = 3;
 
 /// The file name of the checkpoint in an output directory.
 [[nodiscard]] std::filesystem::path checkpoint_file(const std::filesystem::path& directory);

@@ -340,6 +340,10 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
     out.print(
         "  \"dual_operator\": {},\n",
         json_string(dual && dual->rows().n_rows() > 0 ? physics::name(dual->kind()) : "none"));
+    out.print("  \"contact_dual\": {},\n", json_string(!dual                         ? "none"
+                                                       : sim.combined_contact_dual() ? "combined"
+                                                                                     : "nested"));
+    out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
     out.print("  \"last\": {{\n{}  }}\n", last);
     out.print("}}\n");
   }

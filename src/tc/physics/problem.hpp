@@ -79,12 +79,20 @@ enum class FrictionLoop {
   staggered  // one update per heat–mechanics iteration, as (6.3) is written
 };
 
+/// The dual QP of the mechanical step with contact (docs/choices.md, FETI):
+enum class ContactDual {
+  automatic,  // combined where it applies (combined_contact_dual_unavailable), else nested
+  nested,     // the contact QP on top of each body's solver (DualContactSolver)
+  combined    // one TFETI QP over gluing, Dirichlet and contact multipliers (feti::ContactFeti)
+};
+
 struct SolverSettings {
   double coupling_tolerance = 1e-6;
   int max_coupling_iterations = 20;
   FrictionLoop friction_loop = FrictionLoop::nested;
   double qp_tolerance = 1e-8;
   int max_qp_iterations = 2000;
+  ContactDual contact_dual = ContactDual::nested;
   std::string factorization;  // "" = automatic; "mumps" | "cholmod" | "petsc"
   // FETI (bodies with subdomains > 1, 6.2): relative gluing/Dirichlet residual, iteration cap
   // of the projected CG, preconditioner.
@@ -97,6 +105,12 @@ struct OutputSettings {
   std::filesystem::path directory = "out";
   int every = 1;
 };
+
+struct Problem;
+/// Why the combined contact dual cannot run this problem ("" when it can): it needs contact,
+/// the quasistatic scheme and both contact bodies decomposed (subdomains > 1: their mechanics
+/// solved by TFETI with the floating subdomains' rigid motions).
+[[nodiscard]] std::string combined_contact_dual_unavailable(const Problem& p);
 
 struct Problem {
   std::filesystem::path case_file;

@@ -481,9 +481,9 @@ void Simulation::contact_heat_step(int iteration) {
   require_finite(sm.theta_new, "temperature", step_ + 1, iteration);
 }
 
-void Simulation::mech_step(int b, int iteration) {
-  // (6.3) with θ^{k+1,p+1}, without contact forces.
-  auto scope = timers_.scope("mechanical_solve");
+void Simulation::mech_load(int b) {
+  // The loads of (5.3) at θ^{k+1,p+1} in rhs_u, the prescribed values in u_new: what the
+  // body's solver (mech_step) or the combined contact dual (coulomb_fixed_point) solves with.
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   s.rhs_u.copy_from(s.rhs_u_base);
@@ -494,6 +494,13 @@ void Simulation::mech_step(int b, int iteration) {
     s.rhs_u.axpy(-1.0, s.work_u);
   }
   sys.prescribe_u((step_ + 1) * problem_.time.step, s.u_new);
+}
+
+void Simulation::mech_step(int b, int iteration) {
+  // (6.3) with θ^{k+1,p+1}, without contact forces.
+  auto scope = timers_.scope("mechanical_solve");
+  auto& s = *solvers_[b];
+  mech_load(b);
   s.mech->solve(s.rhs_u, s.u_new);
   require_finite(s.u_new, "displacement", step_ + 1, iteration);
 }
@@ -580,6 +587,16 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   beta_c_ = gs + gm > 0 ? gs * gm / (gs + gm) : 0.0;  // (2.13)
   delta_c_ = gs + gm > 0 ? gs / (gs + gm) : 0.5;
   const int sb = c.slave_body, mb = c.master_body;
+  const auto mode = problem_.solver.contact_dual;
+  const auto why = combined_contact_dual_unavailable(problem_);
+  combined_ = mode == ContactDual::combined || (mode == ContactDual::automatic && why.empty());
+  if (combined_) {
+    if (!why.empty()) throw Error("contact_dual = \"combined\": " + why);
+    if (!solvers_[sb]->mech->feti() || !solvers_[mb]->mech->feti())
+      throw Error("contact_dual = \"combined\": a contact body's mechanics is not solved by FETI");
+    // The rows, targets and bookkeeping only: F is never applied nor formed.
+    settings.explicit_limit = 0;
+  }
   dual_ = std::make_unique<DualContactSolver>(*solvers_[sb]->mech, *solvers_[mb]->mech,
                                               systems_[sb]->n_u(), systems_[mb]->n_u(), settings);
   if (problem_.time.scheme == Scheme::Dynamic &&
@@ -785,14 +802,35 @@ double Simulation::coulomb_fixed_point(TrescaIteration& t, std::span<const doubl
   for (int update = 1; update <= max_updates; ++update) {
     const double rtol =
         friction && !t.exact_qps ? std::clamp(qp_forcing * t.last, qp_tol, 1e-3) : qp_tol;
-    const auto r = dual_->solve(ss.u_prev, sm.u_prev, targets, t.bound, lambda_, ss.u_new, sm.u_new,
-                                false, rtol);
-    contact_stats_.qp_iterations += r.iterations;
-    contact_stats_.operator_applications += r.operator_applications;
-    ++contact_stats_.friction_iterations;
-    if (!r.converged())
-      throw NumericalError(fmt::format("the contact QP (6.9) did not converge: {}", r.message),
-                           step, outer, r.projected_gradient);
+    if (combined_) {
+      // The whole mechanical step at this Tresca bound: one TFETI QP over the gluing, Dirichlet
+      // and contact multipliers (6.4), SMALBE warm-started from the last one's λ and μ; u
+      // comes with it. Its tolerance is that of the nested QP on both ‖g^P‖ and ‖Gλ − e‖.
+      feti::ContactFetiOptions o;
+      o.smalbe.rtol = rtol;
+      o.smalbe.equality_rtol = rtol;
+      o.smalbe.max_inner_iterations = problem_.solver.max_qp_iterations;
+      const auto r = contact_feti_->solve(ss.rhs_u, sm.rhs_u, targets, t.bound, ss.u_new, sm.u_new,
+                                          lambda_, o, &feti_state_);
+      contact_stats_.qp_iterations += r.inner_iterations;
+      contact_stats_.operator_applications += r.operator_applications;
+      total_smalbe_outer_ += r.outer_iterations;
+      ++contact_stats_.friction_iterations;
+      if (!r.converged())
+        throw NumericalError(
+            fmt::format("the combined TFETI contact QP (6.4, SMALBE) did not converge: {}",
+                        r.message),
+            step, outer, r.projected_gradient);
+    } else {
+      const auto r = dual_->solve(ss.u_prev, sm.u_prev, targets, t.bound, lambda_, ss.u_new,
+                                  sm.u_new, false, rtol);
+      contact_stats_.qp_iterations += r.iterations;
+      contact_stats_.operator_applications += r.operator_applications;
+      ++contact_stats_.friction_iterations;
+      if (!r.converged())
+        throw NumericalError(fmt::format("the contact QP (6.9) did not converge: {}", r.message),
+                             step, outer, r.projected_gradient);
+    }
     require_finite(lambda_, "contact multiplier", step, outer);
     t.converged = rtol <= qp_tol;
     if (!friction) break;  // γ plays no part
@@ -813,7 +851,10 @@ double Simulation::coulomb_fixed_point(TrescaIteration& t, std::span<const doubl
                       tol, max_updates),
           step, outer, residual);
   }
-  if (t.defer) {
+  if (combined_) {  // u came with λ
+    require_finite(ss.u_new, "displacement", step, outer);
+    require_finite(sm.u_new, "displacement", step, outer);
+  } else if (t.defer) {
     core::Vector bu;
     dual_->constraint_values(ss.u_prev, sm.u_prev, lambda_, bu);
     iterate_slip_ = bu.to_std();
@@ -868,6 +909,11 @@ int Simulation::couple_contact() {
     }
     auto scope = timers_.scope("dual_setup");  // F formed explicitly here when it is small
     dual_->set_rows(std::move(rows));
+    if (combined_) {  // the combined B and G on this step's contact rows
+      const auto& r = dual_->rows();
+      contact_feti_ = std::make_unique<feti::ContactFeti>(*ss.mech->feti(), *sm.mech->feti(),
+                                                          r.slave, r.master, r.dim);
+    }
   }
   const auto& rows = dual_->rows();
   const int dim = rows.dim;
@@ -891,7 +937,8 @@ int Simulation::couple_contact() {
   // u = u_free − A⁻¹Bᵀλ costs two solves; inside the fixed point only B u is needed (the
   // frictional heat's slip, = B u_free − Fλ) unless the thermoelastic term wants u̇ of the
   // whole body. Then u is formed once, after convergence.
-  tresca.defer = !(ss.heating || sm.heating);
+  // Combined, u comes with every QP.
+  tresca.defer = !combined_ && !(ss.heating || sm.heating);
   iterate_slip_.clear();
   if (tresca.defer) tresca.bu_old = step_slip(rows, sts.u, stm.u);
   contact_stats_.operator_applications += dual_->setup_solves() / 2;
@@ -921,8 +968,14 @@ int Simulation::couple_contact() {
       change = thn > 0 ? dth / thn : dth;
       break;
     }
-    mech_step(sb, iteration);  // u_free = A⁻¹f with the Dirichlet data
-    mech_step(mb, iteration);
+    if (combined_) {  // the loads only: the combined QP solves for u itself
+      auto scope = timers_.scope("mechanical_solve");
+      mech_load(sb);
+      mech_load(mb);
+    } else {
+      mech_step(sb, iteration);  // u_free = A⁻¹f with the Dirichlet data
+      mech_step(mb, iteration);
+    }
     // Nested: γ = λ_n(γ) to convergence at this θ, Aitken restarted (the map changed with θ);
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.
     if (nested || tresca.gamma.empty()) tresca.restart(lambda_, dim, c.friction);
@@ -1229,6 +1282,10 @@ Checkpoint Simulation::checkpoint() const {
   c.total_qp = total_qp_;
   c.total_applications = total_applications_;
   c.last_coupling = last_coupling_;
+  c.feti_body_lambda.assign(feti_state_.body.data(),
+                            feti_state_.body.data() + feti_state_.body.size());
+  c.feti_mu.assign(feti_state_.mu.data(), feti_state_.mu.data() + feti_state_.mu.size());
+  c.total_smalbe_outer = total_smalbe_outer_;
   c.contact = contact_stats_;
   c.heat = heat_;
   return c;
@@ -1291,6 +1348,11 @@ void Simulation::restore(const Checkpoint& c) {
   total_qp_ = c.total_qp;
   total_applications_ = c.total_applications;
   last_coupling_ = c.last_coupling;
+  feti_state_.body = Eigen::Map<const Eigen::VectorXd>(
+      c.feti_body_lambda.data(), static_cast<Eigen::Index>(c.feti_body_lambda.size()));
+  feti_state_.mu = Eigen::Map<const Eigen::VectorXd>(c.feti_mu.data(),
+                                                     static_cast<Eigen::Index>(c.feti_mu.size()));
+  total_smalbe_outer_ = c.total_smalbe_outer;
   contact_stats_ = c.contact;
   heat_ = c.heat;
 }

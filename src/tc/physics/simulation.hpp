@@ -17,6 +17,7 @@
 
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/core/timer.hpp"
+#include "tc/feti/contact_feti.hpp"
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/dual_contact.hpp"
@@ -94,6 +95,10 @@ struct Checkpoint {
   double external_work = 0;
   long total_coupling = 0, total_qp = 0, total_applications = 0;
   int last_coupling = 0;
+  // The combined contact dual's warm start (gluing and Dirichlet λ, μ) and SMALBE's outer
+  // iterations so far (empty and 0 with the nested dual).
+  std::vector<double> feti_body_lambda, feti_mu;
+  long total_smalbe_outer = 0;
   ContactStatistics contact;
   ContactHeat heat;
 };
@@ -133,6 +138,11 @@ class Simulation {
   /// twice the step's mean traction there, docs/choices.md), 1 otherwise.
   [[nodiscard]] double traction_per_multiplier() const;
   [[nodiscard]] const DualContactSolver* dual_solver() const { return dual_.get(); }
+  /// The contact dual that runs: the combined TFETI QP (feti::ContactFeti, SMALBE) or the
+  /// nested one (DualContactSolver on each body's solver); [solver] contact_dual.
+  [[nodiscard]] bool combined_contact_dual() const { return combined_; }
+  /// SMALBE's outer iterations so far (combined contact dual; 0 otherwise).
+  [[nodiscard]] long total_smalbe_outer_iterations() const { return total_smalbe_outer_; }
   /// Implicit (default) or lagged conductance; for measurements (docs/choices.md).
   void set_conductance_treatment(ConductanceTreatment t) { conductance_treatment_ = t; }
   [[nodiscard]] const ContactHeat& contact_heat() const { return heat_; }
@@ -198,8 +208,9 @@ class Simulation {
   void velocity_iterate(int b);           // u̇ of the current displacement iterate → velocity
   void heat_rhs(int b);                   // right-hand side of (6.1) without contact terms
   void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
-  void mech_step(int b, int iteration);   // (5.3) with the current θ iterate, no contact
-  void update_state(int b);               // Newmark/backward-difference updates of u̇, ü
+  void mech_load(int b);  // right-hand side of (5.3) at the current θ iterate, Dirichlet values
+  void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
+  void update_state(int b);              // Newmark/backward-difference updates of u̇, ü
   int couple_contact();  // the staggered loop of 6.3 for the contact pair (heat, dual QP)
   void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
   struct TrescaIteration;
@@ -234,6 +245,12 @@ class Simulation {
   std::unique_ptr<contact::MortarPair> mortar_;
   std::unique_ptr<DualContactSolver> dual_;
   std::unique_ptr<DualContactSolver> stabiliser_;  // the mass projection (contact-stabilised)
+  // The combined contact dual ([solver] contact_dual): one TFETI QP per Tresca bound, rebuilt
+  // on each step's rows; dual_ keeps the rows and targets only (F never formed).
+  bool combined_ = false;
+  std::unique_ptr<feti::ContactFeti> contact_feti_;
+  feti::ContactFetiState feti_state_;
+  long total_smalbe_outer_ = 0;
   core::Vector lambda_;
   std::vector<int> lambda_nodes_;  // slave mesh node of each contact node of lambda_
   std::vector<std::array<double, 3>> lambda_tangents_[2];  // tangents lambda_'s λ_τ refer to

@@ -120,6 +120,11 @@ SmalbeResult Smalbe::solve(const Vector& d, Vector& x, Eigen::VectorXd& mu) cons
   double m = options_.m_factor * lmax;
 
   Eigen::VectorXd mu_t = Eigen::VectorXd::Zero(t_.rows());  // μ̃ of the orthonormal rows
+  if (options_.initial_mu) {
+    if (mu.size() != g_.rows()) throw std::invalid_argument("Smalbe: initial μ of the wrong size");
+    // μ = Tᵀμ̃ with T's rows orthogonal: μ̃ = (TTᵀ)⁻¹Tμ (TTᵀ = Λ⁻¹, diagonal).
+    mu_t = (t_ * t_.transpose()).ldlt().solve(t_ * mu);
+  }
   Vector dk = d.duplicate(), g = d.duplicate(), free = d.duplicate(), chopped = d.duplicate(),
          projected = d.duplicate();
   set_.project(x);

@@ -47,6 +47,9 @@ struct SmalbeOptions {
   /// outer iteration; `scaling` is not supported (the eigenvalue bound would not apply).
   QpOptions inner;
   double max_eigenvalue = 0;  // λ_max(F) if known; 0 = Lanczos estimate (inner.lanczos_*)
+  /// Warm start: μ on entry to solve() is the initial multiplier (that of a previous solve
+  /// with the same G); otherwise μ starts at 0.
+  bool initial_mu = false;
 };
 
 enum class SmalbeStatus { converged, max_outer_iterations, max_inner_iterations, breakdown };
@@ -80,7 +83,8 @@ class Smalbe {
 
   /// x: initial guess on entry (projected onto Ω), the solution on exit. mu: on exit the
   /// multiplier of Gλ = e, with Fλ − d + Gᵀμ the gradient of the Lagrangian (so that g^P of
-  /// it vanishes at the KKT point). Collective.
+  /// it vanishes at the KKT point); on entry the initial one if options.initial_mu (its
+  /// component in Im G: dropped rows of G carry none). Collective.
   SmalbeResult solve(const Vector& d, Vector& x, Eigen::VectorXd& mu) const;
 
   [[nodiscard]] Eigen::Index n_equalities() const { return t_.rows(); }
