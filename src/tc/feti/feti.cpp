@@ -422,19 +422,23 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
   sq.col(4) = pf0.colwise().squaredNorm().transpose();
   sum_over_ranks(sq.data(), sq.size());
   const Eigen::ArrayXXd norm = sq.array().sqrt();
-  const Eigen::ArrayXd scale = norm.col(3).max(norm.col(4)).max(1e-300);
-  // A column whose initial residual P(Fλ₀ − d) is at the round-off of d and Fλ₀ is solved by
-  // λ₀: the relative criterion could never be met there. It happens when the Dirichlet data
-  // move a floating body rigidly (a slave block pressed down before contact: u = the
-  // translation, λ = 0, ‖Pd‖ = 1e-15‖d‖).
-  const Eigen::ArrayXd zero_rhs =
-      (norm.col(0) <= 1e3 * std::numeric_limits<double>::epsilon() * norm.col(1).max(norm.col(2)))
-          .cast<double>();
+  // The projected residual P(Fλ − d) cannot be computed below the round-off of d and Fλ,
+  // whose rigid-body parts P removes: ‖w‖ ≤ 1e3 ε max(‖d‖, ‖Fλ₀‖) is converged whatever the
+  // relative criterion says. It matters when ‖Pd‖ is itself near that level: Dirichlet data
+  // that move a floating body rigidly (a slave block pressed down before contact: u = the
+  // translation, λ = 0, ‖Pd‖ = 1e-15‖d‖) — solved by λ₀ at once — and the same with a load at
+  // the round-off of the data on top (thermal expansion at θ ≈ θ_ref: ‖Pd‖ a little above
+  // that level, and the relative criterion, 1e-10 of it, stalled CG at 3e-5 for 1000
+  // iterations).
+  const Eigen::ArrayXd floor =
+      1e3 * std::numeric_limits<double>::epsilon() * norm.col(1).max(norm.col(2));
+  const Eigen::ArrayXd scale =
+      norm.col(3).max(norm.col(4)).max(floor / options_.tolerance).max(1e-300);
   Eigen::ArrayXd rz = Eigen::ArrayXd::Ones(k), w_norm = norm.col(0);
   int it = 0;
   double worst = 0;
   for (;; ++it) {
-    const Eigen::ArrayXd res = (w_norm / scale) * (1.0 - zero_rhs);
+    const Eigen::ArrayXd res = w_norm / scale;
     worst = res.maxCoeff();
     if (worst <= options_.tolerance) break;
     if (!std::isfinite(worst))

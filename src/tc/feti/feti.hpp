@@ -69,7 +69,8 @@ enum class Preconditioner {
 
 struct FetiOptions {
   /// Stop when ‖B u − c‖ (the projected dual gradient: gluing jumps and Dirichlet misfit)
-  /// ≤ tolerance · ‖P d‖ (at once when ‖P d‖ is at the round-off of ‖d‖).
+  /// ≤ max(tolerance · max(‖P d‖, ‖P F λ₀‖), 1e3 ε max(‖d‖, ‖F λ₀‖)): relative, but never
+  /// below the round-off at which P(Fλ − d) can be computed.
   double tolerance = 1e-10;
   int max_iterations = 2000;
   Preconditioner preconditioner = Preconditioner::dirichlet;
