@@ -32,6 +32,13 @@ inline CommandResult thermocontact(const std::string& args) {
   return run_command(std::string(TC_BINARY) + " " + args);
 }
 
+/// `s` with every occurrence of `from` replaced by `to` (variants of a case file).
+inline std::string replace_all(std::string s, const std::string& from, const std::string& to) {
+  for (size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+    s.replace(p, from.size(), to);
+  return s;
+}
+
 inline std::string read_file(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::stringstream s;

@@ -37,11 +37,6 @@ class FetiCli : public ::testing::Test {
                     "{} -n 2 {} run {} --output {}",
                     TC_MPIEXEC, TC_BINARY, cut.string(), (dir_ / "np2").string()));
   }
-  static std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-    for (size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
-      s.replace(p, from.size(), to);
-    return s;
-  }
   /// (solves, iterations) of summary.json's "feti" entry.
   static std::pair<long, long> feti_counts(const std::string& summary) {
     auto number_after = [&](const std::string& key) {

@@ -25,12 +25,6 @@ namespace {
 const std::filesystem::path kCase =
     std::filesystem::path(TC_SOURCE_DIR) / "tests/cases/feti/thesis-coarse.toml";
 
-std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
-    s.replace(p, from.size(), to);
-  return s;
-}
-
 struct Timed {
   CommandResult result;
   double seconds = 0;
