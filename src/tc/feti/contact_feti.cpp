@@ -207,30 +207,24 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
     else
       set.add_disc({row + 1, row + 2, {r}});
   }
+  // F and the lumped preconditioner as qp operators on the replicated dual vectors.
   Eigen::VectorXd xe(m_), ye(m_);
-  const qp::FunctionOperator f(
-      [&](const core::Vector& in, core::Vector& out) {
-        {
-          const auto iv = in.read();
-          xe = Eigen::Map<const Eigen::VectorXd>(iv.span().data(), m_);
-        }
-        apply_f(xe, ye);
-        auto ov = out.view();
-        for (Eigen::Index i = 0; i < m_; ++i) ov[static_cast<PetscInt>(i)] = ye[i];
-      },
-      dv);
-  Eigen::VectorXd xp(m_), yp(m_);
-  const qp::FunctionOperator lumped(
-      [&](const core::Vector& in, core::Vector& out) {
-        {
-          const auto iv = in.read();
-          xp = Eigen::Map<const Eigen::VectorXd>(iv.span().data(), m_);
-        }
-        precondition(xp, yp);
-        auto ov = out.view();
-        for (Eigen::Index i = 0; i < m_; ++i) ov[static_cast<PetscInt>(i)] = yp[i];
-      },
-      dv);
+  const auto dual_operator =
+      [&](void (ContactFeti::*product)(const Eigen::VectorXd&, Eigen::VectorXd&) const) {
+        return qp::FunctionOperator(
+            [this, product, &xe, &ye](const core::Vector& in, core::Vector& out) {
+              {
+                const auto iv = in.read();
+                xe = Eigen::Map<const Eigen::VectorXd>(iv.span().data(), m_);
+              }
+              (this->*product)(xe, ye);
+              auto ov = out.view();
+              for (Eigen::Index i = 0; i < m_; ++i) ov[static_cast<PetscInt>(i)] = ye[i];
+            },
+            dv);
+      };
+  const qp::FunctionOperator f = dual_operator(&ContactFeti::apply_f);
+  const qp::FunctionOperator lumped = dual_operator(&ContactFeti::precondition);
   qp::SmalbeOptions so = options.smalbe;
   if (options.lumped_preconditioner) so.inner.preconditioner = &lumped;
   if (so.max_eigenvalue <= 0) so.max_eigenvalue = lambda_max_;
