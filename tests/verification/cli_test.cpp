@@ -129,34 +129,14 @@ TEST(Cli, AnOptionNothingReadIsReportedAfterTheRun) {
   // reads, such as `-o dir` for --output, used to vanish without a word. One that the run
   // reads (-tc_factor_package) must not be reported.
   const auto dir = tc::test::fresh_dir("unused_option");
-  std::ofstream(dir / "case.toml") << R"(
-dimension = 2
-[time]
-scheme = "quasistatic"
-step = 1.0
-end = 1.0
-[materials.m]
-density = 7850.0
-young_modulus = 2.0e11
-poisson_ratio = 0.3
-thermal_expansion = 0.0
-specific_heat = 450.0
-thermal_conductivity = 50.0
-[[bodies]]
-name = "b"
-material = "m"
-mesh = { box = { min = [0.0, 0.0], max = [0.01, 0.01], cells = [2, 2] } }
-[[boundary]]
-body = "b"
-where = "xmin"
-displacement = [0.0, 0.0]
-)";
-  const auto r = thermocontact("run " + (dir / "case.toml").string() + " --output " +
-                               (dir / "out").string() + " -o elsewhere -tc_factor_package petsc");
+  const auto c = fs::path(TC_SOURCE_DIR) / "tests/cases/valid/quasistatic.toml";
+  const auto r = thermocontact("run " + c.string() + " --output " + (dir / "out").string() +
+                               " -o elsewhere -tc_factor_package petsc");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("warning: option -o elsewhere was not used"), std::string::npos)
       << r.output;
-  EXPECT_EQ(count_lines(tc::test::read_file(dir / "out/history.csv")), 3) << r.output;
+  // A header and one row per step (t = 0, 0.1, 0.2, 0.3): the run went to --output.
+  EXPECT_EQ(count_lines(tc::test::read_file(dir / "out/history.csv")), 5) << r.output;
   EXPECT_EQ(r.output.find("tc_factor_package"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "elsewhere"));
 }
