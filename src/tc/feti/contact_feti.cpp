@@ -12,10 +12,13 @@
 namespace tc::feti {
 
 struct ContactFeti::Part {
-  const Feti* body;
+  int body_index;  // 0 slave, 1 master
   const Feti::Subdomain* sub;
   std::vector<Entry> b;        // its rows of B: the body's (shifted) and the contact ones
   Eigen::Index kernel_offset;  // first row of the combined G
+  /// (local dof, body dof) of the dofs whose load this copy carries (the owner's copy): where
+  /// f is scattered to and u gathered from.
+  std::vector<std::pair<PetscInt, PetscInt>> carried;
   [[nodiscard]] bool owned() const { return sub->owned; }
 };
 
@@ -66,9 +69,14 @@ ContactFeti::ContactFeti(const Feti& slave, const Feti& master, const core::Spar
   for (int bi = 0; bi < 2; ++bi) {
     const Feti& body = *body_[bi];
     const size_t first = parts_.size();
-    for (const auto& sub : body.subs_) {
-      Part p{&body, sub.get(), sub->b, kernel_base + sub->kernel_offset};
+    for (int s = 0; s < body.n_subdomains(); ++s) {
+      const auto& sub = *body.subs_[static_cast<size_t>(s)];
+      Part p{bi, &sub, sub.b, kernel_base + sub.kernel_offset, {}};
       for (auto& e : p.b) e.row += offset_[bi];
+      for (PetscInt i = 0; i < sub.n(); ++i) {
+        const PetscInt g = sub.global_dof[static_cast<size_t>(i)];
+        if (body.owner_[static_cast<size_t>(g / body.block_)] == s) p.carried.emplace_back(i, g);
+      }
       parts_.push_back(std::move(p));
     }
     kernel_base += body.n_kernel_;
@@ -164,17 +172,9 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
     for (size_t k = 0; k < parts_.size(); ++k) {
       const auto& p = parts_[k];
       if (!p.owned()) continue;
-      const int bi = p.body == body_[0] ? 0 : 1;
-      const int block = p.body->block_;
       auto& f = fs[k];
       f.setZero(p.sub->n(), 1);
-      const auto s =
-          static_cast<int>(k - (bi == 0 ? 0 : static_cast<size_t>(body_[0]->n_subdomains())));
-      for (PetscInt i = 0; i < p.sub->n(); ++i) {
-        const PetscInt g = p.sub->global_dof[static_cast<size_t>(i)];
-        if (p.body->owner_[static_cast<size_t>(g / block)] == s)
-          f(i, 0) = bv[bi][static_cast<size_t>(g)];
-      }
+      for (const auto& [i, g] : p.carried) f(i, 0) = bv[p.body_index][static_cast<size_t>(g)];
       if (p.sub->r.cols() > 0)
         e.segment(p.kernel_offset, p.sub->r.cols()) = p.sub->r.transpose() * f;
       Eigen::MatrixXd w = f;
@@ -262,18 +262,11 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
     for (size_t k = 0; k < parts_.size(); ++k) {
       const auto& p = parts_[k];
       if (!p.owned()) continue;
-      const int bi = p.body == body_[0] ? 0 : 1;
-      const int block = p.body->block_;
       Eigen::MatrixXd w = fs[k];
       for (const auto& en : p.b) w(en.dof, 0) -= en.value * lv[static_cast<size_t>(en.row)];
       p.sub->pseudo_solve(w, p.sub->z);
       if (p.sub->r.cols() > 0) p.sub->z -= p.sub->r * mu.segment(p.kernel_offset, p.sub->r.cols());
-      const auto s =
-          static_cast<int>(k - (bi == 0 ? 0 : static_cast<size_t>(body_[0]->n_subdomains())));
-      for (PetscInt i = 0; i < p.sub->n(); ++i) {
-        const PetscInt g = p.sub->global_dof[static_cast<size_t>(i)];
-        if (p.body->owner_[static_cast<size_t>(g / block)] == s) u[bi][g] = p.sub->z(i, 0);
-      }
+      for (const auto& [i, g] : p.carried) u[p.body_index][g] = p.sub->z(i, 0);
     }
   });
   for (int bi = 0; bi < 2; ++bi) {
