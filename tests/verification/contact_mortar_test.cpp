@@ -138,7 +138,7 @@ struct SlidingRecorder : physics::Observer {
     if (sim.step() == 0) return;
     max_coupling = std::max(max_coupling, static_cast<int>(sim.history("coupling_iterations")));
     normal.push_back(sim.history("contact_normal_force"));
-    tangential.push_back(sim.history("contact_tangential_force"));
+    tangential.push_back(sim.history("contact_tangential_force_sum"));  // Σ_k w_k‖λ_τ,k‖
     dissipation.push_back(sim.history("frictional_dissipation"));
     active.push_back(static_cast<int>(sim.history("active_nodes")));
     slipping.push_back(static_cast<int>(sim.history("slip_nodes")));

@@ -232,7 +232,13 @@ TEST_F(FetiMpiCli, PvtuPiecesHoldTheSerialCellsAndValues) {
     auto tolerance = [&](const std::string& name, const std::vector<double>& values) {
       const bool noisy = name == "velocity" || name == "slip_velocity" ||
                          name == "tangential_traction" || name == "heat_flux";
-      return (noisy ? 1e-3 : 1e-8) * scale(values);
+      // The heat flux at θ = θ₀ is κ∇ of θ's round-off, 1e-12·θ₀ ≈ 3e-10 K over h = 0.05 m
+      // with κ = 70 W/(m K): a few 1e-7 W/m², which the two runs need not share digit by
+      // digit; 1e-6 W/m² bounds it.
+      // The slip velocity Δu/τ of the sticking nodes (5e-11 m/s) carries the FETI solves'
+      // error, relative 1e-10 of ‖u‖ ≈ 1e-4 m over τ = 0.01 s: 1e-12 m/s bounds it.
+      const double floor = name == "heat_flux" ? 1e-6 : name == "slip_velocity" ? 1e-12 : 0.0;
+      return std::max((noisy ? 1e-3 : 1e-8) * scale(values), floor);
     };
     std::map<std::string, int> seen;
     std::set<std::string> seen_points;

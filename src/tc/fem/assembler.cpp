@@ -2,9 +2,13 @@
 // whose nonzero pattern is known exactly from the node graph, so PETSc never reallocates.
 #include "tc/fem/assembler.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+
+#include "tc/core/error.hpp"
 
 namespace tc::fem {
 
@@ -118,6 +122,49 @@ BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat) {
     return stiffness_theta(t, x, mat.thermal_conductivity);
   });
   return b;
+}
+
+core::SparseMatrix singular_mass_u(const mesh::Mesh& m, const Material& mat,
+                                   const std::vector<char>& massless) {
+  const int d = m.dim();
+  return assemble(m, node_graph(m), d, d, [&](int c, CellType t, const Coords& x) {
+    Eigen::MatrixXd me = mass_u(t, x, mat.density);
+    const auto nodes = m.cell(c);
+    const auto n = static_cast<Eigen::Index>(nodes.size());
+    // P_e (node level): identity on massive nodes; a massless node follows the massive nodes
+    // of the cell nearest to it (ties within 1e-9 share equally: the node above on a Hex8
+    // whose face lies on the boundary, the free vertices of a Tet4).
+    Eigen::MatrixXd p = Eigen::MatrixXd::Zero(n, n);
+    bool any = false;
+    for (Eigen::Index a = 0; a < n; ++a) {
+      if (!massless[static_cast<size_t>(nodes[a])]) {
+        p(a, a) = 1.0;
+        continue;
+      }
+      any = true;
+      double nearest = INFINITY;
+      for (Eigen::Index b = 0; b < n; ++b)
+        if (!massless[static_cast<size_t>(nodes[b])])
+          nearest = std::min(nearest, (x.row(a) - x.row(b)).norm());
+      if (!std::isfinite(nearest))
+        throw Error(
+            fmt::format("modified mass: cell {} has every node on the contact boundary; "
+                        "it needs a node off it (refine the mesh across the boundary)",
+                        c));
+      std::vector<Eigen::Index> near;
+      for (Eigen::Index b = 0; b < n; ++b)
+        if (!massless[static_cast<size_t>(nodes[b])] &&
+            (x.row(a) - x.row(b)).norm() <= nearest * (1 + 1e-9))
+          near.push_back(b);
+      for (const auto b : near) p(a, b) = 1.0 / static_cast<double>(near.size());
+    }
+    if (!any) return me;
+    Eigen::MatrixXd pd = Eigen::MatrixXd::Zero(d * n, d * n);  // P_e ⊗ I_d (interleaved dofs)
+    for (Eigen::Index a = 0; a < n; ++a)
+      for (Eigen::Index b = 0; b < n; ++b)
+        for (int k = 0; k < d; ++k) pd(d * a + k, d * b + k) = p(a, b);
+    return Eigen::MatrixXd(pd.transpose() * me * pd);
+  });
 }
 
 std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f) {

@@ -33,6 +33,16 @@ struct BodyMatrices {
 };
 [[nodiscard]] BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat);
 
+/// M_u without inertia on the nodes flagged in `massless` (the potential contact boundary):
+/// the modified mass matrix of Hager, Hüeber & Wohlmuth (IJNME 73, 2008), built cell by cell
+/// as P_eᵀ M_e P_e where P_e gives a massless node the mean displacement of its nearest
+/// massive nodes of the cell (Khenous, Laborde & Renard's mass redistribution in the same
+/// spirit). P_e reproduces constant fields, so the total mass and the momentum of a
+/// translation are those of M_u; the change is confined to the cells at the boundary, O(h).
+/// The pattern is M_u's. Throws when a cell touching the boundary has no massive node.
+[[nodiscard]] core::SparseMatrix singular_mass_u(const mesh::Mesh& m, const Material& mat,
+                                                 const std::vector<char>& massless);
+
 /// ∫ f N_a dx per node (length n_nodes); f = 1 when empty.
 [[nodiscard]] std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f = {});
 /// ∫ f N_a dS over the facets of a boundary, per node of the mesh (length n_nodes).

@@ -122,9 +122,11 @@ void CaseReader::read_time(const TableReader& root) {
   if (!t) return;
   if (const auto s = t->choice("scheme", Need::Optional, {"dynamic", "quasistatic"}))
     p_.time.scheme = *s == "dynamic" ? physics::Scheme::Dynamic : physics::Scheme::Quasistatic;
-  if (const auto s = t->choice("contact_scheme", Need::Optional, {"stabilised", "plain"}))
-    p_.time.contact_scheme =
-        *s == "plain" ? physics::ContactScheme::Plain : physics::ContactScheme::Stabilised;
+  if (const auto s =
+          t->choice("contact_scheme", Need::Optional, {"stabilised", "plain", "modified_mass"}))
+    p_.time.contact_scheme = *s == "plain"           ? physics::ContactScheme::Plain
+                             : *s == "modified_mass" ? physics::ContactScheme::ModifiedMass
+                                                     : physics::ContactScheme::Stabilised;
   const auto step = t->number("step", Need::Required, positive("a time step"));
   const auto end = t->number("end", Need::Required, positive("an end time"));
   if (!step || !end) return;

@@ -112,7 +112,8 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
   const auto& s = c.contact;
   for (const int i : {s.qp_iterations, s.operator_applications, s.active_nodes, s.slip_nodes})
     e.put(static_cast<std::int32_t>(i));
-  for (const double d : {s.normal_force, s.tangential_force, s.dissipation}) e.put(d);
+  for (const double d : {s.normal_force, s.tangential_force, s.tangential_force_sum, s.dissipation})
+    e.put(d);
   for (const double d : {c.heat.generated, c.heat.to_slave, c.heat.to_master, c.heat.conducted})
     e.put(d);
   return e.finish();
@@ -175,7 +176,8 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
   auto& s = c.contact;
   for (int* i : {&s.qp_iterations, &s.operator_applications, &s.active_nodes, &s.slip_nodes})
     *i = d.get<std::int32_t>();
-  for (double* x : {&s.normal_force, &s.tangential_force, &s.dissipation}) *x = d.get<double>();
+  for (double* x : {&s.normal_force, &s.tangential_force, &s.tangential_force_sum, &s.dissipation})
+    *x = d.get<double>();
   for (double* x : {&c.heat.generated, &c.heat.to_slave, &c.heat.to_master, &c.heat.conducted})
     *x = d.get<double>();
   if (d.position() != body_size) d.fail("unexpected bytes after the data");

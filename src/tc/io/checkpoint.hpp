@@ -26,7 +26,7 @@ class CheckpointError : public Error {
 
 // 2: + warm-start tangents, compliance records; 3: + the combined contact dual's warm start
 // (gluing and Dirichlet λ, μ) and SMALBE's outer iterations
-inline constexpr std::uint32_t checkpoint_version = 3;
+inline constexpr std::uint32_t checkpoint_version = 4;
 
 /// The file name of the checkpoint in an output directory.
 [[nodiscard]] std::filesystem::path checkpoint_file(const std::filesystem::path& directory);

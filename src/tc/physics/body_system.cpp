@@ -37,6 +37,19 @@ BodySystem::BodySystem(const Problem& problem, int index)
   th_dofs_ = keys(th_prescribed_);
   lumped_ = problem.physics.lumped_heat_capacity;
   if (lumped_) lump(m_.mass_theta);
+  const auto& c = problem.contact;
+  if (c && problem.time.scheme == Scheme::Dynamic &&
+      problem.time.contact_scheme == ContactScheme::ModifiedMass &&
+      (index == c->slave_body || index == c->master_body)) {
+    massless_.assign(static_cast<size_t>(body_->mesh.n_nodes()), 0);
+    for (const int a :
+         body_->mesh.boundary_nodes(index == c->slave_body ? c->slave_where : c->master_where))
+      massless_[static_cast<size_t>(a)] = 1;
+    for (int a = 0; a < body_->mesh.n_nodes(); ++a)
+      if (massless_[static_cast<size_t>(a)])
+        for (int k = 0; k < dim_; ++k) massless_dofs_.push_back(dim_ * a + k);
+    m_.mass_u = fem::singular_mass_u(body_->mesh, body_->material, massless_);
+  }
   cell_part_ = mesh::partition_cells(body_->mesh, std::max(1, body_->subdomains));
   if (body_->subdomains > 1) subdomains_ = mesh::split(body_->mesh, cell_part_, body_->subdomains);
 }
@@ -44,6 +57,13 @@ BodySystem::BodySystem(const Problem& problem, int index)
 fem::BodyMatrices BodySystem::subdomain_matrices(int s) const {
   auto m = fem::assemble_body(subdomains_.at(static_cast<size_t>(s)).mesh, body_->material);
   if (lumped_) lump(m.mass_theta);  // row sums are additive over cells: Σ_s lumped = lumped
+  if (!massless_.empty()) {         // cell by cell, so Σ_s of the subdomains' is the body's
+    const auto& sub = subdomains_.at(static_cast<size_t>(s));
+    std::vector<char> local(sub.global_node.size());
+    for (size_t a = 0; a < local.size(); ++a)
+      local[a] = massless_[static_cast<size_t>(sub.global_node[a])];
+    m.mass_u = fem::singular_mass_u(sub.mesh, body_->material, local);
+  }
   return m;
 }
 

@@ -54,6 +54,9 @@ class BodySystem {
   /// The body's matrices assembled on the cells of subdomain s only (Σ_s = matrices()),
   /// with the same heat-capacity treatment.
   [[nodiscard]] fem::BodyMatrices subdomain_matrices(int s) const;
+  /// The displacement dofs without inertia (contact_scheme = "modified_mass": the body's
+  /// contact boundary), sorted; empty otherwise. M_u is zero on their rows and columns.
+  [[nodiscard]] const std::vector<PetscInt>& massless_dofs() const { return massless_dofs_; }
 
  private:
   struct NodalLoad {  // value(t) · weights[a] on dof block·a + component
@@ -76,6 +79,8 @@ class BodySystem {
   std::vector<int> cell_part_;
   std::vector<mesh::SubMesh> subdomains_;
   bool lumped_ = false;
+  std::vector<char> massless_;  // per node
+  std::vector<PetscInt> massless_dofs_;
 };
 
 }  // namespace tc::physics

@@ -21,14 +21,16 @@ enum class Scheme { Dynamic, Quasistatic };
 /// How Newmark meets contact (dynamic runs with [contact] only): the thesis' plain scheme
 /// (5.1–5.4), or the contact-stabilised Newmark of Deuflhard, Krause & Ertel (IJNME 73, 2008),
 /// whose predictor is projected onto the admissible set in the mass norm and whose position
-/// update drops the last step's contact force: energy then never grows at an impact.
-enum class ContactScheme { Plain, Stabilised };
+/// update drops the last step's contact force: energy then never grows at an impact; or
+/// plain Newmark with the modified mass matrix of Hager, Hüeber & Wohlmuth (IJNME 73, 2008):
+/// no inertia on the contact boundaries, whose nodes are then in equilibrium at every t^k.
+enum class ContactScheme { Plain, Stabilised, ModifiedMass };
 
 struct TimeSettings {
   Scheme scheme = Scheme::Dynamic;
   double step = 0;  // τ [s]
   double end = 0;   // T [s]
-  ContactScheme contact_scheme = ContactScheme::Stabilised;
+  ContactScheme contact_scheme = ContactScheme::ModifiedMass;
   [[nodiscard]] int n_steps() const;  // round(end / step)
 };
 

@@ -39,12 +39,44 @@ const char* phase_of(std::string_view what) {
 /// Which of a body's operators a solver is for (FETI assembles it per subdomain).
 enum class Operator { mechanics, heat, mass };
 
+/// A unit pivot, scaled by the mean diagonal, on the massless dofs of subdomain s's M_u.
+void massless_pivots(const BodySystem& sys, int s, core::SparseMatrix& mass) {
+  const auto& sub = sys.subdomains().at(static_cast<size_t>(s));
+  const int d = sys.dim();
+  core::Vector diag(mass.rows());
+  TC_PETSC(MatGetDiagonal(mass.get(), diag.get()));
+  double mean = 0;
+  {
+    const auto v = diag.read();
+    for (PetscInt i = 0; i < mass.rows(); ++i) mean += v[i];
+  }
+  mean /= static_cast<double>(std::max<PetscInt>(mass.rows(), 1));
+  const auto& massless = sys.massless_dofs();
+  {
+    auto v = diag.view();
+    for (PetscInt i = 0; i < mass.rows(); ++i) v[i] = 0.0;
+    for (size_t a = 0; a < sub.global_node.size(); ++a)
+      for (int k = 0; k < d; ++k)
+        if (std::binary_search(massless.begin(), massless.end(),
+                               static_cast<PetscInt>(d * sub.global_node[a] + k)))
+          v[d * static_cast<PetscInt>(a) + k] = mean;
+  }
+  TC_PETSC(MatDiagonalSet(mass.get(), diag.get(), ADD_VALUES));
+}
+
 /// The solver of A x = b for one body: a direct factorisation of A, or Total FETI over the
 /// body's subdomains when it is decomposed (6.2), with a·M + b·K assembled per subdomain.
 std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySystem& sys,
                                                const core::SparseMatrix& a, Operator op) {
   const bool mech = op != Operator::heat;
-  const auto& dirichlet = mech ? sys.u_dirichlet_dofs() : sys.theta_dirichlet_dofs();
+  std::vector<PetscInt> dirichlet = mech ? sys.u_dirichlet_dofs() : sys.theta_dirichlet_dofs();
+  if (op == Operator::mass && !sys.massless_dofs().empty()) {
+    // M_u is singular on the massless dofs: ü = 0 there (their equations are static ones).
+    std::vector<PetscInt> both;
+    std::set_union(dirichlet.begin(), dirichlet.end(), sys.massless_dofs().begin(),
+                   sys.massless_dofs().end(), std::back_inserter(both));
+    dirichlet = std::move(both);
+  }
   if (sys.subdomains().empty())
     return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization);
   const double tau = p.time.step;
@@ -57,8 +89,14 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
                        : m.stiffness_u.copy();
       case Operator::heat:
         return combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
-      case Operator::mass:
-        return m.mass_u.copy();
+      case Operator::mass: {
+        // TFETI keeps the Dirichlet dofs in the subdomain matrices (multipliers fix them), so
+        // the massless dofs, which ü = 0 constrains as Dirichlet dofs, need a pivot: the mean
+        // diagonal, which changes only their multipliers.
+        auto mass = m.mass_u.copy();
+        if (!sys.massless_dofs().empty()) massless_pivots(sys, s, mass);
+        return mass;
+      }
     }
     return core::SparseMatrix{};
   };
@@ -297,7 +335,8 @@ void Simulation::initialise() {
               "active_nodes",
               "slip_nodes",
               "wall_seconds",
-              "friction_iterations"};
+              "friction_iterations",
+              "contact_tangential_force_sum"};
   const char* axes = "xyz";
   for (const auto& sys : systems_)
     for (const auto& g : sys->reaction_groups())
@@ -375,6 +414,12 @@ void Simulation::velocity_iterate(int b) {
   if (problem_.time.scheme == Scheme::Dynamic) {
     s.velocity.scale(2.0 / tau);
     s.velocity.axpy(1.0, states_[b].v);
+    if (const auto& dofs = systems_[b]->massless_dofs(); !dofs.empty()) {  // massless_rates
+      const auto un = s.u_new.read();
+      const auto uo = states_[b].u.read();
+      auto v = s.velocity.view();
+      for (const PetscInt d : dofs) v[d] = (un[d] - uo[d]) / tau;
+    }
   } else {
     s.velocity.scale(1.0 / tau);
   }
@@ -505,6 +550,26 @@ void Simulation::mech_step(int b, int iteration) {
   require_finite(s.u_new, "displacement", step_ + 1, iteration);
 }
 
+void Simulation::massless_rates(int b) {
+  // Dofs without inertia (modified mass) follow the equilibrium of each t^k: Newmark's
+  // u̇^{k+1} = 2/τ Δu − u̇^k would carry the step-to-step oscillation of a quasistatic
+  // variable (2v, 0, 2v, … after a sudden start) into the slip and the thermoelastic heat.
+  // Their rate is the step's mean Δu/τ, their acceleration zero (M ü has no entry there).
+  const auto& dofs = systems_[b]->massless_dofs();
+  if (dofs.empty()) return;
+  const double tau = problem_.time.step;
+  auto& st = states_[b];
+  const auto& s = *solvers_[b];
+  const auto un = s.u_new.read();
+  const auto uo = st.u.read();
+  auto v = st.v.view();
+  auto a = st.a.view();
+  for (const PetscInt d : dofs) {
+    v[d] = (un[d] - uo[d]) / tau;
+    a[d] = 0.0;
+  }
+}
+
 void Simulation::update_state(int b) {
   // Newmark / backward-difference updates of u̇ and ü.
   const double tau = problem_.time.step;
@@ -516,6 +581,7 @@ void Simulation::update_state(int b) {
     st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
     st.a.axpy(4.0 / (tau * tau), s.work_u);
     st.v.axpy(2.0 / tau, s.work_u);  // u̇^{k+1} = u̇^k + 2/τ(u^{k+1} − u_pred)
+    massless_rates(b);
   } else {
     s.work_u.copy_from(s.u_new);
     s.work_u.axpy(-1.0, st.u);
@@ -923,10 +989,12 @@ int Simulation::couple_contact() {
     stabilise_predictor(dual_->targets(sts.u, stm.u, sts.u, stm.u));
   }
   // The slip is measured from u_pred − τ/2 u̇^k (= u^k + τ/2 u̇^k with plain Newmark), so that
-  // B_τu − c_τ = τ/2 B_τu̇^{k+1} (5.4); quasistatic: from u^k.
-  ss.work_u.copy_from(ss.u_pred);
-  sm.work_u.copy_from(sm.u_pred);
-  if (dynamic) {
+  // B_τu − c_τ = τ/2 B_τu̇^{k+1} (5.4); quasistatic, and with the modified mass (whose contact
+  // nodes have no inertia, massless_rates): from u^k, B_τu − c_τ = τ B_τu̇^{k+1}.
+  const bool massless = problem_.time.contact_scheme == ContactScheme::ModifiedMass;
+  ss.work_u.copy_from(massless ? sts.u : ss.u_pred);
+  sm.work_u.copy_from(massless ? stm.u : sm.u_pred);
+  if (dynamic && !massless) {
     ss.work_u.axpy(-0.5 * tau, sts.v);
     sm.work_u.axpy(-0.5 * tau, stm.v);
   }
@@ -1033,23 +1101,33 @@ void Simulation::contact_bookkeeping() {
   const double friction = problem_.contact->friction;
   const auto l = lambda_.to_std();
   auto& cs = contact_stats_;
-  cs.normal_force = cs.tangential_force = 0;
+  cs.normal_force = cs.tangential_force = cs.tangential_force_sum = 0;
   cs.active_nodes = cs.slip_nodes = 0;
   const double unit = traction_per_multiplier();
   for (const double w : friction_work(rows, l, slip_)) cs.dissipation += unit * w;
+  // The resultant Σ_k w_k Σ_l λ_τl,k t_l,k in space (the mortar pair's tangents; rows without
+  // them have one tangent frame for all nodes, as the node-to-node rows of flat faces).
+  const bool frames = mortar_ && mortar_->tangents(0).size() == static_cast<size_t>(rows.n_nodes());
+  std::array<double, 3> resultant{0, 0, 0};
   for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
     const double w = rows.weights[k];
     const double ln = l[dim * k];
     double lt2 = 0;
-    for (int i = 1; i < dim; ++i) lt2 += l[dim * k + i] * l[dim * k + i];
+    for (int i = 1; i < dim; ++i) {
+      const double li = l[dim * k + i];
+      lt2 += li * li;
+      for (int x = 0; x < 3; ++x)
+        resultant[x] += w * li * (frames ? mortar_->tangents(i - 1)[k][x] : (x == i - 1 ? 1 : 0));
+    }
     const double lt = std::sqrt(lt2);
     cs.normal_force += unit * w * ln;
-    cs.tangential_force += unit * w * lt;
+    cs.tangential_force_sum += unit * w * lt;
     if (ln > 0) {
       ++cs.active_nodes;
       if (friction > 0 && lt >= friction * ln * (1 - 1e-6)) ++cs.slip_nodes;
     }
   }
+  cs.tangential_force = unit * std::hypot(resultant[0], resultant[1], resultant[2]);
   if (mortar_) {  // q = β_C λ_n [θ] per contact node, θ_m at the node: (Mθ_m)_k / (D1)_k
     const auto& c = *problem_.contact;
     heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
@@ -1178,7 +1256,8 @@ void Simulation::fill_row(int coupling, double wall) {
           static_cast<double>(contact_stats_.active_nodes),
           static_cast<double>(contact_stats_.slip_nodes),
           wall,
-          static_cast<double>(contact_stats_.friction_iterations)};
+          static_cast<double>(contact_stats_.friction_iterations),
+          contact_stats_.tangential_force_sum};
   for (int b = 0; b < n_bodies(); ++b) {
     const auto f = forces_[b].to_std();
     for (const auto& g : systems_[b]->reaction_groups())

@@ -48,11 +48,12 @@ using ContactRowsBuilder =
 struct ContactStatistics {
   int qp_iterations = 0;
   int operator_applications = 0;
-  int friction_iterations = 0;  // QPs of the step: Tresca → Coulomb updates γ = λ_n (6.3)
-  double normal_force = 0;      // Σ_k w_k λ_n,k
-  double tangential_force = 0;  // Σ_k w_k ‖λ_τ,k‖
-  double dissipation = 0;       // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
-  int active_nodes = 0;         // λ_n,k > 0
+  int friction_iterations = 0;      // QPs of the step: Tresca → Coulomb updates γ = λ_n (6.3)
+  double normal_force = 0;          // Σ_k w_k λ_n,k
+  double tangential_force = 0;      // ‖Σ_k w_k λ_τ,k‖: the resultant's magnitude
+  double tangential_force_sum = 0;  // Σ_k w_k ‖λ_τ,k‖
+  double dissipation = 0;           // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
+  int active_nodes = 0;             // λ_n,k > 0
   int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − 1e-6))
 };
 
@@ -210,8 +211,9 @@ class Simulation {
   void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
   void mech_load(int b);  // right-hand side of (5.3) at the current θ iterate, Dirichlet values
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
-  void update_state(int b);              // Newmark/backward-difference updates of u̇, ü
-  int couple_contact();  // the staggered loop of 6.3 for the contact pair (heat, dual QP)
+  void update_state(int b);
+  void massless_rates(int b);  // Newmark/backward-difference updates of u̇, ü
+  int couple_contact();        // the staggered loop of 6.3 for the contact pair (heat, dual QP)
   void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
   struct TrescaIteration;
   // QPs with u_free fixed, γ ← λ_n (Aitken), at most `max_updates` times or until
