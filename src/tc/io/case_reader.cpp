@@ -221,7 +221,7 @@ void CaseReader::read_bodies(const TableReader& root) {
 void CaseReader::read_body(const toml::table& t, size_t index) {
   const TableReader b(t, detail::at("bodies", index), issues_,
                       {"name", "material", "mesh", "initial_temperature", "initial_velocity",
-                       "body_force", "heat_source", "subdomains"});
+                       "initial_state", "body_force", "heat_source", "subdomains"});
   physics::Body body;
   mesh_built_.push_back(false);
   if (const auto name = b.string("name", Need::Required)) {
@@ -253,6 +253,8 @@ void CaseReader::read_body_loads(const TableReader& b, physics::Body& body) {
   if (const auto* n = b.get("initial_velocity", Need::Optional, ""))
     if (const auto v = detail::read_vector(*n, b.key("initial_velocity"), issues_, dim_))
       body.initial_velocity = *v;
+  if (const auto s = b.choice("initial_state", Need::Optional, {"rest", "equilibrium"}))
+    body.start_in_equilibrium = *s == "equilibrium";
   if (const auto* n = b.get("body_force", Need::Optional, ""))
     if (const auto f = detail::read_components(*n, b.key("body_force"), issues_, dim_, false))
       for (int k = 0; k < 3; ++k)
@@ -500,16 +502,26 @@ void CaseReader::read_output(const TableReader& root) {
 }
 
 /// A quasistatic body must be held against every rigid motion: K_u is singular otherwise.
+/// A quasistatic body, and one that starts in static equilibrium, must be held against every
+/// rigid motion: K_u is singular otherwise.
 void CaseReader::check_quasistatic_bodies_held() {
-  if (p_.time.scheme != physics::Scheme::Quasistatic) return;
+  const bool quasistatic = p_.time.scheme == physics::Scheme::Quasistatic;
   const auto& bodies = *root_.get("bodies")->as_array();
-  for (size_t b = 0; b < p_.bodies.size(); ++b)
+  for (size_t b = 0; b < p_.bodies.size(); ++b) {
+    if (!quasistatic && !p_.bodies[b].start_in_equilibrium) continue;
     if (const int n = physics::free_rigid_modes(p_, static_cast<int>(b)); n > 0)
       issues_.add(detail::line_of(*bodies.get(b)), detail::at("bodies", b),
-                  fmt::format("found body \"{}\" with {} rigid-body motion(s) left free by its "
-                              "displacement boundaries, expected a quasistatic body held by "
-                              "[[boundary]] displacements (or scheme = \"dynamic\")",
-                              p_.bodies[b].name, n));
+                  quasistatic
+                      ? fmt::format("found body \"{}\" with {} rigid-body motion(s) left free by "
+                                    "its displacement boundaries, expected a quasistatic body "
+                                    "held by [[boundary]] displacements (or scheme = \"dynamic\")",
+                                    p_.bodies[b].name, n)
+                      : fmt::format("found body \"{}\" with initial_state = \"equilibrium\" and "
+                                    "{} rigid-body motion(s) left free by its displacement "
+                                    "boundaries, expected a body held by [[boundary]] "
+                                    "displacements (or initial_state = \"rest\")",
+                                    p_.bodies[b].name, n));
+  }
 }
 
 }  // namespace

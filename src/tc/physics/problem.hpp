@@ -51,6 +51,10 @@ struct Body {
   mesh::Mesh mesh;
   double initial_temperature = 0;            // θ at t = 0 [K]
   std::array<double, 3> initial_velocity{};  // u̇ at t = 0
+  /// u⁰ from the static equilibrium K u⁰ = f(0) − K_uθ(θ⁰ − θ₀) (dynamic runs), instead of
+  /// u⁰ = u_D(0) with the free dofs at 0: a body that starts hot is then already expanded
+  /// rather than released with a thermal shock (docs/choices.md, "Initial state").
+  bool start_in_equilibrium = false;
   std::array<TimeTable, 3> body_force{};     // f of (2.1) [N/m³]
   TimeTable heat_source{0.0};                // r of (2.8) [W/m³]
   int subdomains = 1;

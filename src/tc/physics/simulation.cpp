@@ -37,7 +37,7 @@ const char* phase_of(std::string_view what) {
 }
 
 /// Which of a body's operators a solver is for (FETI assembles it per subdomain).
-enum class Operator { mechanics, heat, mass };
+enum class Operator { mechanics, heat, mass, statics };
 
 /// A unit pivot, scaled by the mean diagonal, on the massless dofs of subdomain s's M_u.
 void massless_pivots(const BodySystem& sys, int s, core::SparseMatrix& mass) {
@@ -87,6 +87,8 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
       case Operator::mechanics:
         return dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u)
                        : m.stiffness_u.copy();
+      case Operator::statics:
+        return m.stiffness_u.copy();
       case Operator::heat:
         return combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
       case Operator::mass: {
@@ -106,8 +108,9 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
   const auto kernel = op == Operator::heat   ? feti::Kernel::constant
                       : op == Operator::mass ? feti::Kernel::none
                                              : feti::Kernel::rigid;
-  const auto singular =
-      op == Operator::mechanics && !dynamic ? feti::Singular::yes : feti::Singular::no;
+  const auto singular = (op == Operator::mechanics && !dynamic) || op == Operator::statics
+                            ? feti::Singular::yes
+                            : feti::Singular::no;
   feti::FetiOptions options;
   options.tolerance = p.solver.feti_tolerance;
   options.max_iterations = p.solver.max_feti_iterations;
@@ -291,6 +294,8 @@ void Simulation::initialise() {
     st.theta.fill(sys.body().initial_temperature);
     sys.prescribe_theta(0.0, st.theta);
 
+    if (problem_.time.scheme == Scheme::Dynamic && sys.body().start_in_equilibrium)
+      static_initial_state(b, st);
     if (problem_.time.scheme == Scheme::Dynamic) {
       // Consistent initial acceleration (2.1 at t = 0): M ü⁰ = f(0) − K u⁰ − K_uθ(θ⁰ − θ₀),
       // with ü = 0 on the supports. M is factorised for this one solve and dropped.
@@ -344,6 +349,26 @@ void Simulation::initialise() {
 
   for (int b = 0; b < n_bodies(); ++b) support_forces(b, forces_[b]);
   fill_row(0, 0.0);
+}
+
+void Simulation::static_initial_state(int b, BodyState& st) {
+  // K u⁰ = f(0) − K_uθ(θ⁰ − θ₀) with u⁰ = u_D(0) on the supports: the body starts expanded
+  // by its initial temperature and loaded, so ü⁰ = 0 off the supports. Released from u⁰ = 0
+  // instead, a body 80 K above θ₀ rings with ~2e4 J (example 05's cube), at frequencies that
+  // Newmark's τ aliases to the step-to-step oscillation without damping it.
+  auto t = timers_.scope("factorization");
+  const auto& sys = *systems_[b];
+  const auto& m = sys.matrices();
+  auto& s = *solvers_[b];
+  sys.mechanical_load(0.0, s.rhs_u);
+  if (problem_.physics.thermal_expansion) {
+    s.dtheta.copy_from(st.theta);
+    s.dtheta.shift(-problem_.physics.reference_temperature);
+    m.coupling_u_theta.mult(s.dtheta, s.work_u);
+    s.rhs_u.axpy(-1.0, s.work_u);
+  }
+  body_solver(problem_, sys, m.stiffness_u, Operator::statics)->solve(s.rhs_u, st.u);
+  require_finite(st.u, "displacement", 0, 0);
 }
 
 void Simulation::support_forces(int b, core::Vector& r) const {
