@@ -6,7 +6,8 @@
 Runs examples/05 and 06 as committed (thermoelastic heating on) with the default scheme
 (modified mass) and with `contact_scheme = "stabilised"` (the default until issue 18), in
 turn, N times each (default 3), and, with --baseline, the same case files under an older
-binary (cases it cannot read are reported, not run). Prints a Markdown table: wall time
+binary (without the initial_state key, which it cannot read: example 05's cube is then
+released at rest). Prints a Markdown table: wall time
 (median of the repetitions, the process as a user starts it), coupling iterations, Tresca
 updates and QP iterations per step, the heat, the temperature range and T/N while sliding,
 and each time as a ratio to the default's in the same command.
@@ -83,8 +84,13 @@ def main():
             for name, binary, scheme in runs:
                 if name in errors:
                     continue
+                case_text = variant(text, scheme)
+                if binary != a.binary:  # an older binary reads no initial_state: released at rest
+                    case_text = "\n".join(x for x in case_text.splitlines()
+                                          if not x.startswith("initial_state") and
+                                          "a thermal shock (README" not in x)
                 with tempfile.TemporaryDirectory() as d:
-                    res, err = run(binary, variant(text, scheme), d)
+                    res, err = run(binary, case_text, d)
                 if err:
                     errors[name] = err
                 else:
