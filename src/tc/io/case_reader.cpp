@@ -501,7 +501,6 @@ void CaseReader::read_output(const TableReader& root) {
   if (const auto e = o->integer("every", Need::Optional, 1)) p_.output.every = *e;
 }
 
-/// A quasistatic body must be held against every rigid motion: K_u is singular otherwise.
 /// A quasistatic body, and one that starts in static equilibrium, must be held against every
 /// rigid motion: K_u is singular otherwise.
 void CaseReader::check_quasistatic_bodies_held() {

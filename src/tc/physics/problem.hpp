@@ -55,8 +55,8 @@ struct Body {
   /// u⁰ = u_D(0) with the free dofs at 0: a body that starts hot is then already expanded
   /// rather than released with a thermal shock (docs/choices.md, "Initial state").
   bool start_in_equilibrium = false;
-  std::array<TimeTable, 3> body_force{};     // f of (2.1) [N/m³]
-  TimeTable heat_source{0.0};                // r of (2.8) [W/m³]
+  std::array<TimeTable, 3> body_force{};  // f of (2.1) [N/m³]
+  TimeTable heat_source{0.0};             // r of (2.8) [W/m³]
   int subdomains = 1;
 };
 

@@ -121,6 +121,16 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
       singular, local, options));
 }
 
+/// rate = (u − u_old)/τ on the given dofs (the massless ones: Simulation::massless_rates).
+void step_mean_rate(const std::vector<PetscInt>& dofs, const core::Vector& u,
+                    const core::Vector& u_old, double tau, core::Vector& rate) {
+  if (dofs.empty()) return;
+  const auto un = u.read();
+  const auto uo = u_old.read();
+  auto v = rate.view();
+  for (const PetscInt d : dofs) v[d] = (un[d] - uo[d]) / tau;
+}
+
 void require_finite(const core::Vector& v, const char* what, int step, int iteration) {
   if (!v.all_finite())
     throw NumericalError(fmt::format("{}: {} is not finite (NaN or Inf)", phase_of(what), what),
@@ -439,12 +449,7 @@ void Simulation::velocity_iterate(int b) {
   if (problem_.time.scheme == Scheme::Dynamic) {
     s.velocity.scale(2.0 / tau);
     s.velocity.axpy(1.0, states_[b].v);
-    if (const auto& dofs = systems_[b]->massless_dofs(); !dofs.empty()) {  // massless_rates
-      const auto un = s.u_new.read();
-      const auto uo = states_[b].u.read();
-      auto v = s.velocity.view();
-      for (const PetscInt d : dofs) v[d] = (un[d] - uo[d]) / tau;
-    }
+    step_mean_rate(systems_[b]->massless_dofs(), s.u_new, states_[b].u, tau, s.velocity);
   } else {
     s.velocity.scale(1.0 / tau);
   }
@@ -581,18 +586,10 @@ void Simulation::massless_rates(int b) {
   // variable (2v, 0, 2v, … after a sudden start) into the slip and the thermoelastic heat.
   // Their rate is the step's mean Δu/τ, their acceleration zero (M ü has no entry there).
   const auto& dofs = systems_[b]->massless_dofs();
-  if (dofs.empty()) return;
-  const double tau = problem_.time.step;
   auto& st = states_[b];
-  const auto& s = *solvers_[b];
-  const auto un = s.u_new.read();
-  const auto uo = st.u.read();
-  auto v = st.v.view();
+  step_mean_rate(dofs, solvers_[b]->u_new, st.u, problem_.time.step, st.v);
   auto a = st.a.view();
-  for (const PetscInt d : dofs) {
-    v[d] = (un[d] - uo[d]) / tau;
-    a[d] = 0.0;
-  }
+  for (const PetscInt d : dofs) a[d] = 0.0;
 }
 
 void Simulation::update_state(int b) {
