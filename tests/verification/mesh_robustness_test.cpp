@@ -137,6 +137,24 @@ TEST(MeshRobustness, ContactSurfacesOverlappingAtTheStartAreAnError) {
   EXPECT_EQ(run.exit_code, 2) << run.output;
 }
 
+TEST(MeshRobustness, ABodyDeepInsideTheOtherIsAnError) {
+  // Deeper than the contact search reaches (about one element of the master surface), the
+  // overlap showed no facing nodes: a warning ("do not face each other") and a run without
+  // contact force (issue 20, #4). The upper block with its bottom 0.6 m inside the lower one,
+  // and with the lower one's own box.
+  for (const double bottom : {0.4, 0.0}) {
+    const auto dir = tc::test::fresh_dir("mesh-deep-overlap");
+    std::ofstream(dir / "case.toml") << two_blocks(bottom);
+    for (const std::string& options : {std::string(), " --output " + (dir / "out").string()}) {
+      const auto command = options.empty() ? "check " : "run ";
+      const auto r = thermocontact(command + (dir / "case.toml").string() + options);
+      EXPECT_EQ(r.exit_code, 2) << command << bottom << "\n" << r.output;
+      for (const char* part : {"case.toml", "overlap at t = 0", "lies inside cell"})
+        EXPECT_NE(r.output.find(part), std::string::npos) << part << "\n" << r.output;
+    }
+  }
+}
+
 TEST(MeshRobustness, TouchingSurfacesPassAndTheExamplesStartApartOrTouching) {
   // The contact patch touches exactly (gap 0, to round-off); the curved Hertz surfaces and the
   // 3D examples start apart or touching within the tolerance (1e-6 of a facet).
