@@ -25,6 +25,10 @@ using detail::Range;
 using detail::TableReader;
 using physics::Problem;
 
+/// The most steps a run may have: well inside the int step counter, and far more than a run
+/// that ends in reasonable time (end = 4294967.301, step = 0.001 wrapped round to 5 steps).
+constexpr long kMaxSteps = 100'000'000;
+
 const Range kTemperature{[](double x) { return x > 0; }, "a temperature > 0 K"};
 
 std::string quoted_list(const std::vector<std::string>& names) {
@@ -131,7 +135,12 @@ void CaseReader::read_time(const TableReader& root) {
   p_.time.step = *step;
   p_.time.end = *end;
   const double n = *end / *step;
-  if (n < 1 - 1e-9)
+  // Negated so that inf (end/step overflowing a double) is refused too.
+  if (!(std::round(n) <= static_cast<double>(kMaxSteps)))
+    t->issue("step", fmt::format("found step = {} with end = {}, which is {:.10g} steps; expected "
+                                 "at most {} steps (time.end / time.step)",
+                                 *step, *end, n, kMaxSteps));
+  else if (n < 1 - 1e-9)
     t->issue("end", fmt::format("found end = {} < step = {}, expected end ≥ step (at least one "
                                 "step)",
                                 *end, *step));
