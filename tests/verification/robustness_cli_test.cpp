@@ -92,4 +92,47 @@ TEST(Issue20, AStepCountAtTheLimitIsAccepted) {
   EXPECT_NE(c.output.find("100000000 steps"), std::string::npos) << c.output;
 }
 
+// #6: body names became file names (<name>_<step>.vtu, in result.pvd's XML) and history.csv
+// columns unescaped: "../../evil" wrote outside the output directory, "a,b" split a column.
+TEST(Issue20, ABodyNameOutsideTheSafeSetIsRefused) {
+  for (const std::string& name :
+       std::vector<std::string>{R"(../../evil)", R"(a/b)", R"(a,b)", R"(a\nb)", R"(a&b<c>\"q)",
+                                R"(.hidden)", R"()", R"(a b)", std::string(65, 'n')}) {
+    const auto file =
+        write_case("name", replace_all(kCase, "name = \"b\"", "name = \"" + name + "\""));
+    expect_refused(file, "bodies[0].name", "expected 1 to 64 letters, digits");
+  }
+}
+
+TEST(Issue20, ABoundaryNameInAReactionColumnOutsideTheSafeSetIsRefused) {
+  // A displacement boundary's `where` is in the column reaction_<body>_<where>_x: a Gmsh group
+  // named "x,min" made one column two. tests/cases/valid/gmsh-file.toml with its group "left"
+  // so renamed.
+  const auto valid = fs::path(TC_SOURCE_DIR) / "tests/cases/valid";
+  const auto file = write_case(
+      "where", replace_all(tc::test::read_file(valid / "gmsh-file.toml"), "\"left\"", "\"x,min\""));
+  std::ofstream(file.parent_path() / "square.msh")
+      << replace_all(tc::test::read_file(valid / "square.msh"), "\"left\"", "\"x,min\"");
+  expect_refused(file, "boundary[0].where", "found \"x,min\", a name with the character ','");
+  // Only where it reaches a column: the same group with a heat flux is fine.
+  const auto text = tc::test::read_file(file);  // before the ofstream truncates it
+  std::ofstream(file) << replace_all(text, "displacement = [0.0, 0.0]", "heat_flux = 0.0");
+  const auto c = limited("check " + file.string());
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+}
+
+TEST(Issue20, SafeNamesAreAccepted) {
+  const auto file =
+      write_case("safe-name", replace_all(kCase, "name = \"b\"", "name = \"Block-1_a.2\"") +
+                                  "[[boundary]]\nbody = \"Block-1_a.2\"\nwhere = \"xmin\"\n"
+                                  "displacement = [0.0, 0.0]\n");
+  const auto r =
+      limited("run " + file.string() + " --output " + (file.parent_path() / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(file.parent_path() / "out/Block-1_a.2_000002.vtu"));
+  EXPECT_NE(tc::test::read_file(file.parent_path() / "out/history.csv")
+                .find("reaction_Block-1_a.2_xmin_x"),
+            std::string::npos);
+}
+
 }  // namespace

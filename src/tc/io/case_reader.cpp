@@ -31,6 +31,45 @@ constexpr long kMaxSteps = 100'000'000;
 
 const Range kTemperature{[](double x) { return x > 0; }, "a temperature > 0 K"};
 
+/// Longest body or boundary name that may reach a file name or a history.csv column.
+constexpr size_t kMaxNameLength = 64;
+
+/// `s` with control and non-ASCII bytes as \xNN, so that a reported value stays on its line.
+std::string printable(std::string_view s) {
+  std::string out;
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    out += u < 0x20 || u >= 0x7F ? fmt::format("\\x{:02X}", u) : std::string(1, c);
+  }
+  return out;
+}
+
+/// Why `name` cannot be used as a body or boundary name, or "" when it can. Such names are
+/// written unescaped into file names (<body>_<step>.vtu, listed in result.pvd's XML) and into
+/// history.csv's header (reaction_<body>_<where>_x): "../../evil" wrote outside the output
+/// directory, "a,b" shifted every column after it.
+std::string unsafe_name(std::string_view name) {
+  if (name.empty()) return "an empty name";
+  if (name.size() > kMaxNameLength)
+    return fmt::format("a name of {} characters, more than {}", name.size(), kMaxNameLength);
+  if (name.front() == '.') return "a name that starts with '.'";
+  for (const char c : name) {
+    const bool safe = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                      c == '_' || c == '-' || c == '.';
+    if (!safe) return fmt::format("a name with the character '{}'", printable({&c, 1}));
+  }
+  return "";
+}
+
+/// An issue at member k when its string value is not a safe name (see unsafe_name).
+void check_name(const TableReader& t, std::string_view k, const std::string& name,
+                std::string_view used_in) {
+  if (const auto why = unsafe_name(name); !why.empty())
+    t.issue(k, fmt::format("found \"{}\", {}; expected 1 to {} letters, digits, '_', '-' or '.' "
+                           "(not first): it is used in {}",
+                           printable(name), why, kMaxNameLength, used_in));
+}
+
 std::string quoted_list(const std::vector<std::string>& names) {
   if (names.empty()) return "(none)";
   std::string out;
@@ -221,7 +260,7 @@ void CaseReader::read_bodies(const TableReader& root) {
     if (!name.empty() && !names.insert(name).second)
       issues_.add(detail::line_of(*a->get(i)->as_table()->get("name")),
                   detail::join(detail::at("bodies", i), "name"),
-                  fmt::format("found \"{}\" again, expected a unique body name", name));
+                  fmt::format("found \"{}\" again, expected a unique body name", printable(name)));
   }
 }
 
@@ -232,7 +271,7 @@ void CaseReader::read_body(const toml::table& t, size_t index) {
   physics::Body body;
   mesh_built_.push_back(false);
   if (const auto name = b.string("name", Need::Required)) {
-    if (name->empty()) b.issue("name", "found \"\", expected a non-empty name");
+    check_name(b, "name", *name, "output file names and history.csv columns");
     body.name = *name;
   }
   if (const auto mat = b.string("material", Need::Required)) {
@@ -366,6 +405,8 @@ void CaseReader::read_boundary(const toml::table& t, size_t index) {
   if (const auto where = b.string("where", Need::Required)) {
     bc.where = *where;
     if (body) check_boundary_name(b, "where", *body, *where);
+    if (b.has("displacement"))
+      check_name(b, "where", *where, "the history.csv columns reaction_<body>_<where>_x|y|z");
   }
   bc.body = body.value_or(0);
   if (const auto* n = b.get("displacement", Need::Optional, ""))
