@@ -169,6 +169,16 @@ int info(const char* program) {
   return 0;
 }
 
+/// Whether a path option was given with an empty value. Such a value is refused: it was taken
+/// for an absent option (`--restart ""` ran from step 0, `--output ""` wrote into the case's
+/// [output].directory).
+bool empty_path(const CLI::Option* option, const std::string& value, std::string_view expected) {
+  if (option->count() == 0 || !value.empty()) return false;
+  fmt::print(stderr, "error: {}: found an empty path, expected {}; nothing was run.\n",
+             option->get_name(), expected);
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -179,10 +189,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("case", case_file, "case file (TOML)")->required();
   auto* output_opt =
       run_cmd->add_option("--output", output, "output directory (overrides [output].directory)");
-  run_cmd
-      ->add_option("--restart", restart,
-                   "continue the run whose output is in this directory from its last checkpoint")
-      ->excludes(output_opt);
+  auto* restart_opt =
+      run_cmd
+          ->add_option("--restart", restart,
+                       "continue the run whose output is in this directory from its last "
+                       "checkpoint")
+          ->excludes(output_opt);
   int stop_after = -1;
   run_cmd->add_option("--stop-after", stop_after, "stop after this step as SIGTERM would")
       ->group("");          // for tests and batch jobs: undocumented in --help
@@ -195,6 +207,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  if (empty_path(output_opt, output, "an output directory (or no --output: [output].directory)") ||
+      empty_path(restart_opt, restart, "the output directory of the run to continue"))
+    return 2;
   try {
     if (run_cmd->parsed())
       return run(case_file, output, restart, stop_after, run_cmd->remaining(), argv[0]);

@@ -135,4 +135,17 @@ TEST(Issue20, SafeNamesAreAccepted) {
             std::string::npos);
 }
 
+// #7: an empty --restart or --output was taken for an absent option: the run started from step
+// 0 (or wrote) into the case's [output].directory.
+TEST(Issue20, AnEmptyRestartOrOutputPathIsRefused) {
+  const auto file = write_case("empty-path", kCase);
+  for (const std::string option : {"--restart", "--output"}) {
+    const auto r = limited("run " + file.string() + " " + option + " ''");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("error: " + option + ": found an empty path"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(file.parent_path() / "out")) << option << " \"\" ran:\n" << r.output;
+  }
+}
+
 }  // namespace
