@@ -2,6 +2,7 @@
 // binary as a user meets it (docs/robustness.md, "Bad input, issue 20").
 #include <gtest/gtest.h>
 
+#include <array>
 #include <regex>
 
 #include "support/cli.hpp"
@@ -146,6 +147,78 @@ TEST(Issue20, AnEmptyRestartOrOutputPathIsRefused) {
         << r.output;
     EXPECT_FALSE(fs::exists(file.parent_path() / "out")) << option << " \"\" ran:\n" << r.output;
   }
+}
+
+// #14: misleading messages. An integer beyond the limit was "expected an integer ≥ 1".
+TEST(Issue20, AnIntegerBeyondTheLimitIsSaidToBeTooLarge) {
+  const std::string too_large = "which is too large; expected an integer from 1 to 1000000000";
+  for (const auto& [from, to, key] : std::vector<std::array<std::string, 3>>{
+           {"cells = [2, 2]", "cells = [4294967297, 2]", "bodies[0].mesh.box.cells[0]"},
+           {"[[bodies]]", "[solver]\nmax_coupling_iterations = 3000000000\n[[bodies]]",
+            "solver.max_coupling_iterations"},
+           {"[[bodies]]", "[output]\nevery = 1e12\n[[bodies]]", "output.every"}}) {
+    const auto file = write_case("too-large", replace_all(kCase, from, to));
+    expect_refused(file, key, too_large);
+  }
+}
+
+TEST(Issue20, ABoxWithTooManyCellsInAllIsRefused) {
+  // Each count within the limit, their product 10¹⁰: beyond make_box's int counters.
+  const auto file =
+      write_case("box-cells", replace_all(kCase, "cells = [2, 2]", "cells = [100000, 100000]"));
+  expect_refused(file, "bodies[0].mesh.box.cells",
+                 "found 10000000000 cells in all, which is too many; expected at most 100000000");
+}
+
+// A directory or a device given as the mesh file "does not exist".
+TEST(Issue20, AMeshFileThatIsADirectoryOrADeviceIsSaidToBeSo) {
+  auto file = write_case("mesh-dir", replace_all(kCase,
+                                                 "mesh = { box = { min = [0.0, 0.0], "
+                                                 "max = [0.01, 0.01], cells = [2, 2] } }",
+                                                 "mesh = { file = \"dir.msh\" }"));
+  fs::create_directories(file.parent_path() / "dir.msh");
+  expect_refused(file, "bodies[0].mesh.file", "which is a directory; expected a Gmsh 4 file");
+  file = write_case("mesh-dev", replace_all(tc::test::read_file(file), "dir.msh", "/dev/zero"));
+  expect_refused(file, "bodies[0].mesh.file", "which is not a regular file");
+  file = write_case("mesh-none", replace_all(tc::test::read_file(file), "/dev/zero", "no.msh"));
+  expect_refused(file, "bodies[0].mesh.file", "which does not exist");
+}
+
+TEST(Issue20, ACaseFileThatIsADirectoryIsSaidToBeSo) {
+  const auto dir = tc::test::fresh_dir("case-dir");
+  const auto r = limited("check " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot read the case file: it is a directory"), std::string::npos)
+      << r.output;
+}
+
+// `thermocontact frobnicate` said "A subcommand is required".
+TEST(Issue20, AnUnknownSubcommandIsNamed) {
+  const auto r = limited("frobnicate");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("unknown subcommand 'frobnicate', expected one of: run, check, info"),
+            std::string::npos)
+      << r.output;
+}
+
+// `run A.toml B.toml` ran A and ignored B (passed on to PETSc with the options).
+TEST(Issue20, AnExtraArgumentOfRunIsRefused) {
+  const auto file = write_case("extra-argument", kCase);
+  const auto out = (file.parent_path() / "out").string();
+  for (const std::string& args : std::vector<std::string>{
+           file.string() + " B.toml --output " + out,
+           file.string() + " --output " + out + " -tc_fail_on_rank 5 B.toml"}) {
+    const auto r = limited("run " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("error: run: found the extra argument 'B.toml'"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out)) << args << " ran";
+  }
+  const auto c = limited("check " + file.string() + " B.toml");  // refused by CLI11 already
+  EXPECT_EQ(c.exit_code, 2) << c.output;
+  // A PETSc option's value is not an extra argument.
+  const auto r = limited("run " + file.string() + " --output " + out + " -tc_factor_package petsc");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
 }  // namespace

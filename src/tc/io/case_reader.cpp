@@ -29,6 +29,9 @@ using physics::Problem;
 /// that ends in reasonable time (end = 4294967.301, step = 0.001 wrapped round to 5 steps).
 constexpr long kMaxSteps = 100'000'000;
 
+/// The most cells a box mesh may have (far beyond what a run on one machine can hold).
+constexpr long kMaxBoxCells = 100'000'000;
+
 const Range kTemperature{[](double x) { return x > 0; }, "a temperature > 0 K"};
 
 /// Longest body or boundary name that may reach a file name or a history.csv column.
@@ -70,6 +73,18 @@ void check_name(const TableReader& t, std::string_view k, const std::string& nam
                            printable(name), why, kMaxNameLength, used_in));
 }
 
+/// What keeps `path` from being read as a file ("does not exist", "is a directory", ...), or ""
+/// when it is a regular file (after symbolic links). "does not exist" was said of all of them.
+std::string not_a_file(const fs::path& path) {
+  std::error_code ec;
+  const auto status = fs::status(path, ec);
+  if (status.type() == fs::file_type::regular) return "";
+  if (status.type() == fs::file_type::not_found) return "does not exist";
+  if (status.type() == fs::file_type::directory) return "is a directory";
+  if (ec) return fmt::format("cannot be examined ({})", ec.message());
+  return "is not a regular file (a device, pipe or socket)";
+}
+
 std::string quoted_list(const std::vector<std::string>& names) {
   if (names.empty()) return "(none)";
   std::string out;
@@ -97,6 +112,8 @@ class CaseReader {
   void read_mesh(const TableReader& b, physics::Body& body);
   void read_box(const TableReader& box, physics::Body& body);
   void read_mesh_file(const TableReader& mesh, physics::Body& body);
+  /// Issue when a box has more cells in all than kMaxBoxCells.
+  [[nodiscard]] bool box_size_ok(const TableReader& box, const std::array<int, 3>& cells) const;
   void read_boundaries(const TableReader& root);
   void read_boundary(const toml::table& t, size_t index);
   void read_contact(const TableReader& root);
@@ -342,7 +359,7 @@ void CaseReader::read_box(const TableReader& box, physics::Body& body) {
                                    k, (*hi)[k], k, (*lo)[k]));
       good = false;
     }
-  if (!good) return;
+  if (!good || !box_size_ok(box, *cells)) return;
   try {
     body.mesh = mesh::make_box(dim_, *lo, *hi, *cells);
     mesh_built_.back() = true;
@@ -351,15 +368,26 @@ void CaseReader::read_box(const TableReader& box, physics::Body& body) {
   }
 }
 
+bool CaseReader::box_size_ok(const TableReader& box, const std::array<int, 3>& cells) const {
+  // Each count is at most 10⁹, their product is not: make_box counts cells and nodes in int
+  // (cells = [100000, 100000] overflowed it), and memory runs out long before.
+  double total = 1;
+  for (int k = 0; k < dim_; ++k) total *= cells[k];
+  if (total <= static_cast<double>(kMaxBoxCells)) return true;
+  box.issue("cells", fmt::format("found {:.0f} cells in all, which is too many; expected at most "
+                                 "{} cells in a box",
+                                 total, kMaxBoxCells));
+  return false;
+}
+
 void CaseReader::read_mesh_file(const TableReader& mesh, physics::Body& body) {
   const auto name = mesh.string("file", Need::Required);
   if (!name || dim_ == 0) return;
   const auto path = resolve(*name);
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    mesh.issue("file", fmt::format("found \"{}\" ({}), which does not exist; expected a Gmsh 4 "
-                                   "file, relative to the case file",
-                                   *name, path.string()));
+  if (const auto why = not_a_file(path); !why.empty()) {
+    mesh.issue("file", fmt::format("found \"{}\" ({}), which {}; expected a Gmsh 4 file, "
+                                   "relative to the case file",
+                                   *name, path.string(), why));
     return;
   }
   try {
@@ -620,10 +648,8 @@ std::optional<std::pair<int, std::string>> stray_non_ascii(std::string_view text
 }
 
 physics::Problem read_case(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    throw InputError({{file.string(), 1, "(file)",
-                       "cannot read the case file: it does not exist or is not a file"}});
+  if (const auto why = not_a_file(file); !why.empty())
+    throw InputError({{file.string(), 1, "(file)", "cannot read the case file: it " + why}});
   std::string text;
   {
     std::ifstream in(file, std::ios::binary);
