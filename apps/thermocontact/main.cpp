@@ -88,6 +88,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
     if (!restart.empty()) {
       const auto file = tc::io::checkpoint_file(restart);
+      tc::io::check_restart_outputs(restart);
       try {
         sim.restore(tc::io::read_checkpoint(file, sim, case_hash));
       } catch (const tc::io::CheckpointError&) {

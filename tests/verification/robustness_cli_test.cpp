@@ -1,6 +1,7 @@
 // Issue 20: inputs that the command line took in silently or reported wrongly, each through the
 // binary as a user meets it (docs/robustness.md, "Bad input, issue 20").
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <array>
 #include <regex>
@@ -52,10 +53,13 @@ bool reports(const std::string& output, const fs::path& file, const std::string&
   return false;
 }
 
-/// The binary under a time limit: the old code ran some of these inputs for hours (1e8 steps),
-/// and a regression should fail the test, not hang it.
+/// Runs the binary under a time limit: the old code ran some of these inputs for hours (1e8
+/// steps) or waited for ever (a FIFO as checkpoint), and a regression should fail the test,
+/// not hang it. SIGKILL 10 s after the SIGTERM: the run takes SIGTERM as "stop after the step".
+const std::string kTimeLimit = "timeout -k 10 120 ";
+
 tc::test::CommandResult limited(const std::string& args) {
-  return tc::test::run_command("timeout 120 " + std::string(TC_BINARY) + " " + args);
+  return tc::test::run_command(kTimeLimit + TC_BINARY + " " + args);
 }
 
 /// `check` and `run` both refuse `file` with exit code 2, reporting KEY with TEXT.
@@ -218,6 +222,50 @@ TEST(Issue20, AnExtraArgumentOfRunIsRefused) {
   EXPECT_EQ(c.exit_code, 2) << c.output;
   // A PETSc option's value is not an extra argument.
   const auto r = limited("run " + file.string() + " --output " + out + " -tc_factor_package petsc");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// #17: a checkpoint.bin linked to /dev/zero or /dev/urandom was read on --restart until memory
+// ran out. The restarts run under a 4 GB address-space limit and a time limit, so that a
+// regression fails the test instead of exhausting the machine.
+TEST(Issue20, ACheckpointThatIsNotARegularFileIsRefusedWithExitTwo) {
+  const auto file = write_case("checkpoint-device", kCase);
+  const auto dir = file.parent_path() / "out";
+  ASSERT_EQ(limited("run " + file.string() + " --output " + dir.string()).exit_code, 0);
+  const auto checkpoint = dir / "checkpoint.bin";
+  const auto saved = dir / "saved.bin";
+  fs::rename(checkpoint, saved);
+  const auto restart = [&] {
+    return tc::test::run_command("ulimit -v 4000000; " + kTimeLimit + TC_BINARY + " run " +
+                                 file.string() + " --restart " + dir.string());
+  };
+  for (const std::string target : {"/dev/zero", "/dev/urandom", "fifo", "directory"}) {
+    fs::remove_all(checkpoint);
+    if (target == "fifo")
+      ASSERT_EQ(::mkfifo(checkpoint.c_str(), 0600), 0);
+    else if (target == "directory")
+      fs::create_directory(checkpoint);
+    else
+      fs::create_symlink(target, checkpoint);
+    const auto r = restart();
+    EXPECT_EQ(r.exit_code, 2) << target << "\n" << r.output;
+    EXPECT_NE(r.output.find("error: checkpoint " + checkpoint.string() + ": is "),
+              std::string::npos)
+        << target << "\n"
+        << r.output;
+  }
+  // The history a restart keeps is read line by line too.
+  fs::remove_all(checkpoint);
+  fs::rename(saved, checkpoint);
+  fs::rename(dir / "history.csv", dir / "saved.csv");
+  fs::create_symlink("/dev/zero", dir / "history.csv");
+  auto r = restart();
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("history.csv is not a regular file"), std::string::npos) << r.output;
+  // Put back, the restart goes through.
+  fs::remove(dir / "history.csv");
+  fs::rename(dir / "saved.csv", dir / "history.csv");
+  r = restart();
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
