@@ -11,6 +11,7 @@
 #include "tc/io/case_schema.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/partition.hpp"
 #include "tc/physics/checks.hpp"
 
 namespace tc::io {
@@ -109,6 +110,8 @@ class CaseReader {
   void read_bodies(const TableReader& root);
   void read_body(const toml::table& t, size_t index);
   void read_body_loads(const TableReader& b, physics::Body& body);
+  /// Issue when the body's mesh cannot be cut into its subdomains (as the run would find).
+  void check_subdomains(const TableReader& b, const physics::Body& body);
   void read_mesh(const TableReader& b, physics::Body& body);
   void read_box(const TableReader& box, physics::Body& body);
   void read_mesh_file(const TableReader& mesh, physics::Body& body);
@@ -305,8 +308,30 @@ void CaseReader::read_body(const toml::table& t, size_t index) {
   }
   read_mesh(b, body);
   read_body_loads(b, body);
-  if (const auto s = b.integer("subdomains", Need::Optional, 1)) body.subdomains = *s;
+  if (const auto s = b.integer("subdomains", Need::Optional, 1)) {
+    body.subdomains = *s;
+    check_subdomains(b, body);
+  }
   p_.bodies.push_back(std::move(body));
+}
+
+void CaseReader::check_subdomains(const TableReader& b, const physics::Body& body) {
+  if (!mesh_built_.back() || body.subdomains <= 1) return;
+  const int cells = body.mesh.n_cells();
+  if (body.subdomains > cells) {
+    b.issue("subdomains", fmt::format("found {}, more than the {} cells of the body's mesh; "
+                                      "expected 1 to {} (at least one cell per subdomain)",
+                                      body.subdomains, cells, cells));
+    return;
+  }
+  // The run cuts the mesh with METIS (seeded: the same cut), which leaves parts empty on small
+  // meshes (10 cells into 7): cut it here too so that `check` reports what `run` would.
+  try {
+    (void)mesh::partition_cells(body.mesh, body.subdomains);
+  } catch (const MeshError& e) {
+    b.issue("subdomains", fmt::format("found {}, which the body's mesh cannot be cut into: {}",
+                                      body.subdomains, e.what()));
+  }
 }
 
 void CaseReader::read_body_loads(const TableReader& b, physics::Body& body) {
