@@ -10,7 +10,6 @@
 
 namespace fs = std::filesystem;
 using tc::test::replace_all;
-using tc::test::thermocontact;
 
 namespace {
 
@@ -92,7 +91,7 @@ TEST(Issue20, AStepCountBeyondTheLimitIsRefusedNamingTimeStep) {
 
 TEST(Issue20, AStepCountAtTheLimitIsAccepted) {
   const auto file = write_case("steps-limit", replace_all(kCase, "end = 0.002", "end = 100000.0"));
-  const auto c = thermocontact("check " + file.string());
+  const auto c = limited("check " + file.string());
   EXPECT_EQ(c.exit_code, 0) << c.output;
   EXPECT_NE(c.output.find("100000000 steps"), std::string::npos) << c.output;
 }

@@ -214,7 +214,7 @@ struct Descriptor {
   }
 };
 
-/// "" when `file` (after symbolic links) is a regular file, else what it is instead.
+/// "" for a regular file (stat follows symbolic links), else what the file is instead.
 std::string not_regular(const struct stat& st) {
   if (S_ISREG(st.st_mode)) return "";
   if (S_ISDIR(st.st_mode)) return "a directory";
