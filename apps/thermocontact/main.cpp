@@ -88,6 +88,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
     if (!restart.empty()) {
       const auto file = tc::io::checkpoint_file(restart);
+      tc::io::check_restart_outputs(restart);
       try {
         sim.restore(tc::io::read_checkpoint(file, sim, case_hash));
       } catch (const tc::io::CheckpointError&) {
@@ -169,6 +170,37 @@ int info(const char* program) {
   return 0;
 }
 
+/// Whether a path option was given with an empty value. Such a value is refused: it was taken
+/// for an absent option (`--restart ""` ran from step 0, `--output ""` wrote into the case's
+/// [output].directory).
+bool empty_path(const CLI::Option* option, const std::string& value, std::string_view expected) {
+  if (option->count() == 0 || !value.empty()) return false;
+  fmt::print(stderr, "error: {}: found an empty path, expected {}; nothing was run.\n",
+             option->get_name(), expected);
+  return true;
+}
+
+/// The first word of the command line when it is not a subcommand (CLI11 says "A subcommand
+/// is required" of `thermocontact frobnicate`), or "".
+std::string unknown_subcommand(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  std::vector<std::string> names;
+  for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    if (sub->get_name() == argv[1]) return "";
+    names.push_back(sub->get_name());
+  }
+  return fmt::format("error: unknown subcommand '{}', expected one of: {}\n", argv[1],
+                     fmt::join(names, ", "));
+}
+
+/// An argument of `run` after the case file that is neither a PETSc option nor an option's
+/// value: `run A.toml B.toml` ran A and ignored B (CLI11 passes it on with the PETSc options).
+std::string stray_argument(const std::vector<std::string>& extra) {
+  for (size_t i = 0; i < extra.size(); ++i)
+    if (extra[i].rfind('-', 0) != 0 && (i == 0 || extra[i - 1].rfind('-', 0) != 0)) return extra[i];
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -179,10 +211,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("case", case_file, "case file (TOML)")->required();
   auto* output_opt =
       run_cmd->add_option("--output", output, "output directory (overrides [output].directory)");
-  run_cmd
-      ->add_option("--restart", restart,
-                   "continue the run whose output is in this directory from its last checkpoint")
-      ->excludes(output_opt);
+  auto* restart_opt =
+      run_cmd
+          ->add_option("--restart", restart,
+                       "continue the run whose output is in this directory from its last "
+                       "checkpoint")
+          ->excludes(output_opt);
   int stop_after = -1;
   run_cmd->add_option("--stop-after", stop_after, "stop after this step as SIGTERM would")
       ->group("");          // for tests and batch jobs: undocumented in --help
@@ -190,10 +224,24 @@ int main(int argc, char** argv) {
   auto* check_cmd = app.add_subcommand("check", "validate a case file only");
   check_cmd->add_option("case", case_file, "case file (TOML)")->required();
   app.add_subcommand("info", "version, PETSc/MPI configuration, factorizations");
+  if (const auto message = unknown_subcommand(app, argc, argv); !message.empty()) {
+    fmt::print(stderr, "{}", message);
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (empty_path(output_opt, output, "an output directory (or no --output: [output].directory)") ||
+      empty_path(restart_opt, restart, "the output directory of the run to continue"))
+    return 2;
+  if (const auto extra = stray_argument(run_cmd->remaining()); !extra.empty()) {
+    fmt::print(stderr,
+               "error: run: found the extra argument '{}' after the case file {}, expected one "
+               "case file (PETSc options begin with '-'); nothing was run.\n",
+               extra, case_file);
+    return 2;
   }
   try {
     if (run_cmd->parsed())

@@ -11,6 +11,7 @@
 #include "tc/io/case_schema.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/partition.hpp"
 #include "tc/physics/checks.hpp"
 
 namespace tc::io {
@@ -25,7 +26,65 @@ using detail::Range;
 using detail::TableReader;
 using physics::Problem;
 
+/// The most steps a run may have: well inside the int step counter, and far more than a run
+/// that ends in reasonable time (end = 4294967.301, step = 0.001 wrapped round to 5 steps).
+constexpr long kMaxSteps = 100'000'000;
+
+/// The most cells a box mesh may have (far beyond what a run on one machine can hold).
+constexpr long kMaxBoxCells = 100'000'000;
+
 const Range kTemperature{[](double x) { return x > 0; }, "a temperature > 0 K"};
+
+/// Longest body or boundary name that may reach a file name or a history.csv column.
+constexpr size_t kMaxNameLength = 64;
+
+/// `s` with control and non-ASCII bytes as \xNN, so that a reported value stays on its line.
+std::string printable(std::string_view s) {
+  std::string out;
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    out += u < 0x20 || u >= 0x7F ? fmt::format("\\x{:02X}", u) : std::string(1, c);
+  }
+  return out;
+}
+
+/// Why `name` cannot be used as a body or boundary name, or "" when it can. Such names are
+/// written unescaped into file names (<body>_<step>.vtu, listed in result.pvd's XML) and into
+/// history.csv's header (reaction_<body>_<where>_x): "../../evil" wrote outside the output
+/// directory, "a,b" shifted every column after it.
+std::string unsafe_name(std::string_view name) {
+  if (name.empty()) return "an empty name";
+  if (name.size() > kMaxNameLength)
+    return fmt::format("a name of {} characters, more than {}", name.size(), kMaxNameLength);
+  if (name.front() == '.') return "a name that starts with '.'";
+  for (const char c : name) {
+    const bool safe = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                      c == '_' || c == '-' || c == '.';
+    if (!safe) return fmt::format("a name with the character '{}'", printable({&c, 1}));
+  }
+  return "";
+}
+
+/// An issue at member k when its string value is not a safe name (see unsafe_name).
+void check_name(const TableReader& t, std::string_view k, const std::string& name,
+                std::string_view used_in) {
+  if (const auto why = unsafe_name(name); !why.empty())
+    t.issue(k, fmt::format("found \"{}\", {}; expected 1 to {} letters, digits, '_', '-' or '.' "
+                           "(not first): it is used in {}",
+                           printable(name), why, kMaxNameLength, used_in));
+}
+
+/// What keeps `path` from being read as a file ("does not exist", "is a directory", ...), or ""
+/// when it is a regular file (after symbolic links). "does not exist" was said of all of them.
+std::string not_a_file(const fs::path& path) {
+  std::error_code ec;
+  const auto status = fs::status(path, ec);
+  if (status.type() == fs::file_type::regular) return "";
+  if (status.type() == fs::file_type::not_found) return "does not exist";
+  if (status.type() == fs::file_type::directory) return "is a directory";
+  if (ec) return fmt::format("cannot be examined ({})", ec.message());
+  return "is not a regular file (a device, pipe or socket)";
+}
 
 std::string quoted_list(const std::vector<std::string>& names) {
   if (names.empty()) return "(none)";
@@ -51,9 +110,13 @@ class CaseReader {
   void read_bodies(const TableReader& root);
   void read_body(const toml::table& t, size_t index);
   void read_body_loads(const TableReader& b, physics::Body& body);
+  /// Issue when the body's mesh cannot be cut into its subdomains (as the run would find).
+  void check_subdomains(const TableReader& b, const physics::Body& body);
   void read_mesh(const TableReader& b, physics::Body& body);
   void read_box(const TableReader& box, physics::Body& body);
   void read_mesh_file(const TableReader& mesh, physics::Body& body);
+  /// Issue when a box has more cells in all than kMaxBoxCells.
+  [[nodiscard]] bool box_size_ok(const TableReader& box, const std::array<int, 3>& cells) const;
   void read_boundaries(const TableReader& root);
   void read_boundary(const toml::table& t, size_t index);
   void read_contact(const TableReader& root);
@@ -133,7 +196,12 @@ void CaseReader::read_time(const TableReader& root) {
   p_.time.step = *step;
   p_.time.end = *end;
   const double n = *end / *step;
-  if (n < 1 - 1e-9)
+  // Negated so that inf (end/step overflowing a double) is refused too.
+  if (!(std::round(n) <= static_cast<double>(kMaxSteps)))
+    t->issue("step", fmt::format("found step = {} with end = {}, which is {:.10g} steps; expected "
+                                 "at most {} steps (time.end / time.step)",
+                                 *step, *end, n, kMaxSteps));
+  else if (n < 1 - 1e-9)
     t->issue("end", fmt::format("found end = {} < step = {}, expected end ≥ step (at least one "
                                 "step)",
                                 *end, *step));
@@ -214,7 +282,7 @@ void CaseReader::read_bodies(const TableReader& root) {
     if (!name.empty() && !names.insert(name).second)
       issues_.add(detail::line_of(*a->get(i)->as_table()->get("name")),
                   detail::join(detail::at("bodies", i), "name"),
-                  fmt::format("found \"{}\" again, expected a unique body name", name));
+                  fmt::format("found \"{}\" again, expected a unique body name", printable(name)));
   }
 }
 
@@ -225,7 +293,7 @@ void CaseReader::read_body(const toml::table& t, size_t index) {
   physics::Body body;
   mesh_built_.push_back(false);
   if (const auto name = b.string("name", Need::Required)) {
-    if (name->empty()) b.issue("name", "found \"\", expected a non-empty name");
+    check_name(b, "name", *name, "output file names and history.csv columns");
     body.name = *name;
   }
   if (const auto mat = b.string("material", Need::Required)) {
@@ -242,8 +310,30 @@ void CaseReader::read_body(const toml::table& t, size_t index) {
   }
   read_mesh(b, body);
   read_body_loads(b, body);
-  if (const auto s = b.integer("subdomains", Need::Optional, 1)) body.subdomains = *s;
+  if (const auto s = b.integer("subdomains", Need::Optional, 1)) {
+    body.subdomains = *s;
+    check_subdomains(b, body);
+  }
   p_.bodies.push_back(std::move(body));
+}
+
+void CaseReader::check_subdomains(const TableReader& b, const physics::Body& body) {
+  if (!mesh_built_.back() || body.subdomains <= 1) return;
+  const int cells = body.mesh.n_cells();
+  if (body.subdomains > cells) {
+    b.issue("subdomains", fmt::format("found {}, more than the {} cells of the body's mesh; "
+                                      "expected 1 to {} (at least one cell per subdomain)",
+                                      body.subdomains, cells, cells));
+    return;
+  }
+  // The run cuts the mesh with METIS (seeded: the same cut), which leaves parts empty on small
+  // meshes (10 cells into 7): cut it here too so that `check` reports what `run` would.
+  try {
+    (void)mesh::partition_cells(body.mesh, body.subdomains);
+  } catch (const MeshError& e) {
+    b.issue("subdomains", fmt::format("found {}, which the body's mesh cannot be cut into: {}",
+                                      body.subdomains, e.what()));
+  }
 }
 
 void CaseReader::read_body_loads(const TableReader& b, physics::Body& body) {
@@ -298,7 +388,7 @@ void CaseReader::read_box(const TableReader& box, physics::Body& body) {
                                    k, (*hi)[k], k, (*lo)[k]));
       good = false;
     }
-  if (!good) return;
+  if (!good || !box_size_ok(box, *cells)) return;
   try {
     body.mesh = mesh::make_box(dim_, *lo, *hi, *cells);
     mesh_built_.back() = true;
@@ -307,15 +397,26 @@ void CaseReader::read_box(const TableReader& box, physics::Body& body) {
   }
 }
 
+bool CaseReader::box_size_ok(const TableReader& box, const std::array<int, 3>& cells) const {
+  // Each count is at most 10⁹, their product is not: make_box counts cells and nodes in int
+  // (cells = [100000, 100000] overflowed it), and memory runs out long before.
+  double total = 1;
+  for (int k = 0; k < dim_; ++k) total *= cells[k];
+  if (total <= static_cast<double>(kMaxBoxCells)) return true;
+  box.issue("cells", fmt::format("found {:.0f} cells in all, which is too many; expected at most "
+                                 "{} cells in a box",
+                                 total, kMaxBoxCells));
+  return false;
+}
+
 void CaseReader::read_mesh_file(const TableReader& mesh, physics::Body& body) {
   const auto name = mesh.string("file", Need::Required);
   if (!name || dim_ == 0) return;
   const auto path = resolve(*name);
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    mesh.issue("file", fmt::format("found \"{}\" ({}), which does not exist; expected a Gmsh 4 "
-                                   "file, relative to the case file",
-                                   *name, path.string()));
+  if (const auto why = not_a_file(path); !why.empty()) {
+    mesh.issue("file", fmt::format("found \"{}\" ({}), which {}; expected a Gmsh 4 file, "
+                                   "relative to the case file",
+                                   *name, path.string(), why));
     return;
   }
   try {
@@ -361,6 +462,8 @@ void CaseReader::read_boundary(const toml::table& t, size_t index) {
   if (const auto where = b.string("where", Need::Required)) {
     bc.where = *where;
     if (body) check_boundary_name(b, "where", *body, *where);
+    if (b.has("displacement"))
+      check_name(b, "where", *where, "the history.csv columns reaction_<body>_<where>_x|y|z");
   }
   bc.body = body.value_or(0);
   if (const auto* n = b.get("displacement", Need::Optional, ""))
@@ -583,10 +686,8 @@ std::optional<std::pair<int, std::string>> stray_non_ascii(std::string_view text
 }
 
 physics::Problem read_case(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    throw InputError({{file.string(), 1, "(file)",
-                       "cannot read the case file: it does not exist or is not a file"}});
+  if (const auto why = not_a_file(file); !why.empty())
+    throw InputError({{file.string(), 1, "(file)", "cannot read the case file: it " + why}});
   std::string text;
   {
     std::ifstream in(file, std::ios::binary);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace tc::io::detail {
 
@@ -32,7 +33,19 @@ std::string describe_float(double v) {
   return s;
 }
 
+/// The largest integer any count or iteration limit of a case may have (an int holds it).
+constexpr std::int64_t kMaxInteger = 1'000'000'000;
+
 }  // namespace
+
+std::string integer_issue(const toml::node& n, int min) {
+  if (const auto* i = n.as_integer(); i && i->get() >= min && i->get() <= kMaxInteger) return "";
+  // Beyond the limit "expected an integer ≥ 1" read as if 4294967297 were not an integer.
+  if (n.is_number() && *n.value<double>() > static_cast<double>(kMaxInteger))
+    return fmt::format("found {}, which is too large; expected an integer from {} to {}",
+                       describe(n), min, kMaxInteger);
+  return fmt::format("found {}, expected an integer ≥ {}", describe(n), min);
+}
 
 std::string describe(const toml::node& n) {
   if (const auto* s = n.as_string()) return fmt::format("\"{}\"", s->get());
@@ -119,12 +132,11 @@ std::optional<int> TableReader::integer(std::string_view k, Need need, int min) 
   const auto expected = fmt::format("an integer ≥ {}", min);
   const auto* n = get(k, need, expected);
   if (!n) return std::nullopt;
-  const auto* i = n->as_integer();
-  if (!i || i->get() < min || i->get() > 1'000'000'000) {
-    issue(k, fmt::format("found {}, expected {}", describe(*n), expected));
+  if (auto problem = integer_issue(*n, min); !problem.empty()) {
+    issue(k, std::move(problem));
     return std::nullopt;
   }
-  return static_cast<int>(i->get());
+  return static_cast<int>(n->as_integer()->get());
 }
 
 std::optional<std::string> TableReader::string(std::string_view k, Need need) const {
@@ -281,14 +293,12 @@ std::optional<std::array<int, 3>> read_counts(const toml::node& n, const std::st
   bool good = true;
   for (size_t k = 0; k < a->size(); ++k) {
     const auto& e = *a->get(k);
-    const auto* i = e.as_integer();
-    if (!i || i->get() < 1 || i->get() > 1'000'000'000) {
-      issues.add(line_of(e), at(key, k),
-                 fmt::format("found {}, expected an integer ≥ 1", describe(e)));
+    if (auto problem = integer_issue(e, 1); !problem.empty()) {
+      issues.add(line_of(e), at(key, k), std::move(problem));
       good = false;
       continue;
     }
-    out[k] = static_cast<int>(i->get());
+    out[k] = static_cast<int>(e.as_integer()->get());
   }
   return good ? std::optional(out) : std::nullopt;
 }

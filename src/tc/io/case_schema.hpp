@@ -26,6 +26,9 @@ namespace tc::io::detail {
 [[nodiscard]] int line_of(const toml::node& n);
 /// What a node is, for "found ...": `"fast"`, `0.5`, `2.0`, `true`, `an array of 3 entries`.
 [[nodiscard]] std::string describe(const toml::node& n);
+/// "" when n is an integer from `min` to 10⁹, otherwise the issue: "found X, expected an
+/// integer ≥ min", or "found X, which is too large; expected an integer from min to 10⁹".
+[[nodiscard]] std::string integer_issue(const toml::node& n, int min);
 
 /// The problems of one case file, thrown together as one InputError.
 class Issues {

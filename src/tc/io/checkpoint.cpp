@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -205,17 +206,82 @@ void write_checkpoint(const std::filesystem::path& file, const physics::Simulati
   std::filesystem::rename(tmp, file);  // atomic: the old checkpoint or the new, never half
 }
 
-physics::Checkpoint read_checkpoint(const std::filesystem::path& file,
-                                    const physics::Simulation& sim, std::uint64_t case_hash) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
+namespace {
+
+/// Closes a descriptor on every way out.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+/// "" for a regular file (stat follows symbolic links), else what the file is instead.
+std::string not_regular(const struct stat& st) {
+  if (S_ISREG(st.st_mode)) return "";
+  if (S_ISDIR(st.st_mode)) return "a directory";
+  return "not a regular file (a device, pipe or socket)";
+}
+
+/// The bytes of a checkpoint file, refused unless it is a regular file, and read up to the size
+/// it has: a checkpoint.bin linked to /dev/zero was read until memory ran out. Every length in
+/// the data is then checked against these bytes before anything is allocated (ByteReader).
+std::string read_regular_file(const std::filesystem::path& file) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; no effect on a regular file.
+  const Descriptor d{::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
+  if (d.fd < 0 && errno == ENOENT)
     throw CheckpointError(
         fmt::format("no checkpoint {} to restart from (a run writes it after "
                     "every step into its output directory)",
                     file.string()));
-  std::stringstream s;
-  s << in.rdbuf();
-  return decode_checkpoint(s.str(), sim, case_hash, file.string());
+  if (d.fd < 0)
+    throw CheckpointError(
+        fmt::format("checkpoint {}: cannot be opened: {}", file.string(), std::strerror(errno)));
+  struct stat st {};
+  if (::fstat(d.fd, &st) != 0)
+    throw CheckpointError(
+        fmt::format("checkpoint {}: cannot be examined: {}", file.string(), std::strerror(errno)));
+  if (const auto what = not_regular(st); !what.empty())
+    throw CheckpointError(
+        fmt::format("checkpoint {}: is {}, expected the checkpoint.bin file "
+                    "that a run writes into its output directory",
+                    file.string(), what));
+  std::string bytes(static_cast<size_t>(st.st_size), '\0');
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const auto n = ::read(d.fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0)
+      throw CheckpointError(
+          fmt::format("checkpoint {}: cannot be read: {}", file.string(), std::strerror(errno)));
+    if (n == 0)
+      throw CheckpointError(fmt::format("checkpoint {}: shorter than its size ({} of {} bytes)",
+                                        file.string(), done, bytes.size()));
+    done += static_cast<size_t>(n);
+  }
+  return bytes;
+}
+
+}  // namespace
+
+physics::Checkpoint read_checkpoint(const std::filesystem::path& file,
+                                    const physics::Simulation& sim, std::uint64_t case_hash) {
+  return decode_checkpoint(read_regular_file(file), sim, case_hash, file.string());
+}
+
+void check_restart_outputs(const std::filesystem::path& directory) {
+  // A restart reads these line by line (the rows and data sets it keeps): each must be a
+  // regular file, as a run leaves it, not a link to /dev/zero.
+  for (const char* name : {"history.csv", "result.pvd"}) {
+    const auto file = directory / name;
+    struct stat st {};
+    if (::stat(file.c_str(), &st) != 0) continue;  // missing: the restart writes it afresh
+    if (const auto what = not_regular(st); !what.empty())
+      throw CheckpointError(
+          fmt::format("restart from {}: {} is {}, expected the file that a "
+                      "run writes there",
+                      directory.string(), file.string(), what));
+  }
 }
 
 CheckpointWriter::CheckpointWriter(std::filesystem::path directory, std::uint64_t case_hash)

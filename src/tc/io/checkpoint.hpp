@@ -52,6 +52,10 @@ void write_checkpoint(const std::filesystem::path& file, const physics::Simulati
                                                   const physics::Simulation& sim,
                                                   std::uint64_t case_hash);
 
+/// Refuses (CheckpointError) a history.csv or result.pvd in a restart's directory that is not a
+/// regular file: the restart reads them line by line.
+void check_restart_outputs(const std::filesystem::path& directory);
+
 /// Writes the checkpoint after every completed step (MPI rank 0 only; every rank holds every
 /// body). Put it after the OutputWriter: a checkpoint then never runs ahead of history.csv.
 class CheckpointWriter : public physics::Observer {

@@ -1,6 +1,11 @@
 #include "tc/physics/problem.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
+#include <limits>
+
+#include "tc/core/error.hpp"
 
 namespace tc::physics {
 
@@ -17,7 +22,13 @@ std::string combined_contact_dual_unavailable(const Problem& p) {
 }
 
 int TimeSettings::n_steps() const {
-  return static_cast<int>(std::lround(end / step));
+  // The case reader caps end/step far below this; a Problem built in code could still overflow
+  // the int (it wrapped round to a few or negative steps).
+  const double n = std::round(end / step);
+  if (!(n >= 0 && n <= std::numeric_limits<int>::max()))
+    throw Error(fmt::format("time: end / step = {:g} / {:g} = {:g} steps, expected 0 to {}", end,
+                            step, n, std::numeric_limits<int>::max()));
+  return static_cast<int>(n);
 }
 
 }  // namespace tc::physics

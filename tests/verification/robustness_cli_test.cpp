@@ -1,0 +1,289 @@
+// Issue 20: inputs that the command line took in silently or reported wrongly, each through the
+// binary as a user meets it (docs/robustness.md, "Bad input, issue 20").
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <array>
+#include <regex>
+
+#include "support/cli.hpp"
+
+namespace fs = std::filesystem;
+using tc::test::replace_all;
+
+namespace {
+
+/// A small valid case (one dynamic 2D body, 2 steps) for the variants below.
+const std::string kCase = R"(dimension = 2
+[time]
+step = 0.001
+end = 0.002
+[materials.m]
+density = 7850.0
+young_modulus = 2.0e11
+poisson_ratio = 0.3
+thermal_expansion = 1e-5
+specific_heat = 450.0
+thermal_conductivity = 50.0
+[[bodies]]
+name = "b"
+material = "m"
+mesh = { box = { min = [0.0, 0.0], max = [0.01, 0.01], cells = [2, 2] } }
+)";
+
+/// Writes `text` as case.toml in a fresh directory named after the test.
+fs::path write_case(const std::string& name, const std::string& text) {
+  const auto file = tc::test::fresh_dir(name) / "case.toml";
+  std::ofstream(file) << text;
+  return file;
+}
+
+/// Whether `output` reports an issue as `FILE:LINE: KEY: ...TEXT...`.
+bool reports(const std::string& output, const fs::path& file, const std::string& key,
+             const std::string& text) {
+  const auto escaped =
+      std::regex_replace(file.string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)");
+  const std::regex located(escaped + R"(:[1-9][0-9]*: )" +
+                           std::regex_replace(key, std::regex(R"([.\[\]])"), R"(\$&)") + ": ");
+  std::istringstream lines(output);
+  std::string line;
+  while (std::getline(lines, line))
+    if (std::regex_search(line, located) && line.find(text) != std::string::npos) return true;
+  return false;
+}
+
+/// Runs the binary under a time limit: the old code ran some of these inputs for hours (1e8
+/// steps) or waited for ever (a FIFO as checkpoint), and a regression should fail the test,
+/// not hang it. SIGKILL 10 s after the SIGTERM: the run takes SIGTERM as "stop after the step".
+const std::string kTimeLimit = "timeout -k 10 120 ";
+
+tc::test::CommandResult limited(const std::string& args) {
+  return tc::test::run_command(kTimeLimit + TC_BINARY + " " + args);
+}
+
+/// `check` and `run` both refuse `file` with exit code 2, reporting KEY with TEXT.
+void expect_refused(const fs::path& file, const std::string& key, const std::string& text) {
+  const auto c = limited("check " + file.string());
+  EXPECT_EQ(c.exit_code, 2) << c.output;
+  EXPECT_TRUE(reports(c.output, file, key, text)) << key << " / " << text << "\n" << c.output;
+  const auto r =
+      limited("run " + file.string() + " --output " + (file.parent_path() / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(reports(r.output, file, key, text)) << key << " / " << text << "\n" << r.output;
+  EXPECT_FALSE(fs::exists(file.parent_path() / "out")) << "a refused case wrote output";
+}
+
+// #5: end/step was rounded into an int, so it wrapped round: 4294967301 steps ran as 5,
+// 2147483649 became negative, 1e300 "done: 0 steps".
+TEST(Issue20, AStepCountBeyondTheLimitIsRefusedNamingTimeStep) {
+  for (const auto& [end, step] :
+       std::vector<std::pair<std::string, std::string>>{{"4294967.301", "0.001"},
+                                                        {"2147483.649", "0.001"},
+                                                        {"1.0", "1e-300"},
+                                                        {"1e308", "1e-308"},
+                                                        {"100000.001", "0.001"}}) {
+    const auto file =
+        write_case("steps", replace_all(replace_all(kCase, "end = 0.002", "end = " + end),
+                                        "step = 0.001", "step = " + step));
+    expect_refused(file, "time.step", "expected at most 100000000 steps");
+  }
+}
+
+TEST(Issue20, AStepCountAtTheLimitIsAccepted) {
+  const auto file = write_case("steps-limit", replace_all(kCase, "end = 0.002", "end = 100000.0"));
+  const auto c = limited("check " + file.string());
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("100000000 steps"), std::string::npos) << c.output;
+}
+
+// #6: body names became file names (<name>_<step>.vtu, in result.pvd's XML) and history.csv
+// columns unescaped: "../../evil" wrote outside the output directory, "a,b" split a column.
+TEST(Issue20, ABodyNameOutsideTheSafeSetIsRefused) {
+  for (const std::string& name :
+       std::vector<std::string>{R"(../../evil)", R"(a/b)", R"(a,b)", R"(a\nb)", R"(a&b<c>\"q)",
+                                R"(.hidden)", R"()", R"(a b)", std::string(65, 'n')}) {
+    const auto file =
+        write_case("name", replace_all(kCase, "name = \"b\"", "name = \"" + name + "\""));
+    expect_refused(file, "bodies[0].name", "expected 1 to 64 letters, digits");
+  }
+}
+
+TEST(Issue20, ABoundaryNameInAReactionColumnOutsideTheSafeSetIsRefused) {
+  // A displacement boundary's `where` is in the column reaction_<body>_<where>_x: a Gmsh group
+  // named "x,min" made one column two. tests/cases/valid/gmsh-file.toml with its group "left"
+  // so renamed.
+  const auto valid = fs::path(TC_SOURCE_DIR) / "tests/cases/valid";
+  const auto file = write_case(
+      "where", replace_all(tc::test::read_file(valid / "gmsh-file.toml"), "\"left\"", "\"x,min\""));
+  std::ofstream(file.parent_path() / "square.msh")
+      << replace_all(tc::test::read_file(valid / "square.msh"), "\"left\"", "\"x,min\"");
+  expect_refused(file, "boundary[0].where", "found \"x,min\", a name with the character ','");
+  // Only where it reaches a column: the same group with a heat flux is fine.
+  const auto text = tc::test::read_file(file);  // before the ofstream truncates it
+  std::ofstream(file) << replace_all(text, "displacement = [0.0, 0.0]", "heat_flux = 0.0");
+  const auto c = limited("check " + file.string());
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+}
+
+TEST(Issue20, SafeNamesAreAccepted) {
+  const auto file =
+      write_case("safe-name", replace_all(kCase, "name = \"b\"", "name = \"Block-1_a.2\"") +
+                                  "[[boundary]]\nbody = \"Block-1_a.2\"\nwhere = \"xmin\"\n"
+                                  "displacement = [0.0, 0.0]\n");
+  const auto r =
+      limited("run " + file.string() + " --output " + (file.parent_path() / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(file.parent_path() / "out/Block-1_a.2_000002.vtu"));
+  EXPECT_NE(tc::test::read_file(file.parent_path() / "out/history.csv")
+                .find("reaction_Block-1_a.2_xmin_x"),
+            std::string::npos);
+}
+
+// #7: an empty --restart or --output was taken for an absent option: the run started from step
+// 0 (or wrote) into the case's [output].directory.
+TEST(Issue20, AnEmptyRestartOrOutputPathIsRefused) {
+  const auto file = write_case("empty-path", kCase);
+  for (const std::string option : {"--restart", "--output"}) {
+    const auto r = limited("run " + file.string() + " " + option + " ''");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("error: " + option + ": found an empty path"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(file.parent_path() / "out")) << option << " \"\" ran:\n" << r.output;
+  }
+}
+
+// #14: misleading messages. An integer beyond the limit was "expected an integer ≥ 1".
+TEST(Issue20, AnIntegerBeyondTheLimitIsSaidToBeTooLarge) {
+  const std::string too_large = "which is too large; expected an integer from 1 to 1000000000";
+  for (const auto& [from, to, key] : std::vector<std::array<std::string, 3>>{
+           {"cells = [2, 2]", "cells = [4294967297, 2]", "bodies[0].mesh.box.cells[0]"},
+           {"[[bodies]]", "[solver]\nmax_coupling_iterations = 3000000000\n[[bodies]]",
+            "solver.max_coupling_iterations"},
+           {"[[bodies]]", "[output]\nevery = 1e12\n[[bodies]]", "output.every"}}) {
+    const auto file = write_case("too-large", replace_all(kCase, from, to));
+    expect_refused(file, key, too_large);
+  }
+}
+
+TEST(Issue20, ABoxWithTooManyCellsInAllIsRefused) {
+  // Each count within the limit, their product 10¹⁰: beyond make_box's int counters.
+  const auto file =
+      write_case("box-cells", replace_all(kCase, "cells = [2, 2]", "cells = [100000, 100000]"));
+  expect_refused(file, "bodies[0].mesh.box.cells",
+                 "found 10000000000 cells in all, which is too many; expected at most 100000000");
+}
+
+// A directory or a device given as the mesh file "does not exist".
+TEST(Issue20, AMeshFileThatIsADirectoryOrADeviceIsSaidToBeSo) {
+  auto file = write_case("mesh-dir", replace_all(kCase,
+                                                 "mesh = { box = { min = [0.0, 0.0], "
+                                                 "max = [0.01, 0.01], cells = [2, 2] } }",
+                                                 "mesh = { file = \"dir.msh\" }"));
+  fs::create_directories(file.parent_path() / "dir.msh");
+  expect_refused(file, "bodies[0].mesh.file", "which is a directory; expected a Gmsh 4 file");
+  file = write_case("mesh-dev", replace_all(tc::test::read_file(file), "dir.msh", "/dev/zero"));
+  expect_refused(file, "bodies[0].mesh.file", "which is not a regular file");
+  file = write_case("mesh-none", replace_all(tc::test::read_file(file), "/dev/zero", "no.msh"));
+  expect_refused(file, "bodies[0].mesh.file", "which does not exist");
+}
+
+TEST(Issue20, ACaseFileThatIsADirectoryIsSaidToBeSo) {
+  const auto dir = tc::test::fresh_dir("case-dir");
+  const auto r = limited("check " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot read the case file: it is a directory"), std::string::npos)
+      << r.output;
+}
+
+// `thermocontact frobnicate` said "A subcommand is required".
+TEST(Issue20, AnUnknownSubcommandIsNamed) {
+  const auto r = limited("frobnicate");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("unknown subcommand 'frobnicate', expected one of: run, check, info"),
+            std::string::npos)
+      << r.output;
+}
+
+// `run A.toml B.toml` ran A and ignored B (passed on to PETSc with the options).
+TEST(Issue20, AnExtraArgumentOfRunIsRefused) {
+  const auto file = write_case("extra-argument", kCase);
+  const auto out = (file.parent_path() / "out").string();
+  for (const std::string& args : std::vector<std::string>{
+           file.string() + " B.toml --output " + out,
+           file.string() + " --output " + out + " -tc_fail_on_rank 5 B.toml"}) {
+    const auto r = limited("run " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("error: run: found the extra argument 'B.toml'"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out)) << args << " ran";
+  }
+  const auto c = limited("check " + file.string() + " B.toml");  // refused by CLI11 already
+  EXPECT_EQ(c.exit_code, 2) << c.output;
+  // A PETSc option's value is not an extra argument.
+  const auto r = limited("run " + file.string() + " --output " + out + " -tc_factor_package petsc");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// #17: a checkpoint.bin linked to /dev/zero or /dev/urandom was read on --restart until memory
+// ran out. The restarts run under a 4 GB address-space limit and a time limit, so that a
+// regression fails the test instead of exhausting the machine.
+TEST(Issue20, ACheckpointThatIsNotARegularFileIsRefusedWithExitTwo) {
+  const auto file = write_case("checkpoint-device", kCase);
+  const auto dir = file.parent_path() / "out";
+  ASSERT_EQ(limited("run " + file.string() + " --output " + dir.string()).exit_code, 0);
+  const auto checkpoint = dir / "checkpoint.bin";
+  const auto saved = dir / "saved.bin";
+  fs::rename(checkpoint, saved);
+  const auto restart = [&] {
+    return tc::test::run_command("ulimit -v 4000000; " + kTimeLimit + TC_BINARY + " run " +
+                                 file.string() + " --restart " + dir.string());
+  };
+  for (const std::string target : {"/dev/zero", "/dev/urandom", "fifo", "directory"}) {
+    fs::remove_all(checkpoint);
+    if (target == "fifo")
+      ASSERT_EQ(::mkfifo(checkpoint.c_str(), 0600), 0);
+    else if (target == "directory")
+      fs::create_directory(checkpoint);
+    else
+      fs::create_symlink(target, checkpoint);
+    const auto r = restart();
+    EXPECT_EQ(r.exit_code, 2) << target << "\n" << r.output;
+    EXPECT_NE(r.output.find("error: checkpoint " + checkpoint.string() + ": is "),
+              std::string::npos)
+        << target << "\n"
+        << r.output;
+  }
+  // The history a restart keeps is read line by line too.
+  fs::remove_all(checkpoint);
+  fs::rename(saved, checkpoint);
+  fs::rename(dir / "history.csv", dir / "saved.csv");
+  fs::create_symlink("/dev/zero", dir / "history.csv");
+  auto r = restart();
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("history.csv is not a regular file"), std::string::npos) << r.output;
+  // Put back, the restart goes through.
+  fs::remove(dir / "history.csv");
+  fs::rename(dir / "saved.csv", dir / "history.csv");
+  r = restart();
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// #12: `subdomains = 11` on a 10-cell box passed `check`; `run` then failed with "cannot cut 10
+// cells into 11 subdomains" and no FILE:LINE:KEY. METIS also leaves parts of small meshes empty
+// (10 cells into 7), which `check` did not find either.
+TEST(Issue20, SubdomainsTheMeshCannotBeCutIntoAreRefusedByCheckAndRun) {
+  const auto with = [](int n) {
+    return replace_all(kCase, "cells = [2, 2] } }",
+                       "cells = [10, 1] } }\nsubdomains = " + std::to_string(n));
+  };
+  expect_refused(write_case("subdomains", with(11)), "bodies[0].subdomains",
+                 "found 11, more than the 10 cells of the body's mesh; expected 1 to 10");
+  expect_refused(write_case("subdomains", with(7)), "bodies[0].subdomains",
+                 "found 7, which the body's mesh cannot be cut into: METIS left a subdomain empty");
+  const auto file = write_case("subdomains", with(5));
+  const auto r =
+      limited("run " + file.string() + " --output " + (file.parent_path() / "out").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+}  // namespace
