@@ -51,10 +51,22 @@ void warn_unused_options() {
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
 }
 
+/// Every rank reads the same case, meshes and checkpoint and fails on them alike: rank 0
+/// alone says so (with mpirun each message stood once per rank, sometimes interleaved).
+bool input_reporter() {
+  return tc::core::PetscSession::rank() == 0;
+}
+
 int report_input_error(const tc::InputError& e) {
+  if (!input_reporter()) return 2;
   for (const auto& issue : e.issues()) fmt::print(stderr, "error: {}\n", issue.str());
   fmt::print(stderr, "{} error{} in the case file; nothing was run.\n", e.issues().size(),
              e.issues().size() == 1 ? "" : "s");
+  return 2;
+}
+
+int report_bad_input(const std::exception& e) {
+  if (input_reporter()) fmt::print(stderr, "error: {}\n", e.what());
   return 2;
 }
 
@@ -119,11 +131,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   } catch (const tc::InputError& e) {
     return report_input_error(e);
   } catch (const tc::MeshError& e) {
-    report(e, "error");
-    return 2;
+    return report_bad_input(e);
   } catch (const tc::io::CheckpointError& e) {
-    report(e, "error");
-    return 2;
+    return report_bad_input(e);
   } catch (const tc::Error& e) {
     report(e, "stopped");
     return 1;

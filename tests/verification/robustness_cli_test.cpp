@@ -287,3 +287,41 @@ TEST(Issue20, SubdomainsTheMeshCannotBeCutIntoAreRefusedByCheckAndRun) {
 }
 
 }  // namespace
+
+namespace {
+
+/// `count` of `needle` in `text`.
+size_t occurrences(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t p = text.find(needle); p != std::string::npos; p = text.find(needle, p + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(Issue20, InputErrorsUnderMpiAreSaidOnceNotOncePerRank) {
+  // #13: every rank reads the same case and failed on it alike, and each printed it. A clean
+  // environment for the launcher, as in feti_cli_test (this process is an MPI singleton).
+  const auto dir = tc::test::fresh_dir("issue20-mpi-once");
+  const std::string launcher =
+      "env -i PATH=/usr/bin:/bin HOME=/tmp OMPI_ALLOW_RUN_AS_ROOT=1 "
+      "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+      "OMPI_MCA_rmaps_base_oversubscribe=1 " +
+      std::string(TC_MPIEXEC) + " -n 2 " + TC_BINARY;
+  const auto several =
+      fs::path(TC_SOURCE_DIR) / "tests/cases/invalid/27-several-errors.toml";  // 3 issues
+  const auto r = tc::test::run_command(kTimeLimit + launcher + " run " + several.string() +
+                                       " --output " + (dir / "out").string());
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_EQ(occurrences(r.output, "error: "), 3u) << r.output;
+  EXPECT_EQ(occurrences(r.output, "in the case file; nothing was run"), 1u) << r.output;
+  // A geometry error (bodies overlapping at t = 0) likewise.
+  const auto overlap = dir / "overlap.toml";
+  std::ofstream(overlap) << replace_all(
+      tc::test::read_file(fs::path(TC_SOURCE_DIR) / "tests/cases/valid/contact-patch-2d.toml"),
+      "min = [0.0, 1.0], max = [1.0, 1.5]", "min = [0.0, 0.0], max = [1.0, 1.5]");
+  const auto m = tc::test::run_command(kTimeLimit + launcher + " run " + overlap.string() +
+                                       " --output " + (dir / "out2").string());
+  EXPECT_NE(m.exit_code, 0) << m.output;
+  EXPECT_EQ(occurrences(m.output, "overlap at t = 0"), 1u) << m.output;
+}

@@ -25,7 +25,7 @@ class CheckpointError : public Error {
 };
 
 // 2: + warm-start tangents, compliance records; 3: + the combined contact dual's warm start
-// (gluing and Dirichlet λ, μ) and SMALBE's outer iterations
+// (gluing and Dirichlet λ, μ) and SMALBE's outer iterations; 4: + Σ_k w_k‖λ_τ,k‖ of the last step
 inline constexpr std::uint32_t checkpoint_version = 4;
 
 /// The file name of the checkpoint in an output directory.
