@@ -124,6 +124,7 @@ class CaseReader {
   void read_solver(const TableReader& root);
   void read_output(const TableReader& root);
   void check_quasistatic_bodies_held();
+  void check_boundary_conflicts();
 
   /// The array of tables at `key` ([[key]]), or an issue.
   const toml::array* tables(const TableReader& root, std::string_view key, Need need);
@@ -161,6 +162,7 @@ Problem CaseReader::read() {
   read_contact(root);
   read_solver(root);
   read_output(root);
+  if (issues_.empty()) check_boundary_conflicts();
   if (issues_.empty()) check_quasistatic_bodies_held();
   if (!issues_.empty()) issues_.raise();
   return std::move(p_);
@@ -602,6 +604,77 @@ void CaseReader::read_output(const TableReader& root) {
       p_.output.directory = resolve(*d);
   }
   if (const auto e = o->integer("every", Need::Optional, 1)) p_.output.every = *e;
+}
+
+namespace {
+
+bool same_table(const core::TimeTable& a, const core::TimeTable& b) {
+  return a.times() == b.times() && a.values() == b.values();
+}
+
+bool any_of(const std::array<std::optional<core::TimeTable>, 3>& c) {
+  return c[0] || c[1] || c[2];
+}
+
+}  // namespace
+
+/// Two [[boundary]] tables of one body that prescribe a node's displacement component or
+/// temperature differently (the later silently won), a traction on a face whose component
+/// another table fixes (it did nothing), or two tables with displacements on one face (their
+/// history columns reaction_<body>_<where>_… had one name). Equal values where faces share
+/// nodes (a corner held by both of its faces) stay allowed.
+void CaseReader::check_boundary_conflicts() {
+  const auto* node = root_.get("boundary");
+  const auto* a = node ? node->as_array() : nullptr;
+  if (!a) return;
+  const auto& bcs = p_.boundaries;
+  const char* axes = "xyz";
+  for (size_t j = 0; j < bcs.size(); ++j)
+    for (size_t i = 0; i < j; ++i) {
+      const auto& first = bcs[i];
+      const auto& later = bcs[j];
+      if (first.body != later.body) continue;
+      const int line = detail::line_of(*a->get(j));
+      const auto here = detail::at("boundary", j);
+      const auto other = fmt::format("boundary[{}] (line {})", i, detail::line_of(*a->get(i)));
+      const auto& body = p_.bodies[static_cast<size_t>(later.body)];
+      if (first.where == later.where && any_of(first.displacement) && any_of(later.displacement))
+        issues_.add(line, detail::join(here, "displacement"),
+                    fmt::format("found displacements on \"{}\" of body \"{}\", which {} "
+                                "prescribes too; expected one [[boundary]] with displacements "
+                                "per face (merge them: their reaction columns share a name)",
+                                later.where, body.name, other));
+      for (int k = 0; k < dim_; ++k)
+        if (first.where == later.where && ((first.displacement[k] && later.traction[k]) ||
+                                           (first.traction[k] && later.displacement[k])))
+          issues_.add(line, detail::join(here, later.traction[k] ? "traction" : "displacement"),
+                      fmt::format("found a traction and a displacement on component {} of "
+                                  "\"{}\" of body \"{}\" (with {}); expected one of them (a "
+                                  "traction on a fixed component does nothing)",
+                                  axes[k], later.where, body.name, other));
+      const auto where = first.where == later.where ? fmt::format("on \"{}\"", later.where)
+                                                    : fmt::format("\"{}\" and \"{}\" share them",
+                                                                  first.where, later.where);
+      std::vector<int> shared;
+      const auto na = body.mesh.boundary_nodes(first.where);
+      const auto nb = body.mesh.boundary_nodes(later.where);
+      std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(shared));
+      if (shared.empty()) continue;
+      for (int k = 0; k < dim_; ++k)
+        if (first.displacement[k] && later.displacement[k] &&
+            !same_table(*first.displacement[k], *later.displacement[k]))
+          issues_.add(line, detail::at(detail::join(here, "displacement"), k),
+                      fmt::format("found another value for component {} of the displacement of "
+                                  "{} node(s) that {} prescribes too ({}); expected the same value "
+                                  "from both",
+                                  axes[k], shared.size(), other, where));
+      if (first.temperature && later.temperature &&
+          !same_table(*first.temperature, *later.temperature))
+        issues_.add(line, detail::join(here, "temperature"),
+                    fmt::format("found another temperature for {} node(s) that {} prescribes "
+                                "too ({}); expected the same value from both",
+                                shared.size(), other, where));
+    }
 }
 
 /// A quasistatic body, and one that starts in static equilibrium, must be held against every
