@@ -96,7 +96,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     std::signal(SIGTERM, on_signal);
     tc::physics::Simulation sim(problem);
     if (problem.contact) sim.enable_mortar_contact();
-    const auto case_hash = tc::io::file_hash(case_file);
+    const auto case_hash = tc::io::input_hash(problem);
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
     if (!restart.empty()) {
       const auto file = tc::io::checkpoint_file(restart);

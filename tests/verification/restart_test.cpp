@@ -117,6 +117,34 @@ TEST(Restart, ACheckpointOfAnotherCaseIsRefusedWithExitTwo) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
 }
 
+TEST(Restart, ACheckpointOfAChangedMeshFileIsRefusedWithExitTwo) {
+  // issue 20, #8: a node of the Gmsh file moved between the stop and the restart; the case file
+  // itself unchanged. The restart went on, on the other mesh, with exit 0.
+  const auto dir = tc::test::fresh_dir("restart-mesh");
+  const auto valid = fs::path(TC_SOURCE_DIR) / "tests/cases/valid";
+  fs::copy_file(valid / "gmsh-file.toml", dir / "case.toml");
+  fs::copy_file(valid / "square.msh", dir / "square.msh");
+  auto text = tc::test::read_file(dir / "case.toml");
+  text.replace(text.find("end = 1.0"), 9, "end = 3.0");
+  std::ofstream(dir / "case.toml") << text;
+  const auto out = dir / "out";
+  auto r = thermocontact(run_args(dir / "case.toml", out) + " --stop-after 2");
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  auto mesh = tc::test::read_file(dir / "square.msh");
+  const std::string corner = "\n1 1 0\n";  // node 3 at (1, 1)
+  ASSERT_NE(mesh.find(corner), std::string::npos);
+  mesh.replace(mesh.find(corner), corner.size(), "\n1.01 1 0\n");
+  std::ofstream(dir / "square.msh") << mesh;
+  r = thermocontact("run " + (dir / "case.toml").string() + " --restart " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("mesh file"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("checkpoint.bin"), std::string::npos) << r.output;
+  // Put back, the restart goes on.
+  std::ofstream(dir / "square.msh") << tc::test::read_file(valid / "square.msh");
+  r = thermocontact("run " + (dir / "case.toml").string() + " --restart " + out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
 TEST(Restart, ACompletedRunRestartsAsCompletedWithItsHistoryUnchanged) {
   const auto out = tc::test::fresh_dir("restart-completed");
   auto r =

@@ -423,6 +423,7 @@ void CaseReader::read_mesh_file(const TableReader& mesh, physics::Body& body) {
   }
   try {
     body.mesh = mesh::read_gmsh(path, dim_);
+    body.mesh_file = path;
     mesh_built_.back() = true;
   } catch (const MeshError& e) {
     mesh.issue("file", fmt::format("found a mesh that cannot be used: {}", e.what()));

@@ -79,6 +79,15 @@ std::uint64_t file_hash(const std::filesystem::path& file) {
   return fnv1a(text.data(), text.size());
 }
 
+std::uint64_t input_hash(const physics::Problem& problem) {
+  std::vector<std::uint64_t> hashes{file_hash(problem.case_file)};
+  for (const auto& b : problem.bodies)
+    if (!b.mesh_file.empty()) hashes.push_back(file_hash(b.mesh_file));
+  return hashes.size() == 1 ? hashes[0]
+                            : fnv1a(reinterpret_cast<const char*>(hashes.data()),
+                                    hashes.size() * sizeof(std::uint64_t));
+}
+
 std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case_hash) {
   const auto c = sim.checkpoint();
   Encoder e;
@@ -136,7 +145,9 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
     d.fail(fmt::format("format version {}, this program reads version {}", v, checkpoint_version));
   // What makes a checkpoint belong to a case: the same file, time step and discretisation.
   if (d.get<std::uint64_t>() != case_hash)
-    d.fail("written for a different case file (its contents changed since the checkpoint)");
+    d.fail(
+        "written for a different case file (its contents, or those of a mesh file it reads, "
+        "changed since the checkpoint)");
   const auto& p = sim.problem();
   if (const auto tau = d.get<double>(); tau != p.time.step)
     d.fail(fmt::format("time step {:g} s, the case has {:g} s", tau, p.time.step));

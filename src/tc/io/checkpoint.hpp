@@ -33,6 +33,9 @@ inline constexpr std::uint32_t checkpoint_version = 4;
 
 /// FNV-1a (64 bit) of a file's bytes (0 when it cannot be read).
 [[nodiscard]] std::uint64_t file_hash(const std::filesystem::path& file);
+/// What a checkpoint belongs to: the case file's bytes and those of every mesh file it reads
+/// (a restart after a .msh file changed would continue on another mesh).
+[[nodiscard]] std::uint64_t input_hash(const physics::Problem& problem);
 
 /// The checkpoint of `sim`'s current step as bytes (header, data, checksum).
 [[nodiscard]] std::string encode_checkpoint(const physics::Simulation& sim,

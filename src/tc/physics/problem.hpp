@@ -49,6 +49,7 @@ struct Body {
   std::string material_name;
   fem::Material material;
   mesh::Mesh mesh;
+  std::filesystem::path mesh_file;           // the Gmsh file it was read from; empty for a box
   double initial_temperature = 0;            // θ at t = 0 [K]
   std::array<double, 3> initial_velocity{};  // u̇ at t = 0
   /// u⁰ from the static equilibrium K u⁰ = f(0) − K_uθ(θ⁰ − θ₀) (dynamic runs), instead of
