@@ -173,6 +173,16 @@ TEST(Issue20, ABoxWithTooManyCellsInAllIsRefused) {
                  "found 10000000000 cells in all, which is too many; expected at most 100000000");
 }
 
+TEST(Issue20, ABoxBeyondTheMachinesMemoryIsRefusedBeforeItIsBuilt) {
+  // #3: [30000, 30000] (9e8 cells, under the old limits) took 23 GB in a minute, then the OOM
+  // killer (exit 137, no message). [10000, 10000] is at the cell limit (10⁸); its mesh and
+  // five matrices need about 136 GiB, beyond the machines this runs on. The time limit of
+  // `limited` turns an attempt to build it into a failure, not a hang.
+  const auto file =
+      write_case("box-memory", replace_all(kCase, "cells = [2, 2]", "cells = [10000, 10000]"));
+  expect_refused(file, "bodies[0].mesh.box.cells", "GiB (before any factorisation)");
+}
+
 // A directory or a device given as the mesh file "does not exist".
 TEST(Issue20, AMeshFileThatIsADirectoryOrADeviceIsSaidToBeSo) {
   auto file = write_case("mesh-dir", replace_all(kCase,

@@ -1,6 +1,7 @@
 #include "tc/io/case_reader.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -84,6 +85,27 @@ std::string not_a_file(const fs::path& path) {
   if (status.type() == fs::file_type::directory) return "is a directory";
   if (ec) return fmt::format("cannot be examined ({})", ec.message());
   return "is not a regular file (a device, pipe or socket)";
+}
+
+constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+
+/// A lower bound of the memory a box body takes before any factorisation [bytes]: its mesh
+/// and the five matrices that BodySystem assembles for the whole body (M_u, K_u, K_uθ, M_θ,
+/// K_θ; AIJ, 12 bytes per nonzero, rows of 3^dim nodes). A box that does not fit it was
+/// allocated until the OOM killer ended the process without a message (issue 20, #3).
+double box_memory(int dim, const std::array<int, 3>& cells) {
+  double nodes = 1, n_cells = 1;
+  for (int k = 0; k < dim; ++k) nodes *= cells[k] + 1.0, n_cells *= cells[k];
+  const double per_row = dim == 3 ? 27 : 9;           // nodes coupled to a node
+  const double blocks = 2.0 * dim * dim + dim + 2.0;  // scalar blocks of the five matrices
+  const double corners = dim == 3 ? 8 : 4;
+  return nodes * (per_row * blocks * 12.0 + per_row * 4.0 + 24.0) + n_cells * (corners + 2) * 4.0;
+}
+
+/// This machine's physical memory [bytes] (0 if unknown).
+double physical_memory() {
+  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
 }
 
 std::string quoted_list(const std::vector<std::string>& names) {
@@ -404,10 +426,18 @@ bool CaseReader::box_size_ok(const TableReader& box, const std::array<int, 3>& c
   // (cells = [100000, 100000] overflowed it), and memory runs out long before.
   double total = 1;
   for (int k = 0; k < dim_; ++k) total *= cells[k];
-  if (total <= static_cast<double>(kMaxBoxCells)) return true;
-  box.issue("cells", fmt::format("found {:.0f} cells in all, which is too many; expected at most "
-                                 "{} cells in a box",
-                                 total, kMaxBoxCells));
+  if (total > static_cast<double>(kMaxBoxCells)) {
+    box.issue("cells", fmt::format("found {:.0f} cells in all, which is too many; expected at "
+                                   "most {} cells in a box",
+                                   total, kMaxBoxCells));
+    return false;
+  }
+  const double need = box_memory(dim_, cells), have = physical_memory();
+  if (have <= 0 || need <= have) return true;
+  box.issue("cells", fmt::format("found {:.0f} cells, whose mesh and matrices alone need about "
+                                 "{:.1f} GiB (before any factorisation), expected a box that "
+                                 "fits in this machine's {:.1f} GiB",
+                                 total, need / kGiB, have / kGiB));
   return false;
 }
 
