@@ -5,8 +5,12 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
 
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
@@ -77,14 +81,68 @@ void report(const std::exception& e, const char* prefix) {
     fmt::print(stderr, "{}: {}\n", prefix, e.what());
 }
 
+/// PETSc reads -options_file itself, at MPI_Init time: a missing file stopped the run with
+/// PETSc's trace and the build machine's source path, and /dev/zero crashed PETSc (issue 20,
+/// #15). The file is checked first: a regular file, readable, of at most 1 MiB.
+std::string bad_options_file(const std::vector<std::string>& extra) {
+  for (size_t i = 0; i + 1 < extra.size(); ++i) {
+    if (extra[i] != "-options_file") continue;
+    const std::filesystem::path f(extra[i + 1]);
+    std::error_code ec;
+    const auto st = std::filesystem::status(f, ec);
+    std::string why;
+    if (!std::filesystem::exists(st))
+      why = "which does not exist";
+    else if (std::filesystem::is_directory(st))
+      why = "which is a directory";
+    else if (!std::filesystem::is_regular_file(st))
+      why = "which is not a regular file (a device, pipe or socket)";
+    else if (std::filesystem::file_size(f, ec) > (std::size_t{1} << 20))
+      why = "which is larger than 1 MiB";
+    else if (!std::ifstream(f))
+      why = "which cannot be read";
+    if (!why.empty())
+      return fmt::format(
+          "error: option -options_file: found {}, {}; expected a readable file of "
+          "PETSc options\n",
+          f.string(), why);
+  }
+  return {};
+}
+
+/// The factorisation package of -tc_factor_package, checked against those this PETSc has
+/// before anything is assembled (it failed in the first factorisation, exit 1).
+std::string bad_factor_package() {
+  char opt[64] = {};
+  PetscBool set = PETSC_FALSE;
+  TC_PETSC(PetscOptionsGetString(nullptr, nullptr, "-tc_factor_package", opt, sizeof opt, &set));
+  if (!set) return {};
+  const auto known = tc::core::available_cholesky_packages();
+  if (std::find(known.begin(), known.end(), std::string(opt)) != known.end()) return {};
+  std::string list;
+  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+  return fmt::format(
+      "error: option -tc_factor_package: found '{}', expected one of this PETSc's Cholesky "
+      "packages: {}\n",
+      opt, list);
+}
+
 int run(const std::string& case_file, const std::string& output, const std::string& restart,
         int stop_after, std::vector<std::string> extra, const char* program) {
+  if (const auto why = bad_options_file(extra); !why.empty()) {
+    fmt::print(stderr, "{}nothing was run.\n", why);
+    return 2;
+  }
   std::vector<char*> args{const_cast<char*>(program)};
   for (auto& a : extra) args.push_back(a.data());
   int argc = static_cast<int>(args.size());
   args.push_back(nullptr);  // argv[argc] == nullptr: MPI_Init walks argv to it (it crashed)
   char** argv = args.data();
   tc::core::PetscSession session(&argc, &argv);
+  if (const auto why = bad_factor_package(); !why.empty()) {
+    if (input_reporter()) fmt::print(stderr, "{}nothing was run.\n", why);
+    return 2;
+  }
   try {
     auto problem = tc::io::read_case(case_file);
     if (!output.empty()) problem.output.directory = output;
@@ -234,6 +292,18 @@ int main(int argc, char** argv) {
   auto* check_cmd = app.add_subcommand("check", "validate a case file only");
   check_cmd->add_option("case", case_file, "case file (TOML)")->required();
   app.add_subcommand("info", "version, PETSc/MPI configuration, factorizations");
+  // PETSc's -help (one dash) after `run` goes to PETSc, not to CLI11's -h: CLI11 took it for
+  // its own help, so PETSc's list of options was unreachable.
+  std::vector<char*> kept;
+  bool petsc_help = false;
+  for (int i = 0; i < argc; ++i) {
+    if (std::string_view(argv[i]) == "-help" && i > 1 && std::string_view(argv[1]) == "run")
+      petsc_help = true;
+    else
+      kept.push_back(argv[i]);
+  }
+  argc = static_cast<int>(kept.size());
+  argv = kept.data();
   if (const auto message = unknown_subcommand(app, argc, argv); !message.empty()) {
     fmt::print(stderr, "{}", message);
     return 2;
@@ -254,8 +324,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (run_cmd->parsed())
-      return run(case_file, output, restart, stop_after, run_cmd->remaining(), argv[0]);
+    if (run_cmd->parsed()) {
+      auto extra = run_cmd->remaining();
+      if (petsc_help) extra.emplace_back("-help");
+      return run(case_file, output, restart, stop_after, extra, argv[0]);
+    }
     if (check_cmd->parsed()) return check(case_file, argv[0]);
     return info(argv[0]);
   } catch (const std::exception& e) {

@@ -335,3 +335,27 @@ TEST(Issue20, InputErrorsUnderMpiAreSaidOnceNotOncePerRank) {
   EXPECT_NE(m.exit_code, 0) << m.output;
   EXPECT_EQ(occurrences(m.output, "overlap at t = 0"), 1u) << m.output;
 }
+
+TEST(Issue20, BadPetscOptionsAreRefusedBeforeTheRunAndHelpReachesPetsc) {
+  // #15: an unknown factorisation package failed in the first factorisation (exit 1, with the
+  // build machine's source path); a missing -options_file stopped MPI_Init with PETSc's trace,
+  // /dev/zero crashed PETSc; -help was CLI11's, so PETSc's options were unreachable.
+  const auto file = write_case("petsc-options", kCase);
+  const auto out = (file.parent_path() / "out").string();
+  const auto run = "run " + file.string() + " --output " + out;
+  auto r = limited(run + " -tc_factor_package nonexistent");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("option -tc_factor_package: found 'nonexistent', expected one of"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find(TC_SOURCE_DIR), std::string::npos) << r.output;
+  for (const std::string bad : {"/nonexistent/options", "/dev/zero"}) {
+    r = limited(run + " -options_file " + bad);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("option -options_file: found " + bad), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(out)) << "a refused run wrote output";
+  r = limited(run + " -help");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("The PETSc Team"), std::string::npos) << r.output;
+}

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 #include "tc/core/error.hpp"
 
@@ -19,8 +20,11 @@ void check_petsc(PetscErrorCode code, const char* call, const char* file, int li
   if (code == 0) return;
   const char* text = nullptr;
   (void)PetscErrorMessage(code, &text, nullptr);
-  throw PetscError(code, fmt::format("PETSc call failed: {} ({}:{}): {} (error {})", call, file,
-                                     line, text ? text : "unknown error", static_cast<int>(code)));
+  // The source file relative to the project (src/tc/…): not the build machine's directories.
+  const char* project = std::strstr(file, "src/tc/");
+  throw PetscError(code, fmt::format("PETSc call failed: {} ({}:{}): {} (error {})", call,
+                                     project ? project : file, line, text ? text : "unknown error",
+                                     static_cast<int>(code)));
 }
 
 namespace {
