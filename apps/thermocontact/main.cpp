@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string_view>
@@ -23,8 +24,29 @@
 namespace {
 
 std::atomic<int> g_stop{0};
+
+/// The signals that ask a run to stop: Ctrl-C, kill, a dropped terminal or ssh session, and the
+/// warnings batch systems send before they kill (SIGUSR1/2, SIGXCPU on a CPU-time limit).
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXCPU};
+
+/// The first stop signal lets the step under way finish, then the run stops with its output
+/// whole (exit 1, summary "stopped"); a second one ends the process at once with the
+/// signal's default action (the user insists, e.g. during a long factorisation).
 extern "C" void on_signal(int sig) {
-  g_stop.store(sig);
+  if (g_stop.exchange(sig) != 0) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+}
+
+/// Installed after PetscInitialize, whose handler took SIGHUP, SIGPIPE, SIGQUIT … for its own
+/// (exit 59, summary.json left "running"; issue 20, #11). SIGPIPE is ignored: a reader that
+/// closes the pipe (`thermocontact run … | head -2`) makes writes to stdout fail, not the run.
+/// SIGQUIT keeps its default: quit now, with a core dump.
+void install_signal_handlers() {
+  for (const int sig : kStopSignals) std::signal(sig, on_signal);
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGQUIT, SIG_DFL);
 }
 
 /// --stop-after N (tests, batch jobs): raises the stop flag after step N as SIGTERM would, so
@@ -139,6 +161,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   args.push_back(nullptr);  // argv[argc] == nullptr: MPI_Init walks argv to it (it crashed)
   char** argv = args.data();
   tc::core::PetscSession session(&argc, &argv);
+  install_signal_handlers();
   if (const auto why = bad_factor_package(); !why.empty()) {
     if (input_reporter()) fmt::print(stderr, "{}nothing was run.\n", why);
     return 2;
@@ -150,8 +173,6 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     const auto warnings = tc::io::check_geometry(problem);
     if (tc::core::PetscSession::rank() == 0)
       for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
     tc::physics::Simulation sim(problem);
     if (problem.contact) sim.enable_mortar_contact();
     const auto case_hash = tc::io::input_hash(problem);
@@ -185,6 +206,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
         fmt::print(stderr, "stopped: {}\noutput of the {} completed step(s) is in {}\n",
                    status.message, status.steps_done, problem.output.directory.string());
     }
+    // Flushed while SIGPIPE is still ignored: PetscFinalize restores its default, and a reader
+    // gone from the pipe would kill the process at exit's flush (exit 141 after a whole run).
+    std::fflush(stdout);
     return status.exit_code;
   } catch (const tc::InputError& e) {
     return report_input_error(e);
@@ -272,6 +296,7 @@ std::string stray_argument(const std::vector<std::string>& extra) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  install_signal_handlers();  // a signal during start-up too; again after PetscInitialize
   CLI::App app{"thermocontact: dynamic thermo-mechanical contact with Coulomb friction"};
   app.require_subcommand(1);
   std::string case_file, output, restart;

@@ -124,12 +124,13 @@ void kill_trials(int sig, int trials) {
       ADD_FAILURE() << "the run ended before the signal";
       continue;
     }
-    if (sig == SIGTERM) {  // handled: the step under way is finished, then a clean stop
+    if (sig != SIGKILL) {  // handled: the step under way is finished, then a clean stop
       ASSERT_TRUE(WIFEXITED(k.status)) << k.status;
       EXPECT_EQ(WEXITSTATUS(k.status), 1);
       const auto summary = tc::test::read_file(out / "summary.json");
       EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
-      EXPECT_NE(summary.find("interrupted by signal 15"), std::string::npos) << summary;
+      EXPECT_NE(summary.find("interrupted by signal " + std::to_string(sig)), std::string::npos)
+          << summary;
       const auto h = tc::test::read_history(out / "history.csv");
       EXPECT_NE(summary.find("\"steps_done\": " + std::to_string(h.rows.size() - 1)),
                 std::string::npos)
@@ -148,6 +149,27 @@ TEST(Kill, SigtermAtARandomStepStopsCleanlyAndRestarts) {
 
 TEST(Kill, SigkillAtARandomStepLeavesWholeFilesAndRestarts) {
   kill_trials(SIGKILL, 3);
+}
+
+TEST(Kill, HangupAndBatchSystemSignalsStopCleanlyAndRestart) {
+  // issue 20, #11: PETSc's handler took SIGHUP (a dropped ssh session) and killed the run with
+  // exit 59, summary.json "running"; SIGUSR1/SIGUSR2/SIGXCPU (batch systems' warnings before
+  // the kill) ended it outright. Each is now a request to stop after the step, as SIGTERM.
+  for (const int sig : {SIGHUP, SIGUSR1, SIGUSR2, SIGXCPU}) kill_trials(sig, 1);
+}
+
+TEST(Kill, AReaderClosingStdoutDoesNotStopTheRun) {
+  // issue 20, #11: `thermocontact run … | head -c 1` — the run's last write to stdout raised
+  // SIGPIPE (PETSc's handler, or the default at exit's flush): exit 59 or 141.
+  const auto out = tc::test::fresh_dir("kill-pipe-" + std::to_string(::getpid()));
+  const auto r = tc::test::run_command("bash -c '" + std::string(TC_BINARY) + " run " +
+                                       sliding.string() + " --output " + out.string() +
+                                       " | head -c 1 > /dev/null; exit ${PIPESTATUS[0]}'");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const auto h = tc::test::read_history(out / "history.csv");
+  EXPECT_EQ(h.rows.size(), static_cast<size_t>(n_steps + 1));
+  EXPECT_NE(tc::test::read_file(out / "summary.json").find("\"status\": \"completed\""),
+            std::string::npos);
 }
 
 }  // namespace
