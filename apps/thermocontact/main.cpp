@@ -14,6 +14,7 @@
 #include "tc/io/checkpoint.hpp"
 #include "tc/io/geometry_checks.hpp"
 #include "tc/io/output.hpp"
+#include "tc/io/output_lock.hpp"
 #include "tc/physics/simulation.hpp"
 
 namespace {
@@ -80,6 +81,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     const auto warnings = tc::io::check_geometry(problem);
     if (tc::core::PetscSession::rank() == 0)
       for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+    // Held until the run returns: a second run into the same directory is refused (exit 2)
+    // before it sets anything up, instead of mixing its rows with this one's.
+    const tc::io::OutputLock lock(problem.output.directory, restart.empty());
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     tc::physics::Simulation sim(problem);
@@ -121,6 +125,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     report(e, "error");
     return 2;
   } catch (const tc::io::CheckpointError& e) {
+    report(e, "error");
+    return 2;
+  } catch (const tc::io::OutputInUse& e) {
     report(e, "error");
     return 2;
   } catch (const tc::Error& e) {
