@@ -86,6 +86,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     const tc::io::OutputLock lock(problem.output.directory, restart.empty());
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
+    // Beyond a file-size limit (ulimit -f) a write then fails with EFBIG and the run stops
+    // like on a full disk, with its output whole, instead of being killed by the signal.
+    std::signal(SIGXFSZ, SIG_IGN);
     tc::physics::Simulation sim(problem);
     if (problem.contact) sim.enable_mortar_contact();
     const auto case_hash = tc::io::file_hash(case_file);
@@ -116,7 +119,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
                    problem.output.directory.string());
       else
         fmt::print(stderr, "stopped: {}\noutput of the {} completed step(s) is in {}\n",
-                   status.message, status.steps_done, problem.output.directory.string());
+                   status.message, writer.steps_written(), problem.output.directory.string());
     }
     return status.exit_code;
   } catch (const tc::InputError& e) {

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -100,6 +101,105 @@ TEST(AbuseCli, TheLockOfAKilledRunDoesNotBlockItsRestart) {
   const auto r = thermocontact("run " + sliding.string() + " --restart " + out.string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(tc::test::read_history(out / "history.csv").rows.size(), sliding_rows);
+}
+
+// ---- #2: a full disk ------------------------------------------------------------------------
+
+/// A plate of 20 × 20 cells: its .vtu files (27 kB at t = 0, 70 kB after) are larger than
+/// fmt's 32 kB output buffer, which made the old writer throw out of a destructor (SIGABRT).
+const char* const plate = R"(
+dimension = 2
+[time]
+scheme = "dynamic"
+step = 1e-5
+end = 1e-4
+[materials.steel]
+density = 7850.0
+young_modulus = 2.0e11
+poisson_ratio = 0.3
+thermal_expansion = 1.2e-5
+specific_heat = 450.0
+thermal_conductivity = 50.0
+[[bodies]]
+name = "plate"
+material = "steel"
+mesh = { box = { min = [0.0, 0.0], max = [0.1, 0.1], cells = [20, 20] } }
+initial_temperature = 350.0
+[[boundary]]
+body = "plate"
+where = "ymin"
+displacement = [0.0, 0.0]
+[[boundary]]
+body = "plate"
+where = "ymax"
+traction = [0.0, -1.0e6]
+)";
+
+/// `run CASE --output DIR` with files limited to `kilobytes` (ulimit -f): a write beyond it
+/// fails with EFBIG as a full disk fails with ENOSPC. SIGXFSZ is ignored in the shell, as a
+/// batch system would, so the write fails instead of the signal killing the run. PMIx keeps
+/// its data in memory (gds=hash) instead of files that the limit would forbid in MPI_Init.
+tc::test::CommandResult run_with_file_limit(const fs::path& case_file, const fs::path& out,
+                                            int kilobytes) {
+  return tc::test::run_command("PMIX_MCA_gds=hash bash -c \"trap '' XFSZ; ulimit -f " +
+                               std::to_string(kilobytes) + "; exec " + TC_BINARY + " run " +
+                               case_file.string() + " --output " + out.string() + "\"");
+}
+
+/// What a run stopped by a failed write must leave: exit 1 and the reason, summary.json
+/// "stopped" with the steps whose rows are written, whole files, no temporary file.
+void expect_stopped_by_the_limit(const tc::test::CommandResult& r, const fs::path& out,
+                                 const std::string& file) {
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.output.find("terminate called"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stopped: cannot write " + (out / file).string() + ": File too large"),
+            std::string::npos)
+      << r.output;
+  const auto h = tc::test::read_history(out / "history.csv");
+  EXPECT_TRUE(h.whole) << "a partial row in history.csv";
+  ASSERT_FALSE(h.rows.empty());
+  const auto summary = tc::test::read_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("File too large"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps_done\": " + std::to_string(h.rows.size() - 1) + ","),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(r.output.find("output of the " + std::to_string(h.rows.size() - 1) + " completed"),
+            std::string::npos)
+      << r.output;
+  const auto pvd = tc::test::read_collection(out / "result.pvd");
+  EXPECT_TRUE(pvd.whole);
+  EXPECT_FALSE(pvd.files.empty());
+  for (const auto& f : pvd.files) EXPECT_TRUE(tc::test::whole_vtu(out / f)) << f;
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+}
+
+TEST(AbuseCli, AFullDiskWhileWritingFieldsStopsTheRunWithExitOne) {
+  // 40 kB: the history, the summary, the checkpoint (39 kB) and the fields at t = 0 fit, the
+  // fields of step 1 do not. The old writer aborted (exit 134), summary.json "running".
+  const auto dir = tc::test::fresh_dir("abuse-full-fields");
+  std::ofstream(dir / "plate.toml") << plate;
+  const auto out = dir / "out";
+  const auto r = run_with_file_limit(dir / "plate.toml", out, 40);
+  expect_stopped_by_the_limit(r, out, "plate_000001.vtu");
+  EXPECT_FALSE(fs::exists(out / "plate_000001.vtu")) << "the partial file was left";
+  EXPECT_EQ(tc::test::read_history(out / "history.csv").rows.size(), 2u);
+  // The steps done are usable: the run continues from them once there is room.
+  const auto again =
+      thermocontact("run " + (dir / "plate.toml").string() + " --restart " + out.string());
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(tc::test::read_history(out / "history.csv").rows.size(), 11u);
+}
+
+TEST(AbuseCli, AFullDiskWhileAppendingToTheHistoryLeavesNoPartialRow) {
+  // 12 kB: every .vtu (≤ 10.5 kB) and the checkpoint fit; history.csv (16.7 kB whole)
+  // reaches the limit in the middle of a row, which must be cut off again.
+  const auto dir = tc::test::fresh_dir("abuse-full-history");
+  const auto out = dir / "out";
+  const auto r = run_with_file_limit(sliding, out, 12);
+  expect_stopped_by_the_limit(r, out, "history.csv");
+  EXPECT_LT(tc::test::read_history(out / "history.csv").rows.size(), sliding_rows);
 }
 
 }  // namespace
