@@ -1,6 +1,6 @@
 // Abuse of the command line (issue 20, docs/robustness.md): two runs into one output
-// directory, a disk that fills up, results that overflow, PETSc's floating-point traps. Each
-// test runs the binary as a user would and checks the exit code, the message and the files.
+// directory (#1), a disk that fills up (#2), results that overflow (#9). Each test runs the
+// binary as a user would and checks the exit code, the message and the files.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -8,7 +8,9 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -200,6 +202,49 @@ TEST(AbuseCli, AFullDiskWhileAppendingToTheHistoryLeavesNoPartialRow) {
   const auto r = run_with_file_limit(sliding, out, 12);
   expect_stopped_by_the_limit(r, out, "history.csv");
   EXPECT_LT(tc::test::read_history(out / "history.csv").rows.size(), sliding_rows);
+}
+
+// ---- #9: results that overflow -------------------------------------------------------------
+
+/// Runs tests/cases/valid/plane-strain-2d.toml with `from` replaced by `to` and checks that
+/// the run stops at step 1 naming a history column that is not finite, with exit 1, and
+/// leaves only finite rows (step 0's) in history.csv. The state stays finite (~1e282–1e298):
+/// only the energies and the work derived from it overflow, which passed as "completed".
+void expect_refused_history_row(const std::string& name, const std::string& from,
+                                const std::string& to) {
+  const auto dir = tc::test::fresh_dir(name);
+  const auto text =
+      tc::test::read_file(fs::path(TC_SOURCE_DIR) / "tests/cases/valid/plane-strain-2d.toml");
+  ASSERT_NE(text.find(from), std::string::npos);
+  std::ofstream(dir / "case.toml") << tc::test::replace_all(text, from, to);
+  const auto out = dir / "out";
+  const auto r = thermocontact("run " + (dir / "case.toml").string() + " --output " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const std::regex named(
+      R"(stopped: history: [a-z_]+ is not finite \((NaN|\+Inf|-Inf)\) \(step 1, t = 0\.001 s\))");
+  EXPECT_TRUE(std::regex_search(r.output, named)) << r.output;
+  EXPECT_NE(r.output.find("output of the 0 completed step(s)"), std::string::npos) << r.output;
+  const auto summary = tc::test::read_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps_done\": 0,"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("is not finite"), std::string::npos) << summary;
+  const auto h = tc::test::read_history(out / "history.csv");
+  EXPECT_TRUE(h.whole);
+  ASSERT_EQ(h.rows.size(), 1u);
+  for (const double v : h.rows[0]) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(AbuseCli, AnOverflowingTractionStopsTheRunNamingTheColumn) {
+  expect_refused_history_row(
+      "abuse-traction",
+      R"(traction = [{ t = [0.0, 0.004, 0.01], value = [0.0, 2.0e6, 2.0e6] }, "free"])",
+      R"(traction = [1e300, "free"])");
+}
+
+TEST(AbuseCli, AnOverflowingHeatSourceStopsTheRunNamingTheColumn) {
+  expect_refused_history_row("abuse-heat-source",
+                             "heat_source = { t = [0.0, 0.005], value = [0.0, 1.0e6] }",
+                             "heat_source = { t = [0.0, 0.005], value = [0.0, 1.0e308] }");
 }
 
 }  // namespace

@@ -40,6 +40,23 @@ Field vector_field(const std::string& name, const core::Vector& v, int dim) {
   return f;
 }
 
+/// A NumericalError naming the first value of the step's history row that is not finite:
+/// derived quantities (energies, work, forces) overflow where the state they come from is
+/// still finite (a 1e300 traction, a 1e308 heat source), so the state's checks in the physics
+/// do not see them. Same message shape as physics' require_finite, with the time.
+void require_finite_row(const physics::Simulation& sim) {
+  const auto& columns = sim.history_columns();
+  const auto& row = sim.history_row();
+  for (size_t i = 0; i < row.size() && i < columns.size(); ++i) {
+    if (std::isfinite(row[i])) continue;
+    const char* value = std::isnan(row[i]) ? "NaN" : row[i] > 0 ? "+Inf" : "-Inf";
+    throw NumericalError::preformatted(
+        fmt::format("history: {} is not finite ({}) (step {}, t = {:g} s)", columns[i], value,
+                    sim.step(), sim.time()),
+        sim.step(), 0, row[i]);
+  }
+}
+
 }  // namespace
 
 std::string json_string(const std::string& s) {
@@ -216,6 +233,7 @@ void OutputWriter::step(const physics::Simulation& sim) {
   const double t0 = now_seconds();
   try {
     core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+      require_finite_row(sim);  // before the row is written: history.csv holds numbers only
       if (!root_) return;
       std::string line;
       for (const double v : sim.history_row())
@@ -225,8 +243,8 @@ void OutputWriter::step(const physics::Simulation& sim) {
     });
     // The restored step's fields are those the first run wrote (its contact rows are gone).
     if (sim.step() % every_ == 0 && sim.step() != resumed_step_) write_fields(sim);
-  } catch (const OutputError&) {
-    failed_ = true;  // finish() writes no more fields, only the summary if it can
+  } catch (const Error&) {  // a failed write, or a row refused as not finite
+    failed_ = true;         // finish() writes no more fields, only the summary if it can
     throw;
   }
   output_seconds_ += now_seconds() - t0;

@@ -47,7 +47,7 @@ class OutputWriter : public physics::Observer {
 
   int history_fd_ = -1;
   int steps_written_ = 0;  // the last step whose history row is written (summary's steps_done)
-  bool failed_ = false;    // a write failed (OutputError): the run is stopping
+  bool failed_ = false;    // a write failed or a row was not finite: the run is stopping
   bool resume_ = false;
   int resumed_step_ = -1;
   double output_seconds_ = 0;
