@@ -1,6 +1,7 @@
 // Abuse of the command line (issue 20, docs/robustness.md): two runs into one output
-// directory (#1), a disk that fills up (#2), results that overflow (#9). Each test runs the
-// binary as a user would and checks the exit code, the message and the files.
+// directory (#1), a disk that fills up (#2), results that overflow (#9), PETSc's
+// floating-point traps (#16). Each test runs the binary as a user would and checks the exit
+// code, the message and the files.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -245,6 +246,22 @@ TEST(AbuseCli, AnOverflowingHeatSourceStopsTheRunNamingTheColumn) {
   expect_refused_history_row("abuse-heat-source",
                              "heat_source = { t = [0.0, 0.005], value = [0.0, 1.0e6] }",
                              "heat_source = { t = [0.0, 0.005], value = [0.0, 1.0e308] }");
+}
+
+// ---- #16: PETSc's floating-point traps ----------------------------------------------------
+
+TEST(AbuseCli, TheContactPatchRunsUnderFloatingPointTraps) {
+  // -fp_trap makes an invalid operation, a division by zero or an overflow abort the run.
+  // FeasibleSet::split_gradient formed ∞ − ∞ (the activity tolerance of an infinite bound,
+  // discarded, but trapped): exit 72, "floating point error", at the first contact QP.
+  const auto out = tc::test::fresh_dir("abuse-fp-trap");
+  const auto c = fs::path(TC_SOURCE_DIR) / "tests/cases/valid/contact-patch-2d.toml";
+  const auto r = thermocontact("run " + c.string() + " --output " + out.string() + " -fp_trap");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("floating point"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("was not used"), std::string::npos) << r.output;  // PETSc read it
+  const auto summary = tc::test::read_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
 }
 
 }  // namespace
