@@ -179,12 +179,13 @@ void expect_stopped_by_the_limit(const tc::test::CommandResult& r, const fs::pat
 }
 
 TEST(AbuseCli, AFullDiskWhileWritingFieldsStopsTheRunWithExitOne) {
-  // 40 kB: the history, the summary, the checkpoint (39 kB) and the fields at t = 0 fit, the
-  // fields of step 1 do not. The old writer aborted (exit 134), summary.json "running".
+  // 50 kB: the history, the summary, the checkpoint (39 kB) and the fields at t = 0 (27 kB)
+  // fit, the fields of step 1 (70 kB) do not. The old writer aborted (exit 134), summary.json
+  // "running".
   const auto dir = tc::test::fresh_dir("abuse-full-fields");
   std::ofstream(dir / "plate.toml") << plate;
   const auto out = dir / "out";
-  const auto r = run_with_file_limit(dir / "plate.toml", out, 40);
+  const auto r = run_with_file_limit(dir / "plate.toml", out, 50);
   expect_stopped_by_the_limit(r, out, "plate_000001.vtu");
   EXPECT_FALSE(fs::exists(out / "plate_000001.vtu")) << "the partial file was left";
   EXPECT_EQ(tc::test::read_history(out / "history.csv").rows.size(), 2u);
