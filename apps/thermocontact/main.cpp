@@ -19,6 +19,7 @@
 #include "tc/io/checkpoint.hpp"
 #include "tc/io/geometry_checks.hpp"
 #include "tc/io/output.hpp"
+#include "tc/io/output_lock.hpp"
 #include "tc/physics/simulation.hpp"
 
 namespace {
@@ -47,6 +48,9 @@ void install_signal_handlers() {
   for (const int sig : kStopSignals) std::signal(sig, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
   std::signal(SIGQUIT, SIG_DFL);
+  // Beyond a file-size limit (ulimit -f) a write then fails with EFBIG and the run stops like
+  // on a full disk, with its output whole, instead of being killed by the signal.
+  std::signal(SIGXFSZ, SIG_IGN);
 }
 
 /// --stop-after N (tests, batch jobs): raises the stop flag after step N as SIGTERM would, so
@@ -173,6 +177,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     const auto warnings = tc::io::check_geometry(problem);
     if (tc::core::PetscSession::rank() == 0)
       for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+    // Held until the run returns: a second run into the same directory is refused (exit 2)
+    // before it sets anything up, instead of mixing its rows with this one's.
+    const tc::io::OutputLock lock(problem.output.directory, restart.empty());
     tc::physics::Simulation sim(problem);
     if (problem.contact) sim.enable_mortar_contact();
     const auto case_hash = tc::io::input_hash(problem);
@@ -204,7 +211,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
                    problem.output.directory.string());
       else
         fmt::print(stderr, "stopped: {}\noutput of the {} completed step(s) is in {}\n",
-                   status.message, status.steps_done, problem.output.directory.string());
+                   status.message, writer.steps_written(), problem.output.directory.string());
     }
     // Flushed while SIGPIPE is still ignored: PetscFinalize restores its default, and a reader
     // gone from the pipe would kill the process at exit's flush (exit 141 after a whole run).
@@ -216,6 +223,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     return report_bad_input(e);
   } catch (const tc::io::CheckpointError& e) {
     return report_bad_input(e);
+  } catch (const tc::io::OutputInUse& e) {
+    report(e, "error");
+    return 2;
   } catch (const tc::Error& e) {
     report(e, "stopped");
     return 1;

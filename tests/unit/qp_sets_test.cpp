@@ -1,6 +1,8 @@
 // The convex sets of the dual QP: projections, activity, chopped gradients, feasible steps.
 #include <gtest/gtest.h>
 
+#include <cfenv>
+
 #include "tc/qp/sets.hpp"
 
 namespace tc::qp {
@@ -98,6 +100,27 @@ TEST(FeasibleSet, SplitGradientOfAMixedProduct) {
   EXPECT_NEAR(b[2], -0.384, 1e-15);
   EXPECT_NEAR(b[3], 0.288, 1e-15);
   for (int i = 0; i < 4; ++i) EXPECT_EQ(p[i], f[i] + b[i]);
+}
+
+TEST(FeasibleSet, SplitGradientRaisesNoInvalidOperationAtInfiniteBounds) {
+  // The activity tolerance of an infinite bound was ∞ − ∞: a NaN that compared false, but
+  // FE_INVALID aborted runs under PETSc's -fp_trap (issue 20, #16). Every kind of component,
+  // with the flag watched: free, [0, ∞), (−∞, 1] at its bound, a disc.
+  core::Vector x = core::Vector::from(std::vector<double>{0.5, 0.0, 1.0, 0.6, 0.8});
+  FeasibleSet set(x);
+  set.set_interval(1, {0.0, infinity});
+  set.set_interval(2, {-infinity, 1.0});
+  set.add_disc({3, 4, {1.0}});
+  const auto g = core::Vector::from(std::vector<double>{2.0, 1.0, 1.0, -0.6, 0.0});
+  core::Vector phi = x.duplicate(), beta = x.duplicate(), gp = x.duplicate();
+  std::feclearexcept(FE_ALL_EXCEPT);
+  set.split_gradient(x, g, phi, beta, gp);
+  EXPECT_FALSE(std::fetestexcept(FE_INVALID));
+  const auto f = phi.to_std(), b = beta.to_std();
+  EXPECT_EQ(f[0], 2.0);  // free: never active
+  EXPECT_EQ(b[1], 0.0);  // at 0 with g > 0: blocked
+  EXPECT_EQ(f[2], 0.0);  // at its upper bound 1: active, the bound found despite −∞ below
+  EXPECT_EQ(b[2], 1.0);  // −g points into the set: may move
 }
 
 TEST(FeasibleSet, ScaledSetIsTheImageUnderTheChangeOfVariables) {

@@ -15,7 +15,7 @@ namespace tc::core {
 namespace {
 
 /// The exception types the ranks agree on; the type decides the exit code (case-format.md).
-enum Kind : int { other = 0, numerical, petsc, mesh, generic };
+enum Kind : int { other = 0, numerical, petsc, mesh, generic, output };
 
 void check_mpi(int rc, const char* call) {
   if (rc != MPI_SUCCESS) throw Error(fmt::format("collective error check: {} failed", call));
@@ -49,6 +49,9 @@ void collective_check(MPI_Comm comm, const char* what, const std::function<void(
   } catch (const MeshError& e) {
     kind = mesh, message = e.what();
     already_collective = dynamic_cast<const Collective*>(&e) != nullptr;
+  } catch (const OutputError& e) {
+    kind = output, message = e.what();
+    already_collective = dynamic_cast<const Collective*>(&e) != nullptr;
   } catch (const Error& e) {
     kind = generic, message = e.what();
     already_collective = dynamic_cast<const Collective*>(&e) != nullptr;
@@ -79,6 +82,8 @@ void collective_check(MPI_Comm comm, const char* what, const std::function<void(
       throw CollectiveError<PetscError>(PetscError(static_cast<int>(numbers[3]), named));
     case mesh:
       throw CollectiveError<MeshError>(MeshError(named));
+    case output:
+      throw CollectiveError<OutputError>(OutputError(named));
     case generic:  // InputError too: cases are read on every rank, never in a rank-local phase
     case other:
     default:

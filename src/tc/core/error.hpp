@@ -69,6 +69,14 @@ class NumericalError : public Error {
   double residual_;
 };
 
+/// A file of the run's output that could not be written (a full disk, a file-size limit, an
+/// I/O error): the run stops as after a numerical failure, exit code 1, and the steps already
+/// written stay readable.
+class OutputError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// Marks an error that every rank threw together (core/collective.hpp): reported once, on
 /// rank 0, where an error of one rank alone is reported by that rank.
 class Collective {

@@ -14,6 +14,7 @@
 #include "tc/core/bytes.hpp"
 #include "tc/core/collective.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/io/files.hpp"
 
 namespace tc::io {
 
@@ -198,23 +199,9 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
 
 void write_checkpoint(const std::filesystem::path& file, const physics::Simulation& sim,
                       std::uint64_t case_hash) {
-  const auto bytes = encode_checkpoint(sim, case_hash);
-  const auto tmp = std::filesystem::path(file.string() + ".tmp");
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error(fmt::format("cannot write {}: {}", tmp.string(), std::strerror(errno)));
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const auto n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int err = errno;
-      ::close(fd);
-      throw Error(fmt::format("cannot write {}: {}", tmp.string(), std::strerror(err)));
-    }
-    done += static_cast<size_t>(n);
-  }
-  ::close(fd);
-  std::filesystem::rename(tmp, file);  // atomic: the old checkpoint or the new, never half
+  // Atomic: the old checkpoint or the new, never half; a full disk is an OutputError that
+  // stops the run and leaves the previous checkpoint.
+  replace_file(file, encode_checkpoint(sim, case_hash));
 }
 
 namespace {

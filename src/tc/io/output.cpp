@@ -2,7 +2,6 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <fmt/os.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,6 +16,7 @@
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/fem/element.hpp"
+#include "tc/io/files.hpp"
 
 namespace tc::io {
 
@@ -38,6 +38,23 @@ Field vector_field(const std::string& name, const core::Vector& v, int dim) {
   for (size_t a = 0; a < n; ++a)
     for (int k = 0; k < dim; ++k) f.values[3 * a + k] = values[dim * a + k];
   return f;
+}
+
+/// A NumericalError naming the first value of the step's history row that is not finite:
+/// derived quantities (energies, work, forces) overflow where the state they come from is
+/// still finite (a 1e300 traction, a 1e308 heat source), so the state's checks in the physics
+/// do not see them. Same message shape as physics' require_finite, with the time.
+void require_finite_row(const physics::Simulation& sim) {
+  const auto& columns = sim.history_columns();
+  const auto& row = sim.history_row();
+  for (size_t i = 0; i < row.size() && i < columns.size(); ++i) {
+    if (std::isfinite(row[i])) continue;
+    const char* value = std::isnan(row[i]) ? "NaN" : row[i] > 0 ? "+Inf" : "-Inf";
+    throw NumericalError::preformatted(
+        fmt::format("history: {} is not finite ({}) (step {}, t = {:g} s)", columns[i], value,
+                    sim.step(), sim.time()),
+        sim.step(), 0, row[i]);
+  }
 }
 
 }  // namespace
@@ -175,6 +192,7 @@ void OutputWriter::start(const physics::Simulation& sim) {
       pvd_->load(sim.time() + 0.5 * sim.problem().time.step);
     }
     open_history(sim);
+    steps_written_ = sim.step();
     write_summary(sim, "running", "");
   });
   if (resume_) resumed_step_ = sim.step();
@@ -198,39 +216,37 @@ void OutputWriter::open_history(const physics::Simulation& sim) {
       kept += line + '\n';
     }
   }
-  const auto tmp = std::filesystem::path(file.string() + ".tmp");
-  {
-    auto out = fmt::output_file(tmp.string());
-    out.print("{}", kept);
-  }
-  std::filesystem::rename(tmp, file);
+  replace_file(file, kept);
   history_fd_ = ::open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (history_fd_ < 0) throw Error("cannot write " + file.string());
+  if (history_fd_ < 0)
+    throw OutputError(fmt::format("cannot open {}: {}", file.string(), std::strerror(errno)));
 }
 
 void OutputWriter::append_history(const std::string& line) {
   // One write() per row: a kill between two rows leaves whole rows only (a regular file's
-  // write is not split by a signal once it has started).
-  size_t done = 0;
-  while (done < line.size()) {
-    const auto n = ::write(history_fd_, line.data() + done, line.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw Error(fmt::format("cannot write history.csv: {}", std::strerror(errno)));
-    done += static_cast<size_t>(n);
-  }
+  // write is not split by a signal once it has started); a row cut short by a full disk is
+  // cut off again.
+  append_record(history_fd_, dir_ / "history.csv", line);
 }
 
 void OutputWriter::step(const physics::Simulation& sim) {
   const double t0 = now_seconds();
-  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
-    if (!root_) return;
-    std::string line;
-    for (const double v : sim.history_row())
-      line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
-    append_history(line + '\n');  // a run killed later still leaves every completed row
-  });
-  // The restored step's fields are those the first run wrote (its contact rows are gone).
-  if (sim.step() % every_ == 0 && sim.step() != resumed_step_) write_fields(sim);
+  try {
+    core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+      require_finite_row(sim);  // before the row is written: history.csv holds numbers only
+      if (!root_) return;
+      std::string line;
+      for (const double v : sim.history_row())
+        line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
+      append_history(line + '\n');  // a run killed later still leaves every completed row
+      steps_written_ = sim.step();
+    });
+    // The restored step's fields are those the first run wrote (its contact rows are gone).
+    if (sim.step() % every_ == 0 && sim.step() != resumed_step_) write_fields(sim);
+  } catch (const Error&) {  // a failed write, or a row refused as not finite
+    failed_ = true;         // finish() writes no more fields, only the summary if it can
+    throw;
+  }
   output_seconds_ += now_seconds() - t0;
 }
 
@@ -267,7 +283,8 @@ void OutputWriter::write_fields(const physics::Simulation& sim) {
     const auto piece = [&](int r) { return fmt::format("{}_{}.vtu", stem, r); };
     core::collective_check(PETSC_COMM_WORLD, "output", [&] {
       if (core::injected_failure("output"))
-        throw Error(fmt::format("cannot write {} (injected by -tc_fail_on_rank)", piece(rank)));
+        throw OutputError(
+            fmt::format("cannot write {} (injected by -tc_fail_on_rank)", piece(rank)));
       body_fields(sim, b, point_data, cell_data);
       if (!cells[static_cast<size_t>(rank)].empty())  // a rank without cells writes no piece
         write_vtu_piece(dir_ / piece(rank), mesh, cells[static_cast<size_t>(rank)], point_data,
@@ -285,8 +302,9 @@ void OutputWriter::write_fields(const physics::Simulation& sim) {
 }
 
 void OutputWriter::finish(const physics::Simulation& sim, const physics::RunStatus& status) {
-  // The last state is always written, even when `every` skipped it.
-  if (sim.step() % every_ != 0 && sim.step() != resumed_step_) write_fields(sim);
+  // The last state is always written, even when `every` skipped it; not after a failed
+  // write, which would only fail again (and the step may have no history row).
+  if (!failed_ && sim.step() % every_ != 0 && sim.step() != resumed_step_) write_fields(sim);
   core::collective_check(PETSC_COMM_WORLD, "output", [&] {
     if (root_) write_summary(sim, status.completed ? "completed" : "stopped", status.message);
   });
@@ -309,45 +327,41 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
                         i + 1 < cols.size() ? "," : "");
   int subdomains = 0;
   for (const auto& b : p.bodies) subdomains += b.subdomains;
-  const auto tmp = dir_ / "summary.json.tmp";
-  {
-    auto out = fmt::output_file(tmp.string());
-    out.print("{{\n");
-    out.print("  \"status\": {},\n", json_string(status));
-    out.print("  \"steps_done\": {},\n", sim.step());
-    out.print("  \"steps_total\": {},\n", p.time.n_steps());
-    out.print("  \"message\": {},\n", json_string(message));
-    out.print("  \"title\": {},\n", json_string(p.title));
-    out.print("  \"case\": {},\n", json_string(p.case_file.string()));
-    out.print("  \"wall_seconds\": {{\n{}  }},\n", phases);
-    out.print("  \"coupling_iterations\": {},\n", sim.total_coupling_iterations());
-    out.print("  \"qp_iterations\": {},\n", sim.total_qp_iterations());
-    out.print("  \"operator_applications\": {},\n", sim.total_operator_applications());
-    out.print("  \"dofs\": {},\n", sim.n_dofs());
-    const auto* dual = sim.dual_solver();
-    out.print("  \"multipliers\": {},\n", dual ? dual->rows().n_rows() : 0);
-    out.print("  \"ranks\": {},\n", core::PetscSession::size());
-    out.print("  \"subdomains\": {},\n", subdomains);
-    const auto feti = sim.feti_statistics();
-    out.print(
-        "  \"feti\": {{\"solves\": {}, \"right_hand_sides\": {}, \"iterations\": {}, "
-        "\"preconditioner\": {}}},\n",
-        feti.solves, feti.right_hand_sides, feti.iterations,
-        json_string(subdomains > static_cast<int>(p.bodies.size())
-                        ? feti::name(p.solver.feti_preconditioner)
-                        : "none"));
-    out.print("  \"factorization\": {},\n", json_string(sim.factorization()));
-    out.print(
-        "  \"dual_operator\": {},\n",
-        json_string(dual && dual->rows().n_rows() > 0 ? physics::name(dual->kind()) : "none"));
-    out.print("  \"contact_dual\": {},\n", json_string(!dual                         ? "none"
-                                                       : sim.combined_contact_dual() ? "combined"
-                                                                                     : "nested"));
-    out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
-    out.print("  \"last\": {{\n{}  }}\n", last);
-    out.print("}}\n");
-  }
-  std::filesystem::rename(tmp, dir_ / "summary.json");
+  TextBuffer out;
+  out.print("{{\n");
+  out.print("  \"status\": {},\n", json_string(status));
+  out.print("  \"steps_done\": {},\n", steps_written_);
+  out.print("  \"steps_total\": {},\n", p.time.n_steps());
+  out.print("  \"message\": {},\n", json_string(message));
+  out.print("  \"title\": {},\n", json_string(p.title));
+  out.print("  \"case\": {},\n", json_string(p.case_file.string()));
+  out.print("  \"wall_seconds\": {{\n{}  }},\n", phases);
+  out.print("  \"coupling_iterations\": {},\n", sim.total_coupling_iterations());
+  out.print("  \"qp_iterations\": {},\n", sim.total_qp_iterations());
+  out.print("  \"operator_applications\": {},\n", sim.total_operator_applications());
+  out.print("  \"dofs\": {},\n", sim.n_dofs());
+  const auto* dual = sim.dual_solver();
+  out.print("  \"multipliers\": {},\n", dual ? dual->rows().n_rows() : 0);
+  out.print("  \"ranks\": {},\n", core::PetscSession::size());
+  out.print("  \"subdomains\": {},\n", subdomains);
+  const auto feti = sim.feti_statistics();
+  out.print(
+      "  \"feti\": {{\"solves\": {}, \"right_hand_sides\": {}, \"iterations\": {}, "
+      "\"preconditioner\": {}}},\n",
+      feti.solves, feti.right_hand_sides, feti.iterations,
+      json_string(subdomains > static_cast<int>(p.bodies.size())
+                      ? feti::name(p.solver.feti_preconditioner)
+                      : "none"));
+  out.print("  \"factorization\": {},\n", json_string(sim.factorization()));
+  out.print("  \"dual_operator\": {},\n",
+            json_string(dual && dual->rows().n_rows() > 0 ? physics::name(dual->kind()) : "none"));
+  out.print("  \"contact_dual\": {},\n", json_string(!dual                         ? "none"
+                                                     : sim.combined_contact_dual() ? "combined"
+                                                                                   : "nested"));
+  out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
+  out.print("  \"last\": {{\n{}  }}\n", last);
+  out.print("}}\n");
+  replace_file(dir_ / "summary.json", out.view());
 }
 
 ProgressLine::ProgressLine(bool terminal)

@@ -29,6 +29,9 @@ class OutputWriter : public physics::Observer {
   void start(const physics::Simulation& sim) override;
   void step(const physics::Simulation& sim) override;
   void finish(const physics::Simulation& sim, const physics::RunStatus& status) override;
+  /// The last step whose history row is written (rank 0): summary.json's steps_done. One less
+  /// than the simulation's step when that step's row could not be written.
+  [[nodiscard]] int steps_written() const { return steps_written_; }
 
  private:
   void write_fields(const physics::Simulation& sim);
@@ -43,6 +46,8 @@ class OutputWriter : public physics::Observer {
   void append_history(const std::string& line);
 
   int history_fd_ = -1;
+  int steps_written_ = 0;  // the last step whose history row is written (summary's steps_done)
+  bool failed_ = false;    // a write failed or a row was not finite: the run is stopping
   bool resume_ = false;
   int resumed_step_ = -1;
   double output_seconds_ = 0;

@@ -1,13 +1,13 @@
 #include "tc/io/vtu.hpp"
 
 #include <fmt/format.h>
-#include <fmt/os.h>
 
 #include <cstdlib>
 #include <fstream>
 #include <regex>
 
 #include "tc/core/error.hpp"
+#include "tc/io/files.hpp"
 
 namespace tc::io {
 
@@ -27,7 +27,7 @@ int vtk_type(mesh::CellType t) {
   return 0;
 }
 
-void write_field(fmt::ostream& out, const Field& f) {
+void write_field(TextBuffer& out, const Field& f) {
   out.print(
       R"(        <DataArray type="Float64" Name="{}" NumberOfComponents="{}" format="ascii">)",
       f.name, f.components);
@@ -43,7 +43,7 @@ void write_grid(const std::filesystem::path& file, const mesh::Mesh& m,
                 const std::vector<int>& points, const std::vector<int>& cells,
                 const std::vector<int>& local, const std::vector<Field>& point_data,
                 const std::vector<Field>& cell_data) {
-  auto out = fmt::output_file(file.string());
+  TextBuffer out;
   out.print(R"(<?xml version="1.0"?>
 <VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
   <UnstructuredGrid>
@@ -90,6 +90,7 @@ void write_grid(const std::filesystem::path& file, const mesh::Mesh& m,
   for (const auto& f : cell_data)
     write_field(out, restricted(f, cells, static_cast<size_t>(m.n_cells())));
   out.print("      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+  write_file(file, out.view());
 }
 
 std::vector<int> iota(int n) {
@@ -98,7 +99,7 @@ std::vector<int> iota(int n) {
   return v;
 }
 
-void write_data_arrays(fmt::ostream& out, const char* tag, const std::vector<Field>& fields) {
+void write_data_arrays(TextBuffer& out, const char* tag, const std::vector<Field>& fields) {
   out.print("    <{}>\n", tag);
   for (const auto& f : fields)
     out.print(R"(      <PDataArray type="Float64" Name="{}" NumberOfComponents="{}"/>)"
@@ -130,7 +131,7 @@ void write_vtu_piece(const std::filesystem::path& file, const mesh::Mesh& m,
 
 void write_pvtu(const std::filesystem::path& file, const std::vector<Field>& point_data,
                 const std::vector<Field>& cell_data, const std::vector<std::string>& pieces) {
-  auto out = fmt::output_file(file.string());
+  TextBuffer out;
   out.print(R"(<?xml version="1.0"?>
 <VTKFile type="PUnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
   <PUnstructuredGrid GhostLevel="0">
@@ -143,11 +144,17 @@ void write_pvtu(const std::filesystem::path& file, const std::vector<Field>& poi
 )");
   for (const auto& p : pieces) out.print("    <Piece Source=\"{}\"/>\n", p);
   out.print("  </PUnstructuredGrid>\n</VTKFile>\n");
+  write_file(file, out.view());
 }
 
 void PvdCollection::add(double time, int part, const std::string& relative_file) {
   entries_.push_back({time, part, relative_file});
-  write();
+  try {
+    write();
+  } catch (...) {  // not on disk: not listed, should a later write succeed
+    entries_.pop_back();
+    throw;
+  }
 }
 
 void PvdCollection::load(double until) {
@@ -165,18 +172,15 @@ void PvdCollection::load(double until) {
 }
 
 void PvdCollection::write() const {
-  const auto tmp = std::filesystem::path(file_.string() + ".tmp");
-  {
-    auto out = fmt::output_file(tmp.string());
-    out.print(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n"
-        "  <Collection>\n");
-    for (const auto& e : entries_)
-      out.print("    <DataSet timestep=\"{:.12g}\" part=\"{}\" file=\"{}\"/>\n", e.time, e.part,
-                e.file);
-    out.print("  </Collection>\n</VTKFile>\n");
-  }
-  std::filesystem::rename(tmp, file_);
+  TextBuffer out;
+  out.print(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n"
+      "  <Collection>\n");
+  for (const auto& e : entries_)
+    out.print("    <DataSet timestep=\"{:.12g}\" part=\"{}\" file=\"{}\"/>\n", e.time, e.part,
+              e.file);
+  out.print("  </Collection>\n</VTKFile>\n");
+  replace_file(file_, out.view());
 }
 
 }  // namespace tc::io

@@ -1461,9 +1461,9 @@ void Simulation::restore(const Checkpoint& c) {
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {
   RunStatus status;
   observer.start(*this);
-  observer.step(*this);
   const int n = problem_.time.n_steps();
   try {
+    observer.step(*this);  // the initial state's output: a full disk may stop the run here
     while (step_ < n) {
       if (stop && stop->load() != 0) {
         status.message = fmt::format("interrupted by signal {} after step {} (t = {:g} s)",
@@ -1479,6 +1479,9 @@ RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {
     status.exit_code = 1;
   } catch (const PetscError& e) {
     status.message = fmt::format("{} (step {})", e.what(), step_ + 1);
+    status.exit_code = 1;
+  } catch (const OutputError& e) {  // a full disk: the steps written so far stay readable
+    status.message = e.what();
     status.exit_code = 1;
   }
   status.completed = status.exit_code == 0;

@@ -32,8 +32,14 @@ struct Interval {
   double hi = infinity;
 
   [[nodiscard]] double project(double x) const { return std::min(std::max(x, lo), hi); }
-  [[nodiscard]] bool at_lower(double x) const { return x <= lo + active_tolerance * std::abs(lo); }
-  [[nodiscard]] bool at_upper(double x) const { return x >= hi - active_tolerance * std::abs(hi); }
+  // An infinite bound is never reached. Its tolerance is not formed: ∞ − ∞ is a NaN that
+  // compares false anyway, but raises FE_INVALID, which aborts a run under -fp_trap.
+  [[nodiscard]] bool at_lower(double x) const {
+    return lo != -infinity && x <= lo + active_tolerance * std::abs(lo);
+  }
+  [[nodiscard]] bool at_upper(double x) const {
+    return hi != infinity && x >= hi - active_tolerance * std::abs(hi);
+  }
   [[nodiscard]] bool active(double x) const { return at_lower(x) || at_upper(x); }
   /// Chopped gradient of an active component: −g may only point into the interval.
   [[nodiscard]] double chopped(double x, double g) const {

@@ -1,0 +1,41 @@
+#pragma once
+// The lock of an output directory (issue 20, docs/robustness.md). Two runs writing into one
+// directory interleave their history.csv rows and race on checkpoint.bin.tmp: one of them
+// died on the rename, the other reported success over a mixed history. A run therefore holds
+// an exclusive flock() on DIR/.lock, a file holding its pid, from before it writes anything
+// until it exits. The kernel drops the lock when the process dies, however it dies, so the
+// file a killed run leaves behind does not block the next run.
+#include <filesystem>
+
+#include "tc/core/error.hpp"
+
+namespace tc::io {
+
+/// The output directory is locked by another run: invalid input, exit code 2.
+class OutputInUse : public Error {
+ public:
+  using Error::Error;
+};
+
+/// Holds the lock of an output directory for its lifetime. Only MPI rank 0 locks (the
+/// directory may be shared by ranks on several hosts); every rank learns the outcome.
+class OutputLock {
+ public:
+  /// Locks `directory`, creating it if `create` (a new run's --output); a directory that does
+  /// not exist and is not to be created (a --restart's, refused later for its missing
+  /// checkpoint) is left alone and nothing is locked. Collective on PETSC_COMM_WORLD: every
+  /// rank throws OutputInUse ("output directory D is in use by pid N") when another process
+  /// holds the lock, or Error when the directory or the lock file cannot be created.
+  OutputLock(const std::filesystem::path& directory, bool create);
+  ~OutputLock();
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+
+  /// The lock file of an output directory.
+  [[nodiscard]] static std::filesystem::path file(const std::filesystem::path& directory);
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace tc::io
