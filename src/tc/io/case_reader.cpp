@@ -415,6 +415,10 @@ void CaseReader::read_box(const TableReader& box, physics::Body& body) {
   if (!good || !box_size_ok(box, *cells)) return;
   try {
     body.mesh = mesh::make_box(dim_, *lo, *hi, *cells);
+    // Boxes whose cells round to nothing (max = [1e-320, …], or coordinates near 1e20 with a
+    // width below their precision): reported here, at the key, not as "K_u not finite" or a
+    // Jacobian without a file later (issue 20, #14).
+    mesh::check_cells(body.mesh, fmt::format("body \"{}\"", body.name));
     mesh_built_.back() = true;
   } catch (const MeshError& e) {
     issues_.add(box.line(), box.path(), fmt::format("cannot build the box: {}", e.what()));
