@@ -154,7 +154,7 @@ std::string bad_factor_package() {
 }
 
 int run(const std::string& case_file, const std::string& output, const std::string& restart,
-        int stop_after, std::vector<std::string> extra, const char* program) {
+        bool force, int stop_after, std::vector<std::string> extra, const char* program) {
   if (const auto why = bad_options_file(extra); !why.empty()) {
     fmt::print(stderr, "{}nothing was run.\n", why);
     return 2;
@@ -179,7 +179,10 @@ int run(const std::string& case_file, const std::string& output, const std::stri
       for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
     // Held until the run returns: a second run into the same directory is refused (exit 2)
     // before it sets anything up, instead of mixing its rows with this one's.
-    const tc::io::OutputLock lock(problem.output.directory, restart.empty());
+    const auto earlier = !restart.empty() ? tc::io::EarlierRun::keep
+                         : force          ? tc::io::EarlierRun::replace
+                                          : tc::io::EarlierRun::refuse;
+    const tc::io::OutputLock lock(problem.output.directory, restart.empty(), earlier);
     tc::physics::Simulation sim(problem);
     if (problem.contact) sim.enable_mortar_contact();
     const auto case_hash = tc::io::input_hash(problem);
@@ -320,6 +323,12 @@ int main(int argc, char** argv) {
                        "continue the run whose output is in this directory from its last "
                        "checkpoint")
           ->excludes(output_opt);
+  bool force = false;
+  run_cmd
+      ->add_flag("--force", force,
+                 "replace the output of an earlier run in the output directory (its history, "
+                 "checkpoint and fields are removed first)")
+      ->excludes(restart_opt);
   int stop_after = -1;
   run_cmd->add_option("--stop-after", stop_after, "stop after this step as SIGTERM would")
       ->group("");          // for tests and batch jobs: undocumented in --help
@@ -362,7 +371,7 @@ int main(int argc, char** argv) {
     if (run_cmd->parsed()) {
       auto extra = run_cmd->remaining();
       if (petsc_help) extra.emplace_back("-help");
-      return run(case_file, output, restart, stop_after, extra, argv[0]);
+      return run(case_file, output, restart, force, stop_after, extra, argv[0]);
     }
     if (check_cmd->parsed()) return check(case_file, argv[0]);
     return info(argv[0]);

@@ -359,3 +359,30 @@ TEST(Issue20, BadPetscOptionsAreRefusedBeforeTheRunAndHelpReachesPetsc) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("The PETSc Team"), std::string::npos) << r.output;
 }
+
+TEST(Issue20, AnEarlierRunInTheOutputDirectoryIsRefusedUnlessForced) {
+  // #7: a new run into a directory holding another run's output overwrote its history and
+  // checkpoint and left its stale .vtu pieces lying beside (and listed with) its own.
+  const auto file = write_case("earlier-run", kCase);
+  const auto out = file.parent_path() / "out";
+  const auto run = "run " + file.string() + " --output " + out.string();
+  auto r = limited(run);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(out / "b_000002.vtu"));
+  const auto history = tc::test::read_file(out / "history.csv");
+  r = limited(run);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("holds the output of an earlier run"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--force"), std::string::npos) << r.output;
+  EXPECT_EQ(tc::test::read_file(out / "history.csv"), history) << "the refusal touched it";
+  // Forced, with fields every 2 steps: the earlier run's step-1 piece is gone, not listed.
+  std::ofstream(file) << kCase << "[output]\nevery = 2\n";
+  r = limited(run + " --force");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(out / "b_000001.vtu"));
+  EXPECT_TRUE(fs::exists(out / "b_000002.vtu"));
+  EXPECT_EQ(tc::test::read_file(out / "result.pvd").find("b_000001"), std::string::npos);
+  // --force and --restart exclude each other.
+  EXPECT_EQ(limited("run " + file.string() + " --restart " + out.string() + " --force").exit_code,
+            2);
+}

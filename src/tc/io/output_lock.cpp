@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,41 @@ int take_lock(const std::filesystem::path& directory, bool create) {
   return fd;
 }
 
+/// The files of a run in an output directory: what OutputWriter and CheckpointWriter write
+/// (the pieces are <body>_<step>.vtu, <body>_<step>.pvtu and <body>_<step>_<rank>.vtu).
+std::vector<std::filesystem::path> run_files(const std::filesystem::path& directory) {
+  static const std::regex piece(R"(.+_[0-9]{6}(_[0-9]+)?\.p?vtu)");
+  std::vector<std::filesystem::path> out;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(directory, ec)) {
+    const auto name = e.path().filename().string();
+    if (name == "history.csv" || name == "summary.json" || name == "result.pvd" ||
+        name == "checkpoint.bin" || name == "checkpoint.bin.tmp" || std::regex_match(name, piece))
+      out.push_back(e.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// Applies `earlier` to the run found in a locked directory (rank 0).
+void handle_earlier_run(const std::filesystem::path& directory, EarlierRun earlier) {
+  if (earlier == EarlierRun::keep) return;
+  const auto files = run_files(directory);
+  if (files.empty()) return;
+  if (earlier == EarlierRun::refuse)
+    throw OutputInUse(fmt::format(
+        "output directory {} holds the output of an earlier run ({} files, {} first), which "
+        "this run would overwrite and leave mixed with its own; expected an empty directory: "
+        "--restart {} continues that run, --force replaces it",
+        directory.string(), files.size(), files.front().filename().string(), directory.string()));
+  for (const auto& f : files) {
+    std::error_code ec;
+    std::filesystem::remove(f, ec);
+    if (ec)
+      throw Error(fmt::format("cannot remove {} of the earlier run: {}", f.string(), ec.message()));
+  }
+}
+
 /// Rank 0's outcome and message to every rank.
 void share(int& outcome, std::string& message) {
   int header[2] = {outcome, static_cast<int>(message.size())};
@@ -85,17 +121,22 @@ std::filesystem::path OutputLock::file(const std::filesystem::path& directory) {
   return directory / ".lock";
 }
 
-OutputLock::OutputLock(const std::filesystem::path& directory, bool create) {
+OutputLock::OutputLock(const std::filesystem::path& directory, bool create, EarlierRun earlier) {
   int outcome = locked;
   std::string message;
   if (core::PetscSession::rank() == 0) {
     try {
       fd_ = take_lock(directory, create);
+      if (fd_ >= 0) handle_earlier_run(directory, earlier);
     } catch (const OutputInUse& e) {
       outcome = in_use, message = e.what();
     } catch (const std::exception& e) {
       outcome = failed, message = e.what();
     }
+  }
+  if (outcome != locked && fd_ >= 0) {  // refused after locking: no destructor will run
+    ::close(fd_);
+    fd_ = -1;
   }
   if (core::PetscSession::size() > 1) share(outcome, message);
   // Every rank throws the same error, reported once (by rank 0: core/collective.hpp).

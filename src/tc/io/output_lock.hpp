@@ -17,6 +17,13 @@ class OutputInUse : public Error {
   using Error::Error;
 };
 
+/// What a run does with the output of an earlier run found in its directory (history.csv,
+/// summary.json, checkpoint.bin, result.pvd, the .vtu/.pvtu pieces): a --restart continues it;
+/// a new run refuses it (OutputInUse: its history and checkpoint would be overwritten and its
+/// stale pieces left lying beside the new ones) unless told to replace it (--force), which
+/// removes those files first.
+enum class EarlierRun { keep, refuse, replace };
+
 /// Holds the lock of an output directory for its lifetime. Only MPI rank 0 locks (the
 /// directory may be shared by ranks on several hosts); every rank learns the outcome.
 class OutputLock {
@@ -26,7 +33,8 @@ class OutputLock {
   /// checkpoint) is left alone and nothing is locked. Collective on PETSC_COMM_WORLD: every
   /// rank throws OutputInUse ("output directory D is in use by pid N") when another process
   /// holds the lock, or Error when the directory or the lock file cannot be created.
-  OutputLock(const std::filesystem::path& directory, bool create);
+  OutputLock(const std::filesystem::path& directory, bool create,
+             EarlierRun earlier = EarlierRun::keep);
   ~OutputLock();
   OutputLock(const OutputLock&) = delete;
   OutputLock& operator=(const OutputLock&) = delete;
