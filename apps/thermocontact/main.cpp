@@ -25,6 +25,8 @@
 namespace {
 
 std::atomic<int> g_stop{0};
+// OutputWriter::stopped_summary and summary.json of the run (rank 0), for on_signal.
+char g_stopped_summary[4096] = {}, g_summary[4096] = {};
 
 /// The signals that ask a run to stop: Ctrl-C, kill, a dropped terminal or ssh session, and the
 /// warnings batch systems send before they kill (SIGUSR1/2, SIGXCPU on a CPU-time limit).
@@ -35,6 +37,7 @@ constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXC
 /// signal's default action (the user insists, e.g. during a long factorisation).
 extern "C" void on_signal(int sig) {
   if (g_stop.exchange(sig) != 0) {
+    if (g_summary[0] != '\0') (void)std::rename(g_stopped_summary, g_summary);
     std::signal(sig, SIG_DFL);
     std::raise(sig);
   }
@@ -187,6 +190,14 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     if (problem.contact) sim.enable_mortar_contact();
     const auto case_hash = tc::io::input_hash(problem);
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
+    if (tc::core::PetscSession::rank() == 0) {
+      const auto from = tc::io::OutputWriter::stopped_summary(problem.output.directory).string();
+      const auto to = (problem.output.directory / "summary.json").string();
+      if (from.size() < sizeof g_stopped_summary) {
+        std::snprintf(g_stopped_summary, sizeof g_stopped_summary, "%s", from.c_str());
+        std::snprintf(g_summary, sizeof g_summary, "%s", to.c_str());
+      }
+    }
     if (!restart.empty()) {
       const auto file = tc::io::checkpoint_file(restart);
       tc::io::check_restart_outputs(restart);

@@ -173,3 +173,43 @@ TEST(Kill, AReaderClosingStdoutDoesNotStopTheRun) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Kill, ASecondSignalEndsTheRunAtOnceWithItsSummaryStopped) {
+  // issue 20, #11: the first SIGINT asks for a stop after the step under way; a second one
+  // (the user insists) ended nothing before, and when it did end the run (SIGKILL) summary.json
+  // still said "running". Example 06 (tens of ms per step): both signals land in one step.
+  const auto out = tc::test::fresh_dir("kill-twice-" + std::to_string(::getpid()));
+  const fs::path example =
+      fs::path(TC_SOURCE_DIR) / "examples/06-thesis-frictional-heating/case.toml";
+  const std::string binary = TC_BINARY, case_file = example.string(), dir = out.string();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, STDOUT_FILENO);
+    dup2(null, STDERR_FILENO);
+    execl(binary.c_str(), binary.c_str(), "run", case_file.c_str(), "--output", dir.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const auto history = out / "history.csv";
+  while (!fs::exists(history) || count_newlines(history) < 6)  // 5 steps done
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  kill(pid, SIGINT);
+  // A standard signal pending twice is delivered once: the second after the first is handled.
+  std::this_thread::sleep_for(std::chrono::milliseconds(3));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << status;
+  const auto summary = tc::test::read_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("second stop signal"), std::string::npos) << summary;
+  const auto h = tc::test::read_history(history);
+  EXPECT_TRUE(h.whole);
+  EXPECT_NE(summary.find("\"steps_done\": " + std::to_string(h.rows.size() - 1)), std::string::npos)
+      << summary;
+}
+
+}  // namespace

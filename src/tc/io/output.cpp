@@ -240,6 +240,11 @@ void OutputWriter::step(const physics::Simulation& sim) {
         line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
       append_history(line + '\n');  // a run killed later still leaves every completed row
       steps_written_ = sim.step();
+      write_summary(sim, "stopped",
+                    fmt::format("ended at once by a second stop signal after step {} (t = {:g} "
+                                "s); the output of the steps done is whole",
+                                sim.step(), sim.time()),
+                    stopped_summary(dir_).filename().string());
     });
     // The restored step's fields are those the first run wrote (its contact rows are gone).
     if (sim.step() % every_ == 0 && sim.step() != resumed_step_) write_fields(sim);
@@ -306,12 +311,15 @@ void OutputWriter::finish(const physics::Simulation& sim, const physics::RunStat
   // write, which would only fail again (and the step may have no history row).
   if (!failed_ && sim.step() % every_ != 0 && sim.step() != resumed_step_) write_fields(sim);
   core::collective_check(PETSC_COMM_WORLD, "output", [&] {
-    if (root_) write_summary(sim, status.completed ? "completed" : "stopped", status.message);
+    if (!root_) return;
+    write_summary(sim, status.completed ? "completed" : "stopped", status.message);
+    std::error_code ec;
+    std::filesystem::remove(stopped_summary(dir_), ec);  // the run ended in order
   });
 }
 
 void OutputWriter::write_summary(const physics::Simulation& sim, const std::string& status,
-                                 const std::string& message) const {
+                                 const std::string& message, const std::string& file_name) const {
   const auto& p = sim.problem();
   const auto& t = sim.timers();
   std::string phases;
@@ -361,7 +369,7 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
   out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
   out.print("  \"last\": {{\n{}  }}\n", last);
   out.print("}}\n");
-  replace_file(dir_ / "summary.json", out.view());
+  replace_file(dir_ / file_name, out.view());
 }
 
 ProgressLine::ProgressLine(bool terminal)

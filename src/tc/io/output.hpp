@@ -32,11 +32,19 @@ class OutputWriter : public physics::Observer {
   /// The last step whose history row is written (rank 0): summary.json's steps_done. One less
   /// than the simulation's step when that step's row could not be written.
   [[nodiscard]] int steps_written() const { return steps_written_; }
+  /// summary.json as it must read should the process end at once, between two steps (a
+  /// second stop signal): status "stopped" and the steps whose output is whole. Rewritten
+  /// after every history row, removed by finish(); a signal handler renames it over
+  /// summary.json (rename is async-signal-safe; formatting JSON there is not).
+  [[nodiscard]] static std::filesystem::path stopped_summary(const std::filesystem::path& dir) {
+    return dir / "summary.stopped.json";
+  }
 
  private:
   void write_fields(const physics::Simulation& sim);
   void write_summary(const physics::Simulation& sim, const std::string& status,
-                     const std::string& message) const;
+                     const std::string& message,
+                     const std::string& file_name = "summary.json") const;
 
   std::filesystem::path dir_;
   int every_;

@@ -77,8 +77,9 @@ std::vector<std::filesystem::path> run_files(const std::filesystem::path& direct
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(directory, ec)) {
     const auto name = e.path().filename().string();
-    if (name == "history.csv" || name == "summary.json" || name == "result.pvd" ||
-        name == "checkpoint.bin" || name == "checkpoint.bin.tmp" || std::regex_match(name, piece))
+    if (name == "history.csv" || name == "summary.json" || name == "summary.stopped.json" ||
+        name == "result.pvd" || name == "checkpoint.bin" || name == "checkpoint.bin.tmp" ||
+        std::regex_match(name, piece))
       out.push_back(e.path());
   }
   std::sort(out.begin(), out.end());
