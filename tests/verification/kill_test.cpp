@@ -46,18 +46,24 @@ struct Killed {
   bool finished = false;  // the run ended before the signal could be sent
 };
 
-/// Starts the run as a child process and sends `sig` once history.csv holds `rows` rows.
-Killed run_and_kill(const fs::path& out, int sig, size_t rows) {
-  const std::string binary = TC_BINARY, case_file = sliding.string(), dir = out.string();
+/// `thermocontact run case_file --output out` as a child process, its output discarded.
+pid_t spawn_run(const fs::path& case_file, const fs::path& out) {
+  const std::string binary = TC_BINARY, file = case_file.string(), dir = out.string();
   const pid_t pid = fork();
   if (pid == 0) {
     const int null = ::open("/dev/null", O_WRONLY);
     dup2(null, STDOUT_FILENO);
     dup2(null, STDERR_FILENO);
-    execl(binary.c_str(), binary.c_str(), "run", case_file.c_str(), "--output", dir.c_str(),
+    execl(binary.c_str(), binary.c_str(), "run", file.c_str(), "--output", dir.c_str(),
           static_cast<char*>(nullptr));
     _exit(127);
   }
+  return pid;
+}
+
+/// Starts the run as a child process and sends `sig` once history.csv holds `rows` rows.
+Killed run_and_kill(const fs::path& out, int sig, size_t rows) {
+  const pid_t pid = spawn_run(sliding, out);
   Killed k;
   const auto history = out / "history.csv";
   for (;;) {  // poll every 0.2 ms: a step of this case takes several milliseconds
@@ -181,18 +187,8 @@ TEST(Kill, ASecondSignalEndsTheRunAtOnceWithItsSummaryStopped) {
   // (the user insists) ended nothing before, and when it did end the run (SIGKILL) summary.json
   // still said "running". Example 06 (tens of ms per step): both signals land in one step.
   const auto out = tc::test::fresh_dir("kill-twice-" + std::to_string(::getpid()));
-  const fs::path example =
-      fs::path(TC_SOURCE_DIR) / "examples/06-thesis-frictional-heating/case.toml";
-  const std::string binary = TC_BINARY, case_file = example.string(), dir = out.string();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    dup2(null, STDOUT_FILENO);
-    dup2(null, STDERR_FILENO);
-    execl(binary.c_str(), binary.c_str(), "run", case_file.c_str(), "--output", dir.c_str(),
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t pid =
+      spawn_run(fs::path(TC_SOURCE_DIR) / "examples/06-thesis-frictional-heating/case.toml", out);
   const auto history = out / "history.csv";
   while (!fs::exists(history) || count_newlines(history) < 6)  // 5 steps done
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
