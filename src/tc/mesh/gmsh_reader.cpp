@@ -14,8 +14,9 @@
 //   strongly distorted cells. The unit tests check the normals geometrically.
 #include "tc/mesh/gmsh_reader.hpp"
 
+#include <dlfcn.h>
 #include <fcntl.h>
-#include <gmsh.h>
+#include <gmshc.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,6 +34,9 @@
 #include "tc/core/bytes.hpp"
 #include "tc/core/error.hpp"
 
+#define TC_STRINGIFY_(x) #x
+#define TC_STRINGIFY(x) TC_STRINGIFY_(x)
+
 namespace tc::mesh {
 namespace {
 
@@ -42,31 +46,140 @@ using detail::RawBlock;
 using detail::RawGroup;
 using detail::RawMesh;
 
+/// libgmsh through its C API (gmshc.h), loaded with dlopen when a mesh file is first read (in
+/// the reader's child process, below) instead of linked: linked, its OpenCASCADE, FLTK …
+/// libraries loaded and initialised in every run, 0.1 s of a 0.17 s start-up
+/// (bench/RESULTS.md). Each call's error code becomes an exception with gmsh's last error
+/// message, as its C++ API throws.
+class Gmsh {
+ public:
+  static const Gmsh& api() {
+    static const Gmsh g;
+    return g;
+  }
+
+  template <class F, class... A>
+  void call(F* f, const char* what, A... args) const {
+    int ierr = 0;
+    f(args..., &ierr);
+    if (ierr != 0) throw std::runtime_error(last_error(what));
+  }
+  /// A gmsh-allocated array as a vector (and freed).
+  template <class T>
+  std::vector<T> take(T* data, std::size_t n) const {
+    std::vector<T> out(data, data + n);
+    free(data);
+    return out;
+  }
+  std::string take_string(char* text) const {
+    std::string out = text ? text : "";
+    free(text);
+    return out;
+  }
+
+  decltype(&::gmshInitialize) initialize = nullptr;
+  decltype(&::gmshFinalize) finalize = nullptr;
+  decltype(&::gmshOptionSetNumber) set_number = nullptr;
+  decltype(&::gmshOpen) open = nullptr;
+  decltype(&::gmshModelMeshGetNodes) get_nodes = nullptr;
+  decltype(&::gmshModelMeshGetElements) get_elements = nullptr;
+  decltype(&::gmshModelMeshGetElementProperties) get_element_properties = nullptr;
+  decltype(&::gmshModelGetPhysicalGroups) get_physical_groups = nullptr;
+  decltype(&::gmshModelGetPhysicalName) get_physical_name = nullptr;
+  decltype(&::gmshModelGetEntitiesForPhysicalGroup) get_entities_for_physical_group = nullptr;
+  decltype(&::gmshLoggerGetLastError) get_last_error = nullptr;
+  decltype(&::gmshFree) free = nullptr;
+
+ private:
+  Gmsh() {
+    // The library the build found, else the installed one of the same API version.
+    for (const char* name :
+         {TC_GMSH_LIBRARY, "libgmsh.so." TC_STRINGIFY(GMSH_API_VERSION_MAJOR) "." TC_STRINGIFY(
+                               GMSH_API_VERSION_MINOR)})
+      if ((handle_ = ::dlopen(name, RTLD_NOW | RTLD_LOCAL)) != nullptr) break;
+    if (!handle_) {
+      const char* why = ::dlerror();
+      throw MeshError(std::string("cannot load libgmsh (" TC_GMSH_LIBRARY "): ") +
+                      (why ? why : "unknown error"));
+    }
+    resolve(initialize, "gmshInitialize");
+    resolve(finalize, "gmshFinalize");
+    resolve(set_number, "gmshOptionSetNumber");
+    resolve(open, "gmshOpen");
+    resolve(get_nodes, "gmshModelMeshGetNodes");
+    resolve(get_elements, "gmshModelMeshGetElements");
+    resolve(get_element_properties, "gmshModelMeshGetElementProperties");
+    resolve(get_physical_groups, "gmshModelGetPhysicalGroups");
+    resolve(get_physical_name, "gmshModelGetPhysicalName");
+    resolve(get_entities_for_physical_group, "gmshModelGetEntitiesForPhysicalGroup");
+    resolve(get_last_error, "gmshLoggerGetLastError");
+    resolve(free, "gmshFree");
+  }
+  template <class F>
+  void resolve(F& f, const char* symbol) {
+    f = reinterpret_cast<F>(::dlsym(handle_, symbol));
+    if (!f) throw MeshError(std::string("libgmsh has no ") + symbol);
+  }
+  std::string last_error(const char* what) const {
+    char* text = nullptr;
+    int ierr = 0;
+    get_last_error(&text, &ierr);
+    std::string message = ierr == 0 && text && *text ? text : std::string(what) + " failed";
+    if (text) free(text);
+    return message;
+  }
+  void* handle_ = nullptr;
+};
+
 /// One gmsh session: libgmsh is a global singleton, so read_gmsh must not be called while the
 /// caller holds a gmsh session of its own (this one would finalize it).
 class GmshSession {
  public:
   GmshSession() {
+    const auto& g = Gmsh::api();
     // No configuration files: the user's ~/.gmshrc must not change how a mesh is read.
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
+    g.call(g.initialize, "gmshInitialize", 0, static_cast<char**>(nullptr), 0);
+    g.call(g.set_number, "gmshOptionSetNumber", "General.Terminal", 0.0);
   }
   ~GmshSession() {
-    try {
-      gmsh::finalize();
-    } catch (...) {  // a destructor must not throw; nothing useful to do
-    }
+    int ierr = 0;
+    Gmsh::api().finalize(&ierr);  // a destructor must not throw; nothing useful to do
   }
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
 };
 
 std::string type_name(int type) {
-  std::string name;
+  const auto& g = Gmsh::api();
+  char* name = nullptr;
   int dim = 0, order = 0, n = 0, n_primary = 0;
-  std::vector<double> local;
-  gmsh::model::mesh::getElementProperties(type, name, dim, order, n, local, n_primary);
-  return name;
+  double* local = nullptr;
+  std::size_t n_local = 0;
+  g.call(g.get_element_properties, "gmshModelMeshGetElementProperties", type, &name, &dim, &order,
+         &n, &local, &n_local, &n_primary);
+  g.free(local);
+  return g.take_string(name);
+}
+
+/// gmshModelMeshGetElements of (dim, tag): the element types and each type's node tags.
+void get_elements(int dim, int tag, std::vector<int>& types,
+                  std::vector<std::vector<std::size_t>>& nodes) {
+  const auto& g = Gmsh::api();
+  int* t = nullptr;
+  std::size_t nt = 0, n_tags_nn = 0, n_nodes_nn = 0;
+  std::size_t **tags = nullptr, **node_tags = nullptr;
+  std::size_t *tags_n = nullptr, *node_tags_n = nullptr;
+  g.call(g.get_elements, "gmshModelMeshGetElements", &t, &nt, &tags, &tags_n, &n_tags_nn,
+         &node_tags, &node_tags_n, &n_nodes_nn, dim, tag);
+  types = g.take(t, nt);
+  nodes.clear();
+  for (std::size_t b = 0; b < n_tags_nn; ++b) g.free(tags[b]);
+  for (std::size_t b = 0; b < n_nodes_nn; ++b)
+    nodes.push_back(g.take(node_tags[b], node_tags_n[b]));
+  g.free(tags);
+  g.free(tags_n);
+  g.free(node_tags);
+  g.free(node_tags_n);
 }
 
 RawBlock to_block(int type, std::vector<std::size_t>&& nodes, RawMesh& raw) {
@@ -75,27 +188,41 @@ RawBlock to_block(int type, std::vector<std::size_t>&& nodes, RawMesh& raw) {
 }
 
 RawMesh read_raw(const std::filesystem::path& file, int dim) {
+  const auto& g = Gmsh::api();
   RawMesh raw;
-  gmsh::open(file.string());
-  std::vector<double> parametric;
-  gmsh::model::mesh::getNodes(raw.node_tags, raw.coords, parametric, -1, -1, false, false);
-
+  g.call(g.open, "gmshOpen", file.c_str());
+  {
+    std::size_t *tags = nullptr, n_tags = 0, n_coords = 0, n_param = 0;
+    double *coords = nullptr, *param = nullptr;
+    g.call(g.get_nodes, "gmshModelMeshGetNodes", &tags, &n_tags, &coords, &n_coords, &param,
+           &n_param, -1, -1, 0, 0);
+    raw.node_tags = g.take(tags, n_tags);
+    raw.coords = g.take(coords, n_coords);
+    g.free(param);
+  }
   std::vector<int> types;
-  std::vector<std::vector<std::size_t>> tags, nodes;
-  gmsh::model::mesh::getElements(types, tags, nodes, dim, -1);
+  std::vector<std::vector<std::size_t>> nodes;
+  get_elements(dim, -1, types, nodes);
   for (std::size_t b = 0; b < types.size(); ++b)
     raw.cells.push_back(to_block(types[b], std::move(nodes[b]), raw));
 
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, dim - 1);
-  for (const auto& [gdim, gtag] : groups) {
+  int* dim_tags = nullptr;
+  std::size_t n_dim_tags = 0;
+  g.call(g.get_physical_groups, "gmshModelGetPhysicalGroups", &dim_tags, &n_dim_tags, dim - 1);
+  const auto groups = g.take(dim_tags, n_dim_tags);
+  for (std::size_t i = 0; i + 1 < groups.size(); i += 2) {
+    const int gdim = groups[i], gtag = groups[i + 1];
     RawGroup group;
-    gmsh::model::getPhysicalName(gdim, gtag, group.name);
+    char* name = nullptr;
+    g.call(g.get_physical_name, "gmshModelGetPhysicalName", gdim, gtag, &name);
+    group.name = g.take_string(name);
     if (group.name.empty()) continue;  // unnamed groups cannot be referred to by a case file
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(gdim, gtag, entities);
-    for (const int e : entities) {
-      gmsh::model::mesh::getElements(types, tags, nodes, gdim, e);
+    int* entities = nullptr;
+    std::size_t n_entities = 0;
+    g.call(g.get_entities_for_physical_group, "gmshModelGetEntitiesForPhysicalGroup", gdim, gtag,
+           &entities, &n_entities);
+    for (const int e : g.take(entities, n_entities)) {
+      get_elements(gdim, e, types, nodes);
       for (std::size_t b = 0; b < types.size(); ++b)
         group.blocks.push_back(to_block(types[b], std::move(nodes[b]), raw));
     }
