@@ -289,7 +289,6 @@ feti::FetiStatistics Simulation::feti_statistics() const {
 }
 
 void Simulation::initialise() {
-  const double theta0 = problem_.physics.reference_temperature;
   for (int b = 0; b < n_bodies(); ++b) {
     const auto& sys = *systems_[b];
     auto& s = *solvers_[b];
@@ -314,12 +313,7 @@ void Simulation::initialise() {
       sys.mechanical_load(0.0, s.rhs_u);
       m.stiffness_u.mult(st.u, s.work_u);
       s.rhs_u.axpy(-1.0, s.work_u);
-      if (problem_.physics.thermal_expansion) {
-        s.dtheta.copy_from(st.theta);
-        s.dtheta.shift(-theta0);
-        m.coupling_u_theta.mult(s.dtheta, s.work_u);
-        s.rhs_u.axpy(-1.0, s.work_u);
-      }
+      if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.rhs_u);
       s.g_free = s.rhs_u.clone();  // g⁰ = M ü⁰ (no contact force at t = 0)
       s.initial_mass = body_solver(problem_, sys, m.mass_u, Operator::mass);
       st.a.zero();
@@ -361,6 +355,15 @@ void Simulation::initialise() {
   fill_row(0, 0.0);
 }
 
+void Simulation::subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f) {
+  // f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with the body's scratch vectors.
+  auto& s = *solvers_[b];
+  s.dtheta.copy_from(theta);
+  s.dtheta.shift(-problem_.physics.reference_temperature);
+  systems_[b]->matrices().coupling_u_theta.mult(s.dtheta, s.work_u);
+  f.axpy(-1.0, s.work_u);
+}
+
 void Simulation::static_initial_state(int b, BodyState& st) {
   // K u⁰ = f(0) − K_uθ(θ⁰ − θ₀) with u⁰ = u_D(0) on the supports: the body starts expanded
   // by its initial temperature and loaded, so ü⁰ = 0 off the supports. Released from u⁰ = 0
@@ -371,12 +374,7 @@ void Simulation::static_initial_state(int b, BodyState& st) {
   const auto& m = sys.matrices();
   auto& s = *solvers_[b];
   sys.mechanical_load(0.0, s.rhs_u);
-  if (problem_.physics.thermal_expansion) {
-    s.dtheta.copy_from(st.theta);
-    s.dtheta.shift(-problem_.physics.reference_temperature);
-    m.coupling_u_theta.mult(s.dtheta, s.work_u);
-    s.rhs_u.axpy(-1.0, s.work_u);
-  }
+  if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.rhs_u);
   body_solver(problem_, sys, m.stiffness_u, Operator::statics)->solve(s.rhs_u, st.u);
   require_finite(st.u, "displacement", 0, 0);
 }
@@ -562,12 +560,7 @@ void Simulation::mech_load(int b) {
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   s.rhs_u.copy_from(s.rhs_u_base);
-  if (s.expansion) {
-    s.dtheta.copy_from(s.theta_new);
-    s.dtheta.shift(-problem_.physics.reference_temperature);
-    sys.matrices().coupling_u_theta.mult(s.dtheta, s.work_u);
-    s.rhs_u.axpy(-1.0, s.work_u);
-  }
+  if (s.expansion) subtract_thermal_force(b, s.theta_new, s.rhs_u);
   sys.prescribe_u((step_ + 1) * problem_.time.step, s.u_new);
 }
 
@@ -617,12 +610,7 @@ void Simulation::update_state(int b) {
     s.g_free.copy_from(s.f_u);
     m.stiffness_u.mult(st.u, s.work_u);
     s.g_free.axpy(-1.0, s.work_u);
-    if (problem_.physics.thermal_expansion) {
-      s.dtheta.copy_from(st.theta);
-      s.dtheta.shift(-problem_.physics.reference_temperature);
-      m.coupling_u_theta.mult(s.dtheta, s.work_u);
-      s.g_free.axpy(-1.0, s.work_u);
-    }
+    if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.g_free);
   }
 }
 

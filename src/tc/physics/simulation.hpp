@@ -211,6 +211,7 @@ class Simulation {
   void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
   void mech_load(int b);  // right-hand side of (5.3) at the current θ iterate, Dirichlet values
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
+  void subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f);
   void static_initial_state(int b, BodyState& st);
   void update_state(int b);
   void massless_rates(int b);  // Newmark/backward-difference updates of u̇, ü
