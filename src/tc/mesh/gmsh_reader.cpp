@@ -77,48 +77,46 @@ class Gmsh {
     return out;
   }
 
-  decltype(&::gmshInitialize) initialize = nullptr;
-  decltype(&::gmshFinalize) finalize = nullptr;
-  decltype(&::gmshOptionSetNumber) set_number = nullptr;
-  decltype(&::gmshOpen) open = nullptr;
-  decltype(&::gmshModelMeshGetNodes) get_nodes = nullptr;
-  decltype(&::gmshModelMeshGetElements) get_elements = nullptr;
-  decltype(&::gmshModelMeshGetElementProperties) get_element_properties = nullptr;
-  decltype(&::gmshModelGetPhysicalGroups) get_physical_groups = nullptr;
-  decltype(&::gmshModelGetPhysicalName) get_physical_name = nullptr;
-  decltype(&::gmshModelGetEntitiesForPhysicalGroup) get_entities_for_physical_group = nullptr;
-  decltype(&::gmshLoggerGetLastError) get_last_error = nullptr;
-  decltype(&::gmshFree) free = nullptr;
+  // Each function resolved as the object is built (after handle_, declared first): one line
+  // names the C function, its type and its member.
+#define TC_GMSH_FUNCTION(member, symbol) \
+  const decltype(&::symbol) member = resolve<decltype(&::symbol)>(#symbol)
 
  private:
-  Gmsh() {
-    // The library the build found, else the installed one of the same API version.
+  void* const handle_ = open_library();
+
+ public:
+  TC_GMSH_FUNCTION(initialize, gmshInitialize);
+  TC_GMSH_FUNCTION(finalize, gmshFinalize);
+  TC_GMSH_FUNCTION(set_number, gmshOptionSetNumber);
+  TC_GMSH_FUNCTION(open, gmshOpen);
+  TC_GMSH_FUNCTION(get_nodes, gmshModelMeshGetNodes);
+  TC_GMSH_FUNCTION(get_elements, gmshModelMeshGetElements);
+  TC_GMSH_FUNCTION(get_element_properties, gmshModelMeshGetElementProperties);
+  TC_GMSH_FUNCTION(get_physical_groups, gmshModelGetPhysicalGroups);
+  TC_GMSH_FUNCTION(get_physical_name, gmshModelGetPhysicalName);
+  TC_GMSH_FUNCTION(get_entities_for_physical_group, gmshModelGetEntitiesForPhysicalGroup);
+  TC_GMSH_FUNCTION(get_last_error, gmshLoggerGetLastError);
+  TC_GMSH_FUNCTION(free, gmshFree);
+#undef TC_GMSH_FUNCTION
+
+ private:
+  Gmsh() = default;
+  /// The library the build found, else the installed one of the same API version.
+  static void* open_library() {
     for (const char* name :
          {TC_GMSH_LIBRARY, "libgmsh.so." TC_STRINGIFY(GMSH_API_VERSION_MAJOR) "." TC_STRINGIFY(
                                GMSH_API_VERSION_MINOR)})
-      if ((handle_ = ::dlopen(name, RTLD_NOW | RTLD_LOCAL)) != nullptr) break;
-    if (!handle_) {
-      const char* why = ::dlerror();
-      throw MeshError(std::string("cannot load libgmsh (" TC_GMSH_LIBRARY "): ") +
-                      (why ? why : "unknown error"));
-    }
-    resolve(initialize, "gmshInitialize");
-    resolve(finalize, "gmshFinalize");
-    resolve(set_number, "gmshOptionSetNumber");
-    resolve(open, "gmshOpen");
-    resolve(get_nodes, "gmshModelMeshGetNodes");
-    resolve(get_elements, "gmshModelMeshGetElements");
-    resolve(get_element_properties, "gmshModelMeshGetElementProperties");
-    resolve(get_physical_groups, "gmshModelGetPhysicalGroups");
-    resolve(get_physical_name, "gmshModelGetPhysicalName");
-    resolve(get_entities_for_physical_group, "gmshModelGetEntitiesForPhysicalGroup");
-    resolve(get_last_error, "gmshLoggerGetLastError");
-    resolve(free, "gmshFree");
+      if (void* handle = ::dlopen(name, RTLD_NOW | RTLD_LOCAL)) return handle;
+    const char* why = ::dlerror();
+    throw MeshError(std::string("cannot load libgmsh (" TC_GMSH_LIBRARY "): ") +
+                    (why ? why : "unknown error"));
   }
   template <class F>
-  void resolve(F& f, const char* symbol) {
-    f = reinterpret_cast<F>(::dlsym(handle_, symbol));
+  F resolve(const char* symbol) const {
+    auto* f = reinterpret_cast<F>(::dlsym(handle_, symbol));
     if (!f) throw MeshError(std::string("libgmsh has no ") + symbol);
+    return f;
   }
   std::string last_error(const char* what) const {
     char* text = nullptr;
@@ -128,7 +126,6 @@ class Gmsh {
     if (text) free(text);
     return message;
   }
-  void* handle_ = nullptr;
 };
 
 /// One gmsh session: libgmsh is a global singleton, so read_gmsh must not be called while the
