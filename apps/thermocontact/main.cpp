@@ -17,6 +17,7 @@
 #include "tc/core/petsc.hpp"
 #include "tc/io/case_reader.hpp"
 #include "tc/io/checkpoint.hpp"
+#include "tc/io/files.hpp"
 #include "tc/io/geometry_checks.hpp"
 #include "tc/io/output.hpp"
 #include "tc/io/output_lock.hpp"
@@ -118,21 +119,14 @@ std::string bad_options_file(const std::vector<std::string>& extra) {
     if (extra[i] != "-options_file") continue;
     const std::filesystem::path f(extra[i + 1]);
     std::error_code ec;
-    const auto st = std::filesystem::status(f, ec);
-    std::string why;
-    if (!std::filesystem::exists(st))
-      why = "which does not exist";
-    else if (std::filesystem::is_directory(st))
-      why = "which is a directory";
-    else if (!std::filesystem::is_regular_file(st))
-      why = "which is not a regular file (a device, pipe or socket)";
-    else if (std::filesystem::file_size(f, ec) > (std::size_t{1} << 20))
-      why = "which is larger than 1 MiB";
-    else if (!std::ifstream(f))
-      why = "which cannot be read";
+    std::string why = tc::io::not_a_file(f);
+    if (why.empty() && std::filesystem::file_size(f, ec) > (std::size_t{1} << 20))
+      why = "is larger than 1 MiB";
+    else if (why.empty() && !std::ifstream(f))
+      why = "cannot be read";
     if (!why.empty())
       return fmt::format(
-          "error: option -options_file: found {}, {}; expected a readable file of "
+          "error: option -options_file: found {}, which {}; expected a readable file of "
           "PETSc options\n",
           f.string(), why);
   }
@@ -142,12 +136,10 @@ std::string bad_options_file(const std::vector<std::string>& extra) {
 /// The factorisation package of -tc_factor_package, checked against those this PETSc has
 /// before anything is assembled (it failed in the first factorisation, exit 1).
 std::string bad_factor_package() {
-  char opt[64] = {};
-  PetscBool set = PETSC_FALSE;
-  TC_PETSC(PetscOptionsGetString(nullptr, nullptr, "-tc_factor_package", opt, sizeof opt, &set));
-  if (!set) return {};
+  const auto opt = tc::core::requested_factor_package();
+  if (opt.empty()) return {};
   const auto known = tc::core::available_cholesky_packages();
-  if (std::find(known.begin(), known.end(), std::string(opt)) != known.end()) return {};
+  if (std::find(known.begin(), known.end(), opt) != known.end()) return {};
   std::string list;
   for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
   return fmt::format(

@@ -335,12 +335,16 @@ std::vector<std::string> available_cholesky_packages() {
   return out;
 }
 
-CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package) {
-  package_ = package;
+std::string requested_factor_package() {
   char opt[64] = {};
   PetscBool set = PETSC_FALSE;
   TC_PETSC(PetscOptionsGetString(nullptr, nullptr, "-tc_factor_package", opt, sizeof opt, &set));
-  if (set) package_ = opt;
+  return set ? std::string(opt) : std::string();
+}
+
+CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package) {
+  package_ = package;
+  if (auto opt = requested_factor_package(); !opt.empty()) package_ = std::move(opt);
   if (package_.empty()) package_ = available_cholesky_packages().front();
 
   TC_PETSC(MatSetOption(a.get(), MAT_SYMMETRIC, PETSC_TRUE));

@@ -184,5 +184,7 @@ class CholeskySolver {
 
 /// The factorisation packages this PETSc build offers for Cholesky on sequential AIJ.
 [[nodiscard]] std::vector<std::string> available_cholesky_packages();
+/// The package named by the PETSc option -tc_factor_package, or "" when it is not set.
+[[nodiscard]] std::string requested_factor_package();
 
 }  // namespace tc::core

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "tc/io/case_schema.hpp"
+#include "tc/io/files.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/mesh/gmsh_reader.hpp"
 #include "tc/mesh/partition.hpp"
@@ -73,18 +74,6 @@ void check_name(const TableReader& t, std::string_view k, const std::string& nam
     t.issue(k, fmt::format("found \"{}\", {}; expected 1 to {} letters, digits, '_', '-' or '.' "
                            "(not first): it is used in {}",
                            printable(name), why, kMaxNameLength, used_in));
-}
-
-/// What keeps `path` from being read as a file ("does not exist", "is a directory", ...), or ""
-/// when it is a regular file (after symbolic links). "does not exist" was said of all of them.
-std::string not_a_file(const fs::path& path) {
-  std::error_code ec;
-  const auto status = fs::status(path, ec);
-  if (status.type() == fs::file_type::regular) return "";
-  if (status.type() == fs::file_type::not_found) return "does not exist";
-  if (status.type() == fs::file_type::directory) return "is a directory";
-  if (ec) return fmt::format("cannot be examined ({})", ec.message());
-  return "is not a regular file (a device, pipe or socket)";
 }
 
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;

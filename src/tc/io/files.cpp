@@ -66,4 +66,15 @@ void append_record(int fd, const std::filesystem::path& file, std::string_view b
   fail("write", file, err);
 }
 
+std::string not_a_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  using std::filesystem::file_type;
+  if (status.type() == file_type::regular) return "";
+  if (status.type() == file_type::not_found) return "does not exist";
+  if (status.type() == file_type::directory) return "is a directory";
+  if (ec) return fmt::format("cannot be examined ({})", ec.message());
+  return "is not a regular file (a device, pipe or socket)";
+}
+
 }  // namespace tc::io

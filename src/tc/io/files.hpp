@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <iterator>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -33,6 +34,10 @@ void write_file(const std::filesystem::path& file, std::string_view bytes);
 /// write_file to `file`.tmp, then renames it over `file`: a reader sees the old file or the
 /// new one, whole.
 void replace_file(const std::filesystem::path& file, std::string_view bytes);
+
+/// What keeps `path` from being read as a file ("does not exist", "is a directory", ...), or ""
+/// when it is a regular file (after symbolic links). "does not exist" was said of all of them.
+[[nodiscard]] std::string not_a_file(const std::filesystem::path& path);
 
 /// Appends one record to the O_APPEND descriptor `fd` of `file`; on failure cuts the file
 /// back to its size before, so no partial record stays, and throws OutputError.
