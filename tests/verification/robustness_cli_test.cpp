@@ -386,3 +386,22 @@ TEST(Issue20, AnEarlierRunInTheOutputDirectoryIsRefusedUnlessForced) {
   EXPECT_EQ(limited("run " + file.string() + " --restart " + out.string() + " --force").exit_code,
             2);
 }
+
+TEST(Startup, ASerialRunNeedsNoOpenMpiSessionDirectory) {
+  // Serial runs started together (a parameter sweep, ctest -j) shared one Open MPI session
+  // directory, /tmp/ompi.<host>.<uid>/jf.0/1, since every isolated singleton takes the job name
+  // [0,1]; one run removing it at MPI_Finalize as another created it aborted MPI_Init (2 of 320
+  // concurrent `info` runs). A run must need no such directory at all: here its place is taken
+  // by a file, so a run that makes one fails at MPI_Init. A clean environment, since this
+  // process is itself a singleton whose defaults its children would inherit.
+  const auto tmp = tc::test::fresh_dir("startup-session-dir");
+  std::array<char, 256> host{};
+  ASSERT_EQ(gethostname(host.data(), host.size() - 1), 0);
+  std::string short_host = host.data();
+  short_host = short_host.substr(0, short_host.find('.'));
+  std::ofstream(tmp / ("ompi." + short_host + "." + std::to_string(getuid()))) << "in the way\n";
+  const auto r = tc::test::run_command(kTimeLimit + "env -i PATH=/usr/bin:/bin HOME=/tmp TMPDIR=" +
+                                       tmp.string() + " " + TC_BINARY + " info");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("MPI ranks: 1"), std::string::npos) << r.output;
+}

@@ -77,6 +77,12 @@ void singleton_transport_defaults() {
   for (const char* launched : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"})
     if (std::getenv(launched)) return;
   setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+  // Every isolated singleton takes the same job name ([0,1]), hence the same session
+  // directory /tmp/ompi.<host>.<uid>/jf.0/1: two serial runs started together race, one
+  // removing it at MPI_Finalize while the other creates it, and MPI_Init aborts ("A call to
+  // mkdir was unable to create …"; 2 of 320 concurrent `info` runs on the 2-core VM). One
+  // rank with the self and vader transports keeps nothing there, so no run makes one.
+  setenv("OMPI_MCA_orte_create_session_dirs", "0", 0);
   setenv("OMPI_MCA_pml", "ob1", 0);
   setenv("OMPI_MCA_btl", "self,vader", 0);
   // hwloc's OpenGL component looks for X displays (connects to :0 … :N and localhost:6000+)
