@@ -46,6 +46,7 @@ void DualContactSolver::apply_f(const core::Vector& x, core::Vector& y) const {
 
 void DualContactSolver::set_rows(ContactRows rows) {
   rows_ = std::move(rows);
+  normal_floor_.clear();
   assert(rows_.slave.rows() == rows_.n_rows() && rows_.master.rows() == rows_.n_rows());
   const PetscInt m = rows_.n_rows();
   kind_ = m > 0 && m <= settings_.explicit_limit ? DualOperator::explicit_schur
@@ -358,7 +359,8 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
   }
   qp::FeasibleSet set(d);
   for (PetscInt k = 0; k < rows_.n_nodes(); ++k) {
-    set.set_interval(dim * k, {0.0, qp::infinity});  // λ_n ≥ 0
+    const double floor = normal_floor_.empty() ? 0.0 : normal_floor_[k] / sigma(dim * k);
+    set.set_interval(dim * k, {floor, qp::infinity});  // λ_n ≥ 0 (or the release floor)
     const double r = std::max(friction_bound[k], 0.0) / sigma(dim * k + 1);
     if (dim == 2)
       set.set_interval(dim * k + 1, {-r, r});  // |λ_τ| ≤ 𝔉γ

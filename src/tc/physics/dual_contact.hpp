@@ -108,6 +108,10 @@ class DualContactSolver {
                      std::span<const double> c, std::span<const double> friction_bound,
                      core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master,
                      bool recover = true, double rtol = 0);
+  /// λ_n,k ≥ floor_k ≤ 0 instead of λ_n,k ≥ 0 in the solves until the next set_rows (empty:
+  /// all 0). The modified mass scheme lets a node release with λ_n^{k+1} ≥ −λ_n^k, so that
+  /// the step's mean contact force does no work (Simulation::release_floor).
+  void set_normal_floor(std::vector<double> floor) { normal_floor_ = std::move(floor); }
   /// u_i −= A_i⁻¹ B_iᵀ λ (two solves): what solve() skips with recover = false.
   void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const;
   /// B u = B u_free − F λ of u = u_free − A⁻¹Bᵀλ without forming u (explicit F: one dense
@@ -136,6 +140,7 @@ class DualContactSolver {
   const ConstrainedSolver& master_;
   DualContactSettings settings_;
   ContactRows rows_;
+  std::vector<double> normal_floor_;  // per node; empty: 0
   DualOperator kind_ = DualOperator::matrix_free;
   core::Handle<::Mat, MatDestroy> f_dense_;
   core::Handle<::Mat, MatDestroy> f_scaled_;  // Σ F Σ (explicit and settings_.scale)

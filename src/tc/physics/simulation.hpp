@@ -217,6 +217,8 @@ class Simulation {
   void massless_rates(int b);  // Newmark/backward-difference updates of u̇, ü
   int couple_contact();        // the staggered loop of 6.3 for the contact pair (heat, dual QP)
   void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
+  // −max(λ_n^k, 0) per node: the modified mass scheme's lower bound on λ_n^{k+1}
+  static std::vector<double> release_floor(const core::Vector& lambda_k, int dim);
   struct TrescaIteration;
   // QPs with u_free fixed, γ ← λ_n (Aitken), at most `max_updates` times or until
   // ‖λ_n(γ) − γ‖ ≤ tol‖λ‖; returns ‖λ_n(γ) − γ‖ of the last update.
