@@ -38,6 +38,7 @@
 
 #include "tc/core/petsc.hpp"
 #include "tc/feti/dual_distribution.hpp"
+#include "tc/feti/preconditioner.hpp"
 #include "tc/mesh/partition.hpp"
 
 namespace tc::feti {
@@ -53,13 +54,6 @@ enum class Kernel {
 
 /// Whether A_s has the kernel exactly (TFETI projector) or only nearly (deflation).
 enum class Singular { no, yes };
-
-enum class Preconditioner {
-  none,
-  lumped,     // Σ_s B_s A_s B_sᵀ
-  dirichlet,  // Σ_s B_s S_s B_sᵀ, S_s the Schur complement of A_s on its interface dofs
-};
-[[nodiscard]] const char* name(Preconditioner p);
 
 /// The first of the contiguous block of subdomains that `rank` of `size` owns (rank + 1: one
 /// past its last): the dealing of Feti, which the output's pieces follow too.

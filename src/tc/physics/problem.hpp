@@ -9,7 +9,7 @@
 
 #include "tc/core/table.hpp"
 #include "tc/fem/material.hpp"
-#include "tc/feti/feti.hpp"
+#include "tc/feti/preconditioner.hpp"
 #include "tc/mesh/mesh.hpp"
 
 namespace tc::physics {
