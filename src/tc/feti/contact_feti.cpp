@@ -42,15 +42,15 @@ void for_each_entry(const core::SparseMatrix& a, F&& f) {
 
 ContactFeti::ContactFeti(const Feti& slave, const Feti& master, const core::SparseMatrix& b_slave,
                          const core::SparseMatrix& b_master, int dim)
-    : body_{&slave, &master}, dim_(dim), comm_(slave.options_.comm) {
-  if (!slave.singular_ || !master.singular_)
+    : body_{&slave, &master}, dim_(dim), comm_(slave.comm()) {
+  if (!slave.singular() || !master.singular())
     throw Error("ContactFeti: quasistatic only (both bodies' FETI with Singular::yes)");
   if (b_slave.rows() != b_master.rows() || b_slave.rows() % dim != 0)
     throw Error("ContactFeti: the contact rows of the two bodies disagree");
   const Eigen::Index mc = b_slave.rows();
   offset_[0] = 0;
-  offset_[1] = slave.m_;
-  offset_[2] = slave.m_ + master.m_;
+  offset_[1] = slave.n_multipliers();
+  offset_[2] = slave.n_multipliers() + master.n_multipliers();
   m_ = offset_[2] + mc;
 
   // One scale per contact node, 1/‖normal row‖: the gluing rows are orthonormal and the
@@ -68,33 +68,34 @@ ContactFeti::ContactFeti(const Feti& slave, const Feti& master, const core::Spar
   Eigen::Index kernel_base = 0;
   for (int bi = 0; bi < 2; ++bi) {
     const Feti& body = *body_[bi];
+    const auto& owner = body.load_owners();
+    const int block = body.block();
     const size_t first = parts_.size();
     for (int s = 0; s < body.n_subdomains(); ++s) {
-      const auto& sub = *body.subs_[static_cast<size_t>(s)];
+      const auto& sub = body.subdomain(s);
       Part p{bi, &sub, sub.b, kernel_base + sub.kernel_offset, {}};
       for (auto& e : p.b) e.row += offset_[bi];
       for (PetscInt i = 0; i < sub.n(); ++i) {
         const PetscInt g = sub.global_dof[static_cast<size_t>(i)];
-        if (body.owner_[static_cast<size_t>(g / body.block_)] == s) p.carried.emplace_back(i, g);
+        if (owner[static_cast<size_t>(g / block)] == s) p.carried.emplace_back(i, g);
       }
       parts_.push_back(std::move(p));
     }
-    kernel_base += body.n_kernel_;
+    kernel_base += body.coarse_dimension();
     // Each body dof of a contact row goes on the copy of its owner, the subdomain that also
     // carries its load: the local node of that copy for every body node.
-    const int block = body.block_;
-    std::vector<PetscInt> owner_local(body.owner_.size(), -1);
+    std::vector<PetscInt> owner_local(owner.size(), -1);
     for (int s = 0; s < body.n_subdomains(); ++s) {
-      const auto& sub = *body.subs_[static_cast<size_t>(s)];
+      const auto& sub = body.subdomain(s);
       for (PetscInt a = 0; a < sub.n() / block; ++a) {
         const auto node =
             static_cast<size_t>(sub.global_dof[static_cast<size_t>(block * a)] / block);
-        if (body.owner_[node] == s) owner_local[node] = a;
+        if (owner[node] == s) owner_local[node] = a;
       }
     }
     for_each_entry(bi == 0 ? b_slave : b_master, [&](PetscInt i, PetscInt j, double v) {
       const auto node = static_cast<size_t>(j / block);
-      auto& part = parts_[first + static_cast<size_t>(body.owner_[node])];
+      auto& part = parts_[first + static_cast<size_t>(owner[node])];
       part.b.push_back({offset_[2] + i, block * owner_local[node] + j % block,
                         v * node_scale_[static_cast<size_t>(i / dim)]});
     });
@@ -186,9 +187,10 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
   sum_over_ranks(e.data(), e.size());
   for (int bi = 0; bi < 2; ++bi) {
     const Feti& body = *body_[bi];
-    for (size_t i = 0; i < body.dirichlet_row_dof_.size(); ++i)
-      d[offset_[bi] + body.m_gluing_ + static_cast<Eigen::Index>(i)] -=
-          xv[bi][static_cast<size_t>(body.dirichlet_row_dof_[i])];
+    const auto& row_dof = body.dirichlet_row_dofs();
+    for (size_t i = 0; i < row_dof.size(); ++i)
+      d[offset_[bi] + body.n_gluing() + static_cast<Eigen::Index>(i)] -=
+          xv[bi][static_cast<size_t>(row_dof[i])];
   }
   for (size_t i = 0; i < n_contact; ++i)
     d[offset_[2] + static_cast<Eigen::Index>(i)] -=
@@ -271,7 +273,7 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
   });
   for (int bi = 0; bi < 2; ++bi) {
     sum_over_ranks(u[bi].data(), u[bi].size());
-    const auto& dir = body_[bi]->dirichlet_dofs_;
+    const auto& dir = body_[bi]->dirichlet_dofs();
     auto out = x[bi]->view();
     for (PetscInt i = 0; i < x[bi]->size(); ++i)
       if (!std::binary_search(dir.begin(), dir.end(), i)) out[i] = u[bi][i];

@@ -125,9 +125,21 @@ class Feti {
   [[nodiscard]] const FetiStatistics& statistics() const { return stats_; }
   [[nodiscard]] const std::string& package() const { return package_; }
 
+  // What a dual over the subdomains of several bodies (ContactFeti) builds on.
+  struct Subdomain;  // subdomain.hpp
+  [[nodiscard]] const Subdomain& subdomain(int s) const { return *subs_[static_cast<size_t>(s)]; }
+  [[nodiscard]] int block() const { return block_; }
+  /// The subdomain that carries the load of each body node.
+  [[nodiscard]] const std::vector<int>& load_owners() const { return owner_; }
+  [[nodiscard]] const std::vector<PetscInt>& dirichlet_dofs() const { return dirichlet_dofs_; }
+  /// The body dof of each Dirichlet row (rows n_gluing() … n_multipliers() − 1).
+  [[nodiscard]] const std::vector<PetscInt>& dirichlet_row_dofs() const {
+    return dirichlet_row_dof_;
+  }
+  [[nodiscard]] bool singular() const { return singular_; }
+  [[nodiscard]] MPI_Comm comm() const { return options_.comm; }
+
  private:
-  friend class ContactFeti;  // one dual problem over the subdomains of two bodies
-  struct Subdomain;
   using Block = Eigen::MatrixXd;  // k dual or primal vectors, one per column
   void build_rows(int n_nodes, const std::vector<PetscInt>& dirichlet);
   void build_kernels(const std::vector<mesh::SubMesh>& subdomains, Kernel kernel);
