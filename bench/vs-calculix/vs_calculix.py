@@ -9,7 +9,7 @@ Two steel blocks: the lower 2 x 1 x 0.5 mm (8r x 4r x 2r Hex8/C3D8 cells), the u
 held at 293.15 K; the upper block's top face is pressed down 0.5 um in 1 s, then slid 0.3 mm
 along x in 1 s (prescribed displacements). Coulomb friction 0.3, gap conductance linear in the
 contact pressure, frictional heat split 1/2 - 1/2, thermal expansion, adiabatic elsewhere,
-200 time steps of 0.01 s in both programs.
+200 time steps of 0.01 s in both programs (--step changes both).
 
 For each refinement r the script writes a CalculiX deck (mm, N, s, t, K) and the equivalent
 thermocontact case (SI), runs both in the same command on the same machine, one after the
@@ -21,11 +21,13 @@ quasistatic analysis without body forces equals the contact force; the contact f
 *CONTACT PRINT CF is parsed as a cross-check where CalculiX writes it).
 
 Choices where the issue is silent:
-- Quasistatic, not dynamic: CalculiX's *COUPLED TEMPERATURE-DISPLACEMENT (without *DYNAMIC)
-  solves the mechanical part as a static equilibrium in every increment and the heat equation
-  as a transient (backward Euler); thermocontact's `scheme = "quasistatic"` is exactly that (K
-  instead of 4/tau^2 M + K, theta transient). A dynamic thermocontact run would solve a
-  different problem.
+- Dynamic, as CalculiX: a transient *COUPLED TEMPERATURE-DISPLACEMENT step is a dynamic
+  analysis in CalculiX (it sets nmethod = 4, prints "Dynamic analysis was selected",
+  assembles the mass matrix and integrates with HHT, alpha = -0.05 by default; the heat
+  equation by backward Euler), so thermocontact runs `scheme = "dynamic"` (Newmark average
+  acceleration, backward Euler) with its default contact scheme. On these millimetre steel
+  blocks inertia is negligible at tau = 0.01 s (rho h^2 / (E tau^2) ~ 1e-11), so the
+  quasistatic scheme solves the same problem to that order; `--scheme quasistatic` runs it.
 - Increments in CalculiX: automatic, starting at and never above our tau = 0.01 s, so
   CalculiX takes the same 200 steps where it converges and cuts back where it does not.
   Fixed increments (DIRECT) diverge at the onset of sliding (t = 1.01 s), and with
@@ -65,7 +67,7 @@ UPPER = ((-0.5, 0.5), (-0.25, 0.25), (0.0, 0.5))
 PRESS = 0.5e-3  # mm, in 1 s
 SLIDE = 0.3  # mm, in the next 1 s
 FRICTION = 0.3
-STEP = 0.01  # s
+STEP = 0.01  # s: the default time step of both (--step)
 END = 2.0  # s
 THETA0 = 293.15  # K
 GAMMA = 2.5e-3  # gamma_C^s = gamma_C^m [W/(m^2 K Pa)] -> beta_C = GAMMA/2, delta_C = 1/2
@@ -126,7 +128,7 @@ def id_lines(ids, per_line=8):
                      for k in range(0, len(ids), per_line))
 
 
-def calculix_deck(r, max_increment):
+def calculix_deck(r, step, max_increment):
     lo, up = cells(r)
     n_lower = math.prod(c + 1 for c in lo)
     e_lower = math.prod(lo)
@@ -192,7 +194,7 @@ def calculix_deck(r, max_increment):
     w(f"0., 0., 1., 0., {END:g}, 1.")
     w("*INITIAL CONDITIONS, TYPE=TEMPERATURE")
     w(f"NALL, {THETA0:g}")
-    w(f"*STEP, INC={10 * round(END / STEP)}")
+    w(f"*STEP, INC={10 * round(END / step)}")
     # more Newton iterations before a cutback (I_0 = 20, I_R = 30, ..., I_A = 10 cutbacks):
     # with CalculiX's defaults the stick-slip transition at t = 1 s fails in ten cutbacks
     w("*CONTROLS, PARAMETERS=TIME INCREMENTATION")
@@ -200,7 +202,7 @@ def calculix_deck(r, max_increment):
     # automatic incrementation: initial increment tau, at most tau (fixed increments of tau,
     # DIRECT, diverge at the onset of sliding, t = 1.01 s); --ccx-max-increment widens it
     w("*COUPLED TEMPERATURE-DISPLACEMENT")
-    w(f"{STEP:g}, {END:g}, {STEP * 1e-4:g}, {max_increment:g}")
+    w(f"{step:g}, {END:g}, {step * 1e-4:g}, {max_increment:g}")
     w("*BOUNDARY")
     w("NBOT, 1, 3, 0.")
     w(f"NBOT, 11, 11, {THETA0:g}")
@@ -220,20 +222,21 @@ def calculix_deck(r, max_increment):
 
 
 # --- thermocontact case (SI) ---------------------------------------------------------------
-def thermocontact_case(r):
+def thermocontact_case(r, scheme, step):
     lo, up = cells(r)
     mm = 1e-3
     lim = lambda b: (f"min = [{b[0][0] * mm:g}, {b[1][0] * mm:g}, {b[2][0] * mm:g}], "
                      f"max = [{b[0][1] * mm:g}, {b[1][1] * mm:g}, {b[2][1] * mm:g}]")
     return f"""# bench/vs-calculix, r = {r}: the CalculiX deck slide.inp beside this file, in SI.
-# Quasistatic: CalculiX's *COUPLED TEMPERATURE-DISPLACEMENT is static in the displacements
-# and transient in the temperature, as this scheme is.
+# CalculiX's transient *COUPLED TEMPERATURE-DISPLACEMENT is dynamic (mass matrix, HHT) with
+# backward Euler in the temperature: "dynamic" here (inertia is negligible at this size and
+# step either way: bench/vs-calculix/vs_calculix.py).
 title = "vs CalculiX: two steel blocks, slide with friction, r = {r}"
 dimension = 3
 
 [time]
-scheme = "quasistatic"
-step = {STEP:g}
+scheme = "{scheme}"
+step = {step:g}
 end = {END:g}
 
 [physics]
@@ -381,8 +384,13 @@ def main():
     ap.add_argument("--timeout", type=float, default=600.0, help="per run [s]")
     ap.add_argument("--workdir", help="keep decks, cases and outputs here (default: a temporary "
                     "directory, removed at the end)")
-    ap.add_argument("--ccx-max-increment", type=float, default=STEP,
-                    help="CalculiX's largest increment [s] (default: our step, 0.01)")
+    ap.add_argument("--step", type=float, default=STEP,
+                    help="time step of both [s]: our tau, CalculiX's first and largest "
+                    "increment (default 0.01: 200 steps)")
+    ap.add_argument("--ccx-max-increment", type=float,
+                    help="CalculiX's largest increment [s] (default: --step)")
+    ap.add_argument("--scheme", choices=["dynamic", "quasistatic"], default="dynamic",
+                    help="thermocontact's time scheme (default dynamic, as CalculiX's)")
     ap.add_argument("--only", choices=["ours", "ccx"], help="run one program only")
     a = ap.parse_args()
     rs = [int(x) for x in a.refinements.split(",") if x]
@@ -391,38 +399,48 @@ def main():
     top = a.workdir or tempfile.mkdtemp(prefix="vs-calculix-")
     os.makedirs(top, exist_ok=True)
     print(f"binary: {a.binary}\nccx: {a.ccx}\nworkdir: {top}", file=sys.stderr)
-    print("| r | nodes | thermocontact [s] | CalculiX [s] | ratio ccx/ours | T/N ours at t = 2 s "
-          "(range 1.5–2 s) | T/N CalculiX RF (range) | T/N CalculiX CF (range) | "
-          "N ours [N] | N CalculiX [N] |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| r | nodes | thermocontact [s] | CalculiX [s] | ratio ccx/ours | T/N ours at 2 s "
+          "(1.5–2 s) | T/N CalculiX RF at 2 s (1.5–2 s) | T/N CalculiX CF at 2 s | N ours [N] | "
+          "N CalculiX [N] | ours: steps, QP it. | CalculiX: increment attempts, Newton iterations |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rs:
         d = os.path.join(top, f"r{r}")
         os.makedirs(d, exist_ok=True)
         with open(os.path.join(d, "case.toml"), "w") as f:
-            f.write(thermocontact_case(r))
+            f.write(thermocontact_case(r, a.scheme, a.step))
         with open(os.path.join(d, "slide.inp"), "w") as f:
-            f.write(calculix_deck(r, a.ccx_max_increment))
-        ours, tn_ours, n_ours = None, None, None
+            f.write(calculix_deck(r, a.step, a.ccx_max_increment or a.step))
+        cols = {k: "—" for k in ("ours", "ccx", "ratio", "tn", "tn_rf", "tn_cf", "n", "n_ccx",
+                                 "it", "it_ccx")}
+        ours = ccx = None
         if a.only != "ccx":
             ours, rows = run_ours(a.binary, d, a.timeout)
-            tn_ours = slip_ratio([(float(x["time"]), (float(x["contact_tangential_force"]),
-                                                      float(x["contact_normal_force"])))
-                                  for x in rows])
-            n_ours = float(rows[-1]["contact_normal_force"])
-        ccx, res, err = None, None, None
+            cols["ours"] = f"{ours:.2f}"
+            cols["tn"] = fmt_ratio(slip_ratio(
+                [(float(x["time"]), (float(x["contact_tangential_force"]),
+                                     float(x["contact_normal_force"]))) for x in rows]))
+            cols["n"] = f"{float(rows[-1]['contact_normal_force']):.4g}"
+            cols["it"] = f"{len(rows)}, {sum(int(x['qp_iterations']) for x in rows)}"
         if a.only != "ours":
             ccx, res, err = run_ccx(a.ccx, d, a.timeout)
-        tn_rf = slip_ratio(res["rf"].items()) if res else None
-        tn_cf = slip_ratio(res["cf"].items()) if res else None
-        n_ccx = res["rf"][max(res["rf"])][1] * 1e-0 if res and res["rf"] else None
-        ratio = f"{ccx / ours:.1f}×" if ours and ccx else "—"
-        print(f"| {r} | {node_count(r)} | {ours:.2f} | " if ours else f"| {r} | {node_count(r)} | — | ",
-              end="")
-        print(f"{ccx:.2f} | " if ccx else f"{err or '—'} | ", end="")
-        print(f"{ratio} | {fmt_ratio(tn_ours)} | {fmt_ratio(tn_rf)} | {fmt_ratio(tn_cf)} | "
-              f"{n_ours:.4g} | " if n_ours is not None else f"{ratio} | — | {fmt_ratio(tn_rf)} | "
-              f"{fmt_ratio(tn_cf)} | — | ", end="")
-        print(f"{n_ccx:.4g} |" if n_ccx is not None else "— |", flush=True)
+            if err:
+                cols["ccx"] = err
+            else:
+                cols["ccx"] = f"{ccx:.2f}"
+                cols["tn_rf"] = fmt_ratio(slip_ratio(res["rf"].items()))
+                tn_cf = slip_ratio(res["cf"].items())
+                cols["tn_cf"] = "—" if tn_cf is None else f"{tn_cf[0]:.4f}"
+                if res["rf"]:
+                    cols["n_ccx"] = f"{res['rf'][max(res['rf'])][1]:.4g}"
+            log = open(os.path.join(d, "ccx.log")).read() if os.path.exists(
+                os.path.join(d, "ccx.log")) else ""
+            cols["it_ccx"] = (f"{len(re.findall(r'^ increment .* attempt', log, re.M))}, "
+                              f"{len(re.findall(r'^ iteration ', log, re.M))}")
+        if ours and ccx:
+            cols["ratio"] = f"{ccx / ours:.1f}×"
+        print(f"| {r} | {node_count(r)} | {cols['ours']} | {cols['ccx']} | {cols['ratio']} | "
+              f"{cols['tn']} | {cols['tn_rf']} | {cols['tn_cf']} | {cols['n']} | "
+              f"{cols['n_ccx']} | {cols['it']} | {cols['it_ccx']} |", flush=True)
     if not a.workdir:
         shutil.rmtree(top, ignore_errors=True)
 
