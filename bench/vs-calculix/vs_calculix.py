@@ -2,7 +2,8 @@
 """thermocontact against CalculiX 2.20 on CalculiX's "slide" style problem (issue 22).
 
     bench/vs-calculix/vs_calculix.py [--binary B] [--ccx CCX] [--refinements 1,2,3] [--r4]
-                                     [--timeout 600] [--workdir DIR] [--markdown]
+        [--timeout 600] [--workdir DIR] [--step 0.01] [--ccx-max-increment S]
+        [--scheme dynamic|quasistatic] [--only ours|ccx]
 
 Two steel blocks: the lower 2 x 1 x 0.5 mm (8r x 4r x 2r Hex8/C3D8 cells), the upper
 1 x 0.5 x 0.5 mm centred on it (6r x 3r x 2r cells). The lower block's bottom is clamped and
@@ -16,8 +17,8 @@ thermocontact case (SI), runs both in the same command on the same machine, one 
 other, each single-threaded, and prints per r: nodes, wall time of each (the process as a
 user starts it, output included), the ratio ccx/ours and T/N in full slip from each
 (thermocontact: history.csv contact_tangential_force / contact_normal_force; CalculiX: the
-total reaction force on the upper block's top face, *NODE PRINT TOTALS=ONLY, which in a
-quasistatic analysis without body forces equals the contact force; the contact force from
+total reaction force on the upper block's top face, *NODE PRINT TOTALS=ONLY, which equals the contact
+force here (no body forces, negligible inertia); the contact force from
 *CONTACT PRINT CF is parsed as a cross-check where CalculiX writes it).
 
 Choices where the issue is silent:
@@ -28,12 +29,12 @@ Choices where the issue is silent:
   acceleration, backward Euler) with its default contact scheme. On these millimetre steel
   blocks inertia is negligible at tau = 0.01 s (rho h^2 / (E tau^2) ~ 1e-11), so the
   quasistatic scheme solves the same problem to that order; `--scheme quasistatic` runs it.
-- Increments in CalculiX: automatic, starting at and never above our tau = 0.01 s, so
+- Increments in CalculiX: automatic, starting at and never above our tau (--step, 0.01 s), so
   CalculiX takes the same 200 steps where it converges and cuts back where it does not.
   Fixed increments (DIRECT) diverge at the onset of sliding (t = 1.01 s), and with
   CalculiX's default controls the automatic incrementation fails there too ("too many
   cutbacks"); the deck allows more Newton iterations per increment (*CONTROLS, I_0 = 20,
-  I_R = 30) and ten cutbacks, CalculiX's documented remedy.
+  I_R = 30) and ten cutbacks, with which it takes exactly the 200 increments.
 - Thermoelastic (Gough-Joule) heating off in thermocontact: CalculiX's coupled analysis has no
   such term.
 - Conductance: thermocontact's gamma_C^s = gamma_C^m = 2.5e-3 W/(m^2 K Pa) give
