@@ -449,7 +449,7 @@ def main():
         if ours and ccx:
             cols["ratio"] = f"{ccx / ours:.1f}×"
         elif ours and cols["ccx"].startswith(">"):  # stopped at the timeout: a lower bound
-            cols["ratio"] = f"> {a.timeout / ours:.0f}×"
+            cols["ratio"] = f"> {math.floor(a.timeout / ours)}×"
         print(f"| {r} | {node_count(r)} | {cols['ours']} | {cols['ccx']} | {cols['ratio']} | "
               f"{cols['tn']} | {cols['tn_rf']} | {cols['tn_cf']} | {cols['n']} | "
               f"{cols['n_ccx']} | {cols['it']} | {cols['it_ccx']} |", flush=True)
