@@ -8,6 +8,7 @@
 #include <map>
 
 #include "tc/core/error.hpp"
+#include "tc/physics/boundary_heat.hpp"
 
 namespace tc::physics {
 
@@ -89,8 +90,11 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
                        : m.stiffness_u.copy();
       case Operator::statics:
         return m.stiffness_u.copy();
-      case Operator::heat:
-        return combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+      case Operator::heat: {
+        auto heat = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+        if (sys.constant_film()) heat.axpy(1.0, sys.subdomain_constant_film(s));
+        return heat;
+      }
       case Operator::mass: {
         // TFETI keeps the Dirichlet dofs in the subdomain matrices (multipliers fix them), so
         // the massless dofs, which ü = 0 constrains as Dirichlet dofs, need a pivot: the mean
@@ -247,12 +251,18 @@ Simulation::Simulation(const Problem& problem)
     }
     const auto& sys = *systems_.back();
     const auto& m = sys.matrices();
+    if (const auto& c = problem_.contact;
+        c && (b == c->slave_body || b == c->master_body) && sys.has_boundary_term())
+      throw Error(fmt::format("body '{}': radiation and films whose coefficient changes in time "
+                              "are not supported on a body in contact (case_reader refuses them)",
+                              sys.body().name));
     auto s = std::make_unique<Solvers>();
     {
       auto t = timers_.scope("factorization");
       s->a_u =
           dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u) : m.stiffness_u.copy();
       s->a_theta = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+      if (const auto* film = sys.constant_film()) s->a_theta.axpy(1.0, *film);  // + h∫θv
       s->mech = body_solver(problem_, sys, s->a_u, Operator::mechanics);
       s->heat = body_solver(problem_, sys, s->a_theta, Operator::heat);
     }
@@ -345,7 +355,9 @@ void Simulation::initialise() {
               "slip_nodes",
               "wall_seconds",
               "friction_iterations",
-              "contact_tangential_force_sum"};
+              "contact_tangential_force_sum",
+              "heat_film",
+              "heat_radiation"};
   const char* axes = "xyz";
   for (const auto& sys : systems_)
     for (const auto& g : sys->reaction_groups())
@@ -471,8 +483,22 @@ void Simulation::heat_step(int b, int iteration) {
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   heat_rhs(b);
-  sys.prescribe_theta((step_ + 1) * problem_.time.step, s.theta_new);
-  s.heat->solve(s.rhs_theta, s.theta_new);
+  const double t = (step_ + 1) * problem_.time.step;
+  sys.prescribe_theta(t, s.theta_new);
+  if (!sys.has_boundary_term()) {
+    s.heat->solve(s.rhs_theta, s.theta_new);
+  } else {  // radiation or a film with h(t): Newton (boundary_heat.hpp)
+    const auto& settings = problem_.solver;
+    const auto o = solve_boundary_heat(sys, s.a_theta, *s.heat, t, s.rhs_theta, s.theta_new,
+                                       settings.newton_tolerance, settings.max_newton_iterations);
+    if (!o.converged)
+      throw NumericalError(
+          fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
+                      "body '{}' did not converge to {:.1e} in {} iterations (staggered "
+                      "iteration {})",
+                      sys.body().name, settings.newton_tolerance, o.iterations, iteration),
+          step_ + 1, o.iterations, o.residual);
+  }
   require_finite(s.theta_new, "temperature", step_ + 1, iteration);
 }
 
@@ -1191,6 +1217,14 @@ void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u,
     support_forces(b, forces_[b]);
     external_work_ += 0.5 * (before + forces_[b].dot(s.work_u));
   }
+  // Heat lost through the film and radiation boundaries in the step: τ Σ h∫(θ − θ∞)dS and
+  // τ Σ ∫εσ(θ⁴ − θ∞⁴)dS at t^{k+1} with θ^{k+1}, the terms of the backward Euler step, so
+  // that Δthermal_energy = heat in − heat_film − heat_radiation closes to the solver tolerance.
+  for (int b = 0; b < n_bodies(); ++b) {
+    const auto p = systems_[b]->boundary_heat_loss(time(), states_[b].theta);
+    boundary_heat_.film += problem_.time.step * p.film;
+    boundary_heat_.radiation += problem_.time.step * p.radiation;
+  }
   total_coupling_ += coupling;
   last_coupling_ = coupling;
   fill_row(coupling, wall);
@@ -1267,7 +1301,9 @@ void Simulation::fill_row(int coupling, double wall) {
           static_cast<double>(contact_stats_.slip_nodes),
           wall,
           static_cast<double>(contact_stats_.friction_iterations),
-          contact_stats_.tangential_force_sum};
+          contact_stats_.tangential_force_sum,
+          boundary_heat_.film,
+          boundary_heat_.radiation};
   for (int b = 0; b < n_bodies(); ++b) {
     const auto f = forces_[b].to_std();
     for (const auto& g : systems_[b]->reaction_groups())
@@ -1377,6 +1413,7 @@ Checkpoint Simulation::checkpoint() const {
   c.total_smalbe_outer = total_smalbe_outer_;
   c.contact = contact_stats_;
   c.heat = heat_;
+  c.boundary_heat = boundary_heat_;
   return c;
 }
 
@@ -1444,6 +1481,7 @@ void Simulation::restore(const Checkpoint& c) {
   total_smalbe_outer_ = c.total_smalbe_outer;
   contact_stats_ = c.contact;
   heat_ = c.heat;
+  boundary_heat_ = c.boundary_heat;
 }
 
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {
