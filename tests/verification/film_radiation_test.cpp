@@ -42,8 +42,8 @@ physics::Problem heat_only(int dim, const mesh::Point& size, const std::array<in
   p.physics.thermal_expansion = false;
   p.physics.thermoelastic_heating = false;
   // Quasistatic bodies must be held: fix xmin (it carries no heat condition by itself).
-  p.boundaries.push_back(hold("xmin", dim == 2 ? std::initializer_list<int>{0, 1}
-                                               : std::initializer_list<int>{0, 1, 2}));
+  p.boundaries.push_back(hold(
+      "xmin", dim == 2 ? std::initializer_list<int>{0, 1} : std::initializer_list<int>{0, 1, 2}));
   return p;
 }
 
@@ -108,13 +108,15 @@ TEST(FilmBoundary, LumpedCoolingFollowsTheExponential) {
   for (const int dim : {2, 3}) {
     const auto coarse = lumped_cooling(dim, 1000);
     const auto fine = lumped_cooling(dim, 2000);
-    std::printf("dim %d: lumped cooling, worst error / drop: τ = T/1000 %.3e, τ = T/2000 %.3e; "
-                "against backward Euler's discrete exponential %.3e\n",
-                dim, coarse.worst, fine.worst, coarse.worst_be);
+    std::printf(
+        "dim %d: lumped cooling, worst error / drop: τ = T/1000 %.3e, τ = T/2000 %.3e; "
+        "against backward Euler's discrete exponential %.3e\n",
+        dim, coarse.worst, fine.worst, coarse.worst_be);
     EXPECT_LT(coarse.worst, 1e-3);
     EXPECT_LT(fine.worst, 1e-3);
     // First order in τ: the part above the space error halves with τ.
-    const double time_coarse = coarse.worst - coarse.worst_be, time_fine = fine.worst - fine.worst_be;
+    const double time_coarse = coarse.worst - coarse.worst_be,
+                 time_fine = fine.worst - fine.worst_be;
     EXPECT_NEAR(time_coarse / time_fine, 2.0, 0.2);
     EXPECT_LT(coarse.worst_be, 2e-4);  // what is left is the Biot (space) part
   }
@@ -163,12 +165,12 @@ TEST(FilmBoundary, SlabReachesTheSeriesResistanceProfile) {
   // Linear elements reproduce a linear field exactly on any mesh (patch test) and θ is uniform
   // on the film face, so the only errors are the transient left (~1e-15) and round-off of the
   // solves (~1e-13): 1e-8 of θ_D − θ∞ is far above both.
-  for (const auto type : {mesh::CellType::Quad4, mesh::CellType::Tri3, mesh::CellType::Hex8,
-                          mesh::CellType::Tet4})
+  for (const auto type :
+       {mesh::CellType::Quad4, mesh::CellType::Tri3, mesh::CellType::Hex8, mesh::CellType::Tet4})
     for (const auto kind : {FilmKind::constant, FilmKind::table}) {
       const double e = slab_error(type, kind);
-      std::printf("slab, %s, film h %s: max |θ − θ_exact| / (θ_D − θ∞) = %.3e\n",
-                  mesh::name(type), kind == FilmKind::constant ? "constant" : "h(t)", e);
+      std::printf("slab, %s, film h %s: max |θ − θ_exact| / (θ_D − θ∞) = %.3e\n", mesh::name(type),
+                  kind == FilmKind::constant ? "constant" : "h(t)", e);
       EXPECT_LT(e, 1e-8) << mesh::name(type);
     }
 }
@@ -211,6 +213,8 @@ double plate_error(mesh::CellType type) {
   const double kappa = p.bodies[0].material.thermal_conductivity;
   const double surface =
       std::pow(q / (eps * physics::stefan_boltzmann) + std::pow(theta_inf, 4), 0.25);
+  std::printf("  %s: %ld Newton corrections, %ld CG iterations in %d steps\n", mesh::name(type),
+              sim.total_newton_iterations(), sim.total_newton_inner_iterations(), sim.step());
   const auto theta = sim.state(0).theta.to_std();
   double worst = 0;
   for (int a = 0; a < m.n_nodes(); ++a) {
@@ -224,8 +228,8 @@ TEST(RadiationBoundary, ThinPlateReachesTheRadiativeEquilibrium) {
   // Steady 1D conduction is linear in x (exact for linear elements) and θ is uniform on the
   // radiating face, where the nodal rule integrates θ⁴ exactly; Newton stops at 1e-10 of the
   // residual's scale. Four steps of τ = 1e8 s leave no transient: 1e-6 bounds what remains.
-  for (const auto type : {mesh::CellType::Quad4, mesh::CellType::Tri3, mesh::CellType::Hex8,
-                          mesh::CellType::Tet4}) {
+  for (const auto type :
+       {mesh::CellType::Quad4, mesh::CellType::Tri3, mesh::CellType::Hex8, mesh::CellType::Tet4}) {
     const double e = plate_error(type);
     std::printf("radiating plate, %s: max relative error %.3e\n", mesh::name(type), e);
     EXPECT_LT(e, 1e-6) << mesh::name(type);
@@ -281,10 +285,11 @@ TEST(FilmBoundary, EnergyLedgerCloses) {
       for (size_t k = 0; k < trace.time.size(); ++k)
         worst = std::max(worst, std::abs(trace.energy[k] - trace.energy[0] + trace.film[k] +
                                          trace.radiation[k]));
-      std::printf("dim %d%s: heat lost %.6e J (film %.6e, radiation %.6e), ledger error %.3e "
-                  "(relative %.3e)\n",
-                  dim, radiation ? " with radiation" : "", lost, trace.film.back(),
-                  trace.radiation.back(), worst, worst / lost);
+      std::printf(
+          "dim %d%s: heat lost %.6e J (film %.6e, radiation %.6e), ledger error %.3e "
+          "(relative %.3e)\n",
+          dim, radiation ? " with radiation" : "", lost, trace.film.back(), trace.radiation.back(),
+          worst, worst / lost);
       EXPECT_GT(trace.film.back(), 0.0);
       EXPECT_EQ(trace.radiation.back() > 0.0, radiation);
       EXPECT_LT(worst, 1e-9 * std::abs(lost));

@@ -383,11 +383,10 @@ Eigen::MatrixXd facet_mass(FacetType t, const Coords& x) {
   for (const auto& q : table(t)) {
     tangents.resize(x.cols(), q.dn.cols());
     tangents.noalias() = x.transpose() * q.dn;
-    const double measure = tangents.cols() == 1
-                               ? tangents.col(0).norm()
-                               : Eigen::Vector3d(tangents.col(0))
-                                     .cross(Eigen::Vector3d(tangents.col(1)))
-                                     .norm();
+    const double measure =
+        tangents.cols() == 1
+            ? tangents.col(0).norm()
+            : Eigen::Vector3d(tangents.col(0)).cross(Eigen::Vector3d(tangents.col(1))).norm();
     m.noalias() += (measure * q.weight) * (q.n * q.n.transpose());
   }
   return m;

@@ -553,8 +553,8 @@ void CaseReader::read_boundary_heat(const TableReader& b, physics::BoundaryCondi
     if (h && ambient) bc.film = physics::Film{*h, *ambient};
   }
   if (const auto r = b.sub_table("radiation", Need::Optional, {"emissivity", "ambient"})) {
-    const auto e = table_member(*r, "emissivity",
-                                {[](double x) { return x > 0 && x <= 1; }, "an emissivity in (0, 1]"});
+    const auto e = table_member(
+        *r, "emissivity", {[](double x) { return x > 0 && x <= 1; }, "an emissivity in (0, 1]"});
     const auto ambient = table_member(*r, "ambient", kTemperature);
     if (e && ambient) bc.radiation = physics::Radiation{*e, *ambient};
   }
@@ -611,12 +611,11 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
 }
 
 void CaseReader::read_solver(const TableReader& root) {
-  const auto s =
-      root.sub_table("solver", Need::Optional,
-                     {"coupling_tolerance", "max_coupling_iterations", "friction_loop",
-                      "qp_tolerance", "max_qp_iterations", "factorization", "feti_tolerance",
-                      "max_feti_iterations", "feti_preconditioner", "contact_dual",
-                      "newton_tolerance", "max_newton_iterations"});
+  const auto s = root.sub_table(
+      "solver", Need::Optional,
+      {"coupling_tolerance", "max_coupling_iterations", "friction_loop", "qp_tolerance",
+       "max_qp_iterations", "factorization", "feti_tolerance", "max_feti_iterations",
+       "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -710,9 +709,10 @@ void CaseReader::check_boundary_conflicts() {
       const bool later_cools = later.film || later.radiation;
       if (first.where == later.where &&
           ((first.temperature && later_cools) || (first_cools && later.temperature)))
-        issues_.add(line, detail::join(here, later.temperature ? "temperature"
-                                             : later.film      ? "film"
-                                                               : "radiation"),
+        issues_.add(line,
+                    detail::join(here, later.temperature ? "temperature"
+                                       : later.film      ? "film"
+                                                         : "radiation"),
                     fmt::format("found a film or radiation and a prescribed temperature on \"{}\" "
                                 "of body \"{}\" (with {}); expected one of them: a prescribed "
                                 "temperature leaves nothing for the film or radiation to change",
@@ -766,8 +766,7 @@ void CaseReader::check_boundary_heat_in_contact() {
     const auto& bc = p_.boundaries[i];
     if (bc.body != p_.contact->slave_body && bc.body != p_.contact->master_body) continue;
     const auto& h = bc.film ? bc.film->coefficient.values() : std::vector<double>{};
-    const bool varying =
-        std::any_of(h.begin(), h.end(), [&](double v) { return v != h.front(); });
+    const bool varying = std::any_of(h.begin(), h.end(), [&](double v) { return v != h.front(); });
     if (!bc.radiation && !varying) continue;
     const auto* t = a.get(i)->as_table();
     const char* key = bc.radiation ? "radiation" : "film";

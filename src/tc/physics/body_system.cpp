@@ -112,8 +112,8 @@ void BodySystem::add_boundary_term(double t, const core::Vector& theta, core::Ve
   }
 }
 
-void BodySystem::add_boundary_derivative(double t, const core::Vector& theta,
-                                         const core::Vector& x, core::Vector& y) const {
+void BodySystem::add_boundary_derivative(double t, const core::Vector& theta, const core::Vector& x,
+                                         core::Vector& y) const {
   for (const auto& f : films_)
     if (!f.constant) {
       core::Vector hx(y.size());
@@ -133,7 +133,8 @@ void BodySystem::add_boundary_derivative(double t, const core::Vector& theta,
   }
 }
 
-BodySystem::BoundaryPower BodySystem::boundary_heat_loss(double t, const core::Vector& theta) const {
+BodySystem::BoundaryPower BodySystem::boundary_heat_loss(double t,
+                                                         const core::Vector& theta) const {
   BoundaryPower p;
   if (films_.empty() && radiation_.empty()) return p;
   const auto th = theta.read();

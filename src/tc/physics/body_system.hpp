@@ -98,7 +98,7 @@ class BodySystem {
   void add_boundary(const BoundaryCondition& bc, const std::string& body_name);
   struct FilmBoundary {
     Film film;
-    bool constant = true;                             // h the same at every t
+    bool constant = true;                              // h the same at every t
     std::vector<std::pair<PetscInt, double>> weights;  // ∫N_a dS
     core::SparseMatrix unit;                           // ∫N_aN_b dS (h(t) films only)
   };

@@ -253,9 +253,10 @@ Simulation::Simulation(const Problem& problem)
     const auto& m = sys.matrices();
     if (const auto& c = problem_.contact;
         c && (b == c->slave_body || b == c->master_body) && sys.has_boundary_term())
-      throw Error(fmt::format("body '{}': radiation and films whose coefficient changes in time "
-                              "are not supported on a body in contact (case_reader refuses them)",
-                              sys.body().name));
+      throw Error(
+          fmt::format("body '{}': radiation and films whose coefficient changes in time "
+                      "are not supported on a body in contact (case_reader refuses them)",
+                      sys.body().name));
     auto s = std::make_unique<Solvers>();
     {
       auto t = timers_.scope("factorization");
@@ -491,6 +492,8 @@ void Simulation::heat_step(int b, int iteration) {
     const auto& settings = problem_.solver;
     const auto o = solve_boundary_heat(sys, s.a_theta, *s.heat, t, s.rhs_theta, s.theta_new,
                                        settings.newton_tolerance, settings.max_newton_iterations);
+    total_newton_ += o.iterations;
+    total_newton_inner_ += o.inner_iterations;
     if (!o.converged)
       throw NumericalError(
           fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "

@@ -156,6 +156,10 @@ class Simulation {
   void set_conductance_treatment(ConductanceTreatment t) { conductance_treatment_ = t; }
   [[nodiscard]] const ContactHeat& contact_heat() const { return heat_; }
   [[nodiscard]] const BoundaryHeat& boundary_heat() const { return boundary_heat_; }
+  /// Newton corrections and their conjugate-gradient iterations so far (heat steps with
+  /// radiation or a film with h(t); boundary_heat.hpp).
+  [[nodiscard]] long total_newton_iterations() const { return total_newton_; }
+  [[nodiscard]] long total_newton_inner_iterations() const { return total_newton_inner_; }
   /// Aitken relaxation of the Tresca → Coulomb fixed point (default on; docs/choices.md).
   void set_coupling_acceleration(bool on) { accelerate_ = on; }
   /// Overrides problem().solver.friction_loop (comparisons).
@@ -282,6 +286,7 @@ class Simulation {
   contact::FrictionalHeat frictional_heat_;             // d_θγ of the last heat step
   ContactHeat heat_;
   BoundaryHeat boundary_heat_;
+  long total_newton_ = 0, total_newton_inner_ = 0;
   std::vector<double> heat_flux_;
 };
 
