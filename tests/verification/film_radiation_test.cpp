@@ -9,7 +9,9 @@
 //     θ(d) = (q/(εσ) + θ∞⁴)^(1/4) (all of q leaves by radiation) and θ(0) = θ(d) + q d/κ,
 //     to 1e-6 relative;
 //  4. the energy ledger: with no other heat in or out, thermal_energy(t) − thermal_energy(0)
-//     = −(heat_film + heat_radiation) to the solver's tolerance.
+//     = −(heat_film + heat_radiation) to the solver's tolerance;
+//  5. two blocks in contact, the upper one exchanging heat through a film or by radiation:
+//     the steady series profile (conduction, contact conductance, film or radiation).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -294,6 +296,133 @@ TEST(FilmBoundary, EnergyLedgerCloses) {
       EXPECT_EQ(trace.radiation.back() > 0.0, radiation);
       EXPECT_LT(worst, 1e-9 * std::abs(lost));
     }
+  }
+}
+
+// ---- 5. A contact pair cooled or heated through a film or radiation ------------------------
+
+/// thermal_contact_test's series conduction (4C's tsi_contact3D_conduction): two unit blocks
+/// pressed to λ_n = 30, β_C = 5, so the interface conductance is h_c = 150 W/(m²K); the lower
+/// block's bottom held at θ_low, the upper block's top exchanging with the surroundings by a
+/// film (constant h or h(t)) or by radiation instead of a prescribed temperature.
+enum class Exchange { film, film_table, radiation };
+
+double contact_pair_error(Exchange kind) {
+  const double theta0 = 293.15, theta_low = theta0 + 20, kappa = 52, push = 0.015;
+  const double h_film = 100, ambient = kind == Exchange::radiation ? 600.0 : theta0 + 40;
+  const double eps = 0.9;
+  fem::Material mat;
+  mat.density = 1;
+  mat.young_modulus = 4000;
+  mat.poisson_ratio = 0;
+  mat.thermal_expansion = 0;
+  mat.specific_heat = 1;
+  mat.thermal_conductivity = kappa;
+  physics::Problem p;
+  p.dimension = 3;
+  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.step = 1e4;  // ρc_pL²/κ = 0.02 s: three steps reach the steady state to round-off
+  p.time.end = 4 * p.time.step;
+  p.physics.reference_temperature = theta0;
+  p.physics.thermoelastic_heating = false;
+  for (int b = 0; b < 2; ++b) {
+    physics::Body body;
+    body.name = b == 0 ? "lower" : "upper";
+    body.material = mat;
+    body.mesh = b == 0 ? mesh::make_box(3, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3})
+                       : mesh::make_box(3, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2});
+    body.initial_temperature = theta0;
+    p.bodies.push_back(std::move(body));
+  }
+  auto fix = [&](int body, const std::string& where, int k, double value) {
+    physics::BoundaryCondition bc;
+    bc.body = body;
+    bc.where = where;
+    bc.displacement[k] = core::TimeTable(value);
+    p.boundaries.push_back(bc);
+  };
+  fix(0, "zmin", 2, 0.0);
+  fix(1, "zmax", 2, -push);
+  for (int b = 0; b < 2; ++b) {
+    fix(b, "xmin", 0, 0.0);
+    fix(b, "ymin", 1, 0.0);
+  }
+  physics::BoundaryCondition low;
+  low.body = 0;
+  low.where = "zmin";
+  low.temperature = core::TimeTable(theta_low);
+  p.boundaries.push_back(low);
+  physics::BoundaryCondition top;
+  top.body = 1;
+  top.where = "zmax";
+  if (kind == Exchange::radiation)
+    top.radiation = physics::Radiation{core::TimeTable(eps), core::TimeTable(ambient)};
+  else
+    top.film =
+        physics::Film{kind == Exchange::film ? core::TimeTable(h_film)
+                                             : core::TimeTable({0.0, 1.0}, {0.5 * h_film, h_film}),
+                      core::TimeTable(ambient)};
+  p.boundaries.push_back(top);
+  auto c = contact_pair(0, "zmax", 1, "zmin");
+  c.conductance_slave = c.conductance_master = 10.0;
+  p.contact = c;
+  p.solver.qp_tolerance = 1e-12;
+  p.solver.coupling_tolerance = 1e-12;
+  p.solver.max_coupling_iterations = 50;
+  physics::Simulation sim(p);
+  sim.enable_mortar_contact();
+  Quiet quiet;
+  const auto status = sim.run(quiet);
+  EXPECT_TRUE(status.completed) << status.message;
+  const double h_c = sim.beta_c() * 4000 * push / 2.0;  // β_C λ_n, λ_n = E δ/(2L) = 30
+  EXPECT_NEAR(h_c, 150.0, 1e-12);
+  const double r_bodies = 2 / kappa + 1 / h_c;  // lower, interface, upper
+  // q: the heat flux from the surroundings down to the lower block's bottom [W/m²].
+  double q = 0;
+  if (kind == Exchange::radiation) {
+    // q = εσ(θ∞⁴ − θ_top⁴) with θ_top = θ_low + q r_bodies: a monotone scalar equation,
+    // solved by bisection to round-off.
+    double lo = 0, hi = eps * physics::stefan_boltzmann * std::pow(ambient, 4);
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      const double top_t = theta_low + mid * r_bodies;
+      (eps * physics::stefan_boltzmann * (std::pow(ambient, 4) - std::pow(top_t, 4)) > mid ? lo
+                                                                                           : hi) =
+          mid;
+    }
+    q = 0.5 * (lo + hi);
+  } else {
+    q = (ambient - theta_low) / (r_bodies + 1 / h_film);
+  }
+  const double th_slave = theta_low + q / kappa, th_master = th_slave + q / h_c;
+  double worst = 0;
+  for (int b = 0; b < 2; ++b) {
+    const auto theta = sim.state(b).theta.to_std();
+    const auto& m = p.bodies[b].mesh;
+    for (int a = 0; a < m.n_nodes(); ++a) {
+      const double z = m.point(a)[2];
+      const double exact =
+          b == 0 ? theta_low + q * (z + 0.5) / kappa : th_master + q * (z - 0.5) / kappa;
+      worst = std::max(worst, std::abs(theta[a] - exact));
+    }
+  }
+  std::printf("contact pair, %s: q = %.6f W/m², %ld Newton corrections\n",
+              kind == Exchange::film         ? "film"
+              : kind == Exchange::film_table ? "film h(t)"
+                                             : "radiation",
+              q, sim.total_newton_iterations());
+  return worst / std::abs(th_master + q * 0.5 / kappa - theta_low);
+}
+
+TEST(FilmBoundary, ContactPairWithAFilmOrRadiationReachesTheSeriesProfile) {
+  // As thermal_contact_test's series conduction: linear elements and a uniform pressure
+  // reproduce the piecewise linear profile; the QP and coupling tolerances (1e-12) and the
+  // solves' round-off remain, and Newton's 1e-10 on the radiation and h(t) paths: 1e-8 of
+  // the temperature difference across the stack bounds them.
+  for (const auto kind : {Exchange::film, Exchange::film_table, Exchange::radiation}) {
+    const double e = contact_pair_error(kind);
+    std::printf("  max |θ − θ_exact| / (θ_top − θ_low) = %.3e\n", e);
+    EXPECT_LT(e, 1e-8);
   }
 }
 

@@ -139,8 +139,6 @@ class CaseReader {
   void read_output(const TableReader& root);
   void check_quasistatic_bodies_held();
   void check_boundary_conflicts();
-  /// Radiation, or a film whose h changes in time, on a body in [contact]: not supported.
-  void check_boundary_heat_in_contact();
 
   /// The array of tables at `key` ([[key]]), or an issue.
   const toml::array* tables(const TableReader& root, std::string_view key, Need need);
@@ -179,7 +177,6 @@ Problem CaseReader::read() {
   read_solver(root);
   read_output(root);
   if (issues_.empty()) check_boundary_conflicts();
-  if (issues_.empty()) check_boundary_heat_in_contact();
   if (issues_.empty()) check_quasistatic_bodies_held();
   if (!issues_.empty()) issues_.raise();
   return std::move(p_);
@@ -754,29 +751,6 @@ void CaseReader::check_boundary_conflicts() {
                                 "too ({}); expected the same value from both",
                                 shared.size(), other, where));
     }
-}
-
-void CaseReader::check_boundary_heat_in_contact() {
-  // The contact pair's heat step solves both bodies at once with the interface conductance
-  // (contact_heat_step); the Newton iteration of radiation and h(t) films is not in it (yet).
-  // A film with constant h is part of the heat operator and works there.
-  if (!p_.contact) return;
-  const auto& a = *root_.get("boundary")->as_array();
-  for (size_t i = 0; i < p_.boundaries.size(); ++i) {
-    const auto& bc = p_.boundaries[i];
-    if (bc.body != p_.contact->slave_body && bc.body != p_.contact->master_body) continue;
-    const auto& h = bc.film ? bc.film->coefficient.values() : std::vector<double>{};
-    const bool varying = std::any_of(h.begin(), h.end(), [&](double v) { return v != h.front(); });
-    if (!bc.radiation && !varying) continue;
-    const auto* t = a.get(i)->as_table();
-    const char* key = bc.radiation ? "radiation" : "film";
-    issues_.add(detail::line_of(*t->get(key)), detail::join(detail::at("boundary", i), key),
-                fmt::format("found {} on body \"{}\", which is in [contact]; expected radiation "
-                            "and films whose coefficient changes in time only on bodies not in "
-                            "contact (a film with a constant coefficient is allowed there)",
-                            bc.radiation ? "radiation" : "a film whose coefficient changes in time",
-                            p_.bodies[static_cast<size_t>(bc.body)].name));
-  }
 }
 
 /// A quasistatic body, and one that starts in static equilibrium, must be held against every

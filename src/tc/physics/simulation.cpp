@@ -251,12 +251,6 @@ Simulation::Simulation(const Problem& problem)
     }
     const auto& sys = *systems_.back();
     const auto& m = sys.matrices();
-    if (const auto& c = problem_.contact;
-        c && (b == c->slave_body || b == c->master_body) && sys.has_boundary_term())
-      throw Error(
-          fmt::format("body '{}': radiation and films whose coefficient changes in time "
-                      "are not supported on a body in contact (case_reader refuses them)",
-                      sys.body().name));
     auto s = std::make_unique<Solvers>();
     {
       auto t = timers_.scope("factorization");
@@ -566,7 +560,8 @@ void Simulation::contact_heat_step(int iteration) {
   }
   systems_[sb]->prescribe_theta(t, ss.theta_new);
   systems_[mb]->prescribe_theta(t, sm.theta_new);
-  if (conduct && conductance_treatment_ == ConductanceTreatment::Implicit) {
+  const bool implicit = conduct && conductance_treatment_ == ConductanceTreatment::Implicit;
+  if (implicit) {
     if (!interface_heat_) {
       const auto& p = problem_;
       interface_heat_ = std::make_unique<InterfaceHeatSolver>(
@@ -574,6 +569,10 @@ void Simulation::contact_heat_step(int iteration) {
           *sm.heat, systems_[mb]->n_theta(), p.bodies[mb].mesh.boundary_nodes(c.master_where));
     }
     interface_heat_->set_conductance(*conductance_);
+  }
+  if (systems_[sb]->has_boundary_term() || systems_[mb]->has_boundary_term()) {
+    pair_boundary_heat(implicit, t, iteration);
+  } else if (implicit) {
     interface_heat_->solve(ss.rhs_theta, sm.rhs_theta, ss.theta_new, sm.theta_new);
   } else {
     ss.heat->solve(ss.rhs_theta, ss.theta_new);
@@ -581,6 +580,51 @@ void Simulation::contact_heat_step(int iteration) {
   }
   require_finite(ss.theta_new, "temperature", step_ + 1, iteration);
   require_finite(sm.theta_new, "temperature", step_ + 1, iteration);
+}
+
+void Simulation::pair_boundary_heat(bool implicit, double t, int iteration) {
+  // The contact pair's heat step with radiation or an h(t) film on either body: Newton over
+  // both bodies (boundary_heat.hpp) on A = diag(A_s, A_m) (+ L_θγ when implicit), each
+  // correction preconditioned by the pair's exact linear solve.
+  const auto& c = *problem_.contact;
+  const int sb = c.slave_body, mb = c.master_body;
+  auto& ss = *solvers_[sb];
+  auto& sm = *solvers_[mb];
+  HeatOperator op;
+  op.systems = {systems_[sb].get(), systems_[mb].get()};
+  op.apply = [&](const auto& x, const auto& y) {
+    ss.a_theta.mult(*x[0], *y[0]);
+    sm.a_theta.mult(*x[1], *y[1]);
+    if (implicit) {
+      const auto& l = *conductance_;
+      l.ss.mult_add(*x[0], *y[0]);
+      l.sm.mult_add(*x[1], *y[0]);
+      l.ms.mult_add(*x[0], *y[1]);
+      l.mm.mult_add(*x[1], *y[1]);
+    }
+  };
+  op.solve = [&](const auto& r, const auto& z) {
+    if (implicit) {
+      interface_heat_->solve(*r[0], *r[1], *z[0], *z[1]);
+    } else {
+      ss.heat->solve(*r[0], *z[0]);
+      sm.heat->solve(*r[1], *z[1]);
+    }
+  };
+  const auto& settings = problem_.solver;
+  const auto o =
+      solve_boundary_heat(op, t, {&ss.rhs_theta, &sm.rhs_theta}, {&ss.theta_new, &sm.theta_new},
+                          settings.newton_tolerance, settings.max_newton_iterations);
+  total_newton_ += o.iterations;
+  total_newton_inner_ += o.inner_iterations;
+  if (!o.converged)
+    throw NumericalError(
+        fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
+                    "the contact pair '{}'–'{}' did not converge to {:.1e} in {} iterations "
+                    "(staggered iteration {})",
+                    problem_.bodies[sb].name, problem_.bodies[mb].name, settings.newton_tolerance,
+                    o.iterations, iteration),
+        step_ + 1, o.iterations, o.residual);
 }
 
 void Simulation::mech_load(int b) {

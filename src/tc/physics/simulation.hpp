@@ -222,6 +222,8 @@ class Simulation {
   void velocity_iterate(int b);           // u̇ of the current displacement iterate → velocity
   void heat_rhs(int b);                   // right-hand side of (6.1) without contact terms
   void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
+  // Its solve by Newton when a body of the pair has radiation or an h(t) film.
+  void pair_boundary_heat(bool implicit, double t, int iteration);
   void mech_load(int b);  // right-hand side of (5.3) at the current θ iterate, Dirichlet values
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
   void subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f);
