@@ -51,6 +51,10 @@ def main():
     a = ax[1][1]
     a.plot(t, h["thermal_energy"], label="thermal energy [J]")
     a.set_title("thermal energy Σ∫ρc_p(θ−θ₀) [J]")
+    for k, name in (("heat_film", "lost through films"), ("heat_radiation", "lost by radiation")):
+        if k in h and max(abs(v) for v in h[k]) > 0:  # columns of runs since issue 21
+            a.plot(t, h[k], label=name + " [J]")
+            a.legend(fontsize="small")
     if contact:  # forces and their ratio (= 𝔉 while sliding), iterations per step
         a = ax[2][0]
         a.plot(t, h["contact_normal_force"], label="normal")

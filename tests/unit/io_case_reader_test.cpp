@@ -181,6 +181,24 @@ TEST(CaseReader, GmshFileRelativeToTheCaseGivesNamedBoundaries) {
   EXPECT_DOUBLE_EQ((*p.boundaries[1].heat_flux)(0.5), 50.0);
 }
 
+TEST(CaseReader, FilmAndRadiationTakeNumbersAndTables) {
+  const Problem p = read_case(valid_case("film-radiation.toml"));
+  ASSERT_EQ(p.boundaries.size(), 2u);
+  const auto& left = p.boundaries[0];
+  ASSERT_TRUE(left.radiation.has_value());
+  EXPECT_FALSE(left.film.has_value());
+  EXPECT_DOUBLE_EQ(left.radiation->emissivity(5.0), 0.7);
+  EXPECT_DOUBLE_EQ(left.radiation->ambient(5.0), 290.0);
+  const auto& bottom = p.boundaries[1];
+  ASSERT_TRUE(bottom.film.has_value());
+  EXPECT_FALSE(bottom.radiation.has_value());
+  EXPECT_DOUBLE_EQ(bottom.film->coefficient(10.0), 20.0);
+  EXPECT_DOUBLE_EQ(bottom.film->coefficient(99.0), 30.0);
+  EXPECT_DOUBLE_EQ(bottom.film->ambient(0.0), 300.0);
+  EXPECT_DOUBLE_EQ(p.solver.newton_tolerance, 1e-11);
+  EXPECT_EQ(p.solver.max_newton_iterations, 30);
+}
+
 TEST(CaseReader, FactorizationNamesAndMissingFile) {
   const auto dir = fs::temp_directory_path() / "tc_io_case_reader_test";
   fs::create_directories(dir);

@@ -7,6 +7,8 @@
 #include <regex>
 #include <sstream>
 
+#include "support/history.hpp"
+
 namespace fs = std::filesystem;
 using tc::test::thermocontact;
 
@@ -122,6 +124,26 @@ initial_temperature = 400.0
   const auto summary = tc::test::read_file(dir / "out/summary.json");
   EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
   EXPECT_EQ(count_lines(tc::test::read_file(dir / "out/history.csv")), 2);  // header + t = 0
+}
+
+TEST(Cli, FilmAndRadiationRunFromACaseFileIntoTheirHistoryColumns) {
+  // A Gmsh plate at 600 K cooled by a film and by radiation: both columns grow step by step,
+  // and with no other heat in or out the thermal energy falls by their sum (the ledger).
+  const auto dir = tc::test::fresh_dir("film_radiation");
+  const auto c = fs::path(TC_SOURCE_DIR) / "tests/cases/valid/film-radiation.toml";
+  const auto r = thermocontact("run " + c.string() + " --output " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto h = tc::test::read_history(dir / "out/history.csv");
+  const auto film = tc::test::column(h, "heat_film");
+  const auto radiation = tc::test::column(h, "heat_radiation");
+  const auto energy = tc::test::column(h, "thermal_energy");
+  ASSERT_EQ(film.size(), 4u);
+  for (size_t k = 1; k < film.size(); ++k) {
+    EXPECT_GT(film[k], film[k - 1]);
+    EXPECT_GT(radiation[k], radiation[k - 1]);
+    // history.csv holds 17 significant digits: the balance closes to the Newton tolerance.
+    EXPECT_NEAR(energy[k] - energy[0], -(film[k] + radiation[k]), 1e-9 * film[k]);
+  }
 }
 
 TEST(Cli, AnOptionNothingReadIsReportedAfterTheRun) {

@@ -72,6 +72,12 @@ TEST(Restart, RunsWithoutContactContinueToo) {
                             "restart-quasistatic");
 }
 
+TEST(Restart, FilmAndRadiationLedgerContinues) {
+  // heat_film and heat_radiation are cumulative: restored from the checkpoint (format 5).
+  expect_restart_reproduces(fs::path(TC_SOURCE_DIR) / "tests/cases/valid/film-radiation.toml", 2,
+                            "restart-film-radiation");
+}
+
 TEST(Restart, ACheckpointOfAnotherCaseIsRefusedWithExitTwo) {
   const auto dir = tc::test::fresh_dir("restart-refused");
   const auto out = dir / "out";

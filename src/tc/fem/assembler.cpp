@@ -167,6 +167,31 @@ core::SparseMatrix singular_mass_u(const mesh::Mesh& m, const Material& mat,
   });
 }
 
+core::SparseMatrix boundary_mass(const mesh::Mesh& m, const std::vector<WeightedFacet>& facets) {
+  std::vector<std::vector<const WeightedFacet*>> by_cell(static_cast<size_t>(m.n_cells()));
+  for (const auto& f : facets) by_cell.at(static_cast<size_t>(f.facet.cell)).push_back(&f);
+  return assemble(m, node_graph(m), 1, 1, [&](int c, CellType, const Coords&) {
+    const auto nodes = m.cell(c);
+    const auto n = static_cast<Eigen::Index>(nodes.size());
+    Eigen::MatrixXd me = Eigen::MatrixXd::Zero(n, n);  // zeros keep the node graph's pattern
+    for (const auto* f : by_cell[static_cast<size_t>(c)]) {
+      const auto fn = f->facet.node_span();
+      const Eigen::MatrixXd hf = f->weight * facet_mass(f->facet.type, facet_coords(m, f->facet));
+      std::vector<Eigen::Index> local;
+      for (const int a : fn) {
+        const auto it = std::find(nodes.begin(), nodes.end(), a);
+        if (it == nodes.end())
+          throw Error(fmt::format("film: facet node {} is not a node of its cell {}", a, c));
+        local.push_back(it - nodes.begin());
+      }
+      for (size_t i = 0; i < local.size(); ++i)
+        for (size_t j = 0; j < local.size(); ++j)
+          me(local[i], local[j]) += hf(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+    }
+    return me;
+  });
+}
+
 std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f) {
   std::vector<double> out(m.n_nodes(), 0.0);
   for (int c = 0; c < m.n_cells(); ++c) {

@@ -43,6 +43,18 @@ struct BodyMatrices {
 [[nodiscard]] core::SparseMatrix singular_mass_u(const mesh::Mesh& m, const Material& mat,
                                                  const std::vector<char>& massless);
 
+/// A boundary facet with a coefficient: h of a film boundary (its nodes numbered in the mesh
+/// the matrix is assembled on, its `cell` a cell of that mesh).
+struct WeightedFacet {
+  mesh::Facet facet;
+  double weight = 0;
+};
+/// Σ weight ∫ N_a N_b dS over the facets (the film term h∫θv of a Robin boundary), assembled
+/// cell by cell with the node graph's pattern: the pattern of M_θ and K_θ, so that
+/// a·M_θ + b·K_θ + H is formed with the same nonzeros.
+[[nodiscard]] core::SparseMatrix boundary_mass(const mesh::Mesh& m,
+                                               const std::vector<WeightedFacet>& facets);
+
 /// ∫ f N_a dx per node (length n_nodes); f = 1 when empty.
 [[nodiscard]] std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f = {});
 /// ∫ f N_a dS over the facets of a boundary, per node of the mesh (length n_nodes).

@@ -375,6 +375,23 @@ Eigen::VectorXd facet_load(FacetType t, const Coords& x, const Func& f) {
   return v;
 }
 
+Eigen::MatrixXd facet_mass(FacetType t, const Coords& x) {
+  // ∫_facet N_a N_b dS with the surface element of facet_load (film boundaries, h∫θv).
+  assert(x.rows() == mesh::n_nodes(t));
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(x.rows(), x.rows());
+  SmallMatrix tangents;
+  for (const auto& q : table(t)) {
+    tangents.resize(x.cols(), q.dn.cols());
+    tangents.noalias() = x.transpose() * q.dn;
+    const double measure =
+        tangents.cols() == 1
+            ? tangents.col(0).norm()
+            : Eigen::Vector3d(tangents.col(0)).cross(Eigen::Vector3d(tangents.col(1))).norm();
+    m.noalias() += (measure * q.weight) * (q.n * q.n.transpose());
+  }
+  return m;
+}
+
 // ---- Post-processing ----------------------------------------------------------------------
 
 Eigen::Matrix3d cell_stress(CellType t, const Coords& x, const Eigen::VectorXd& u_e,

@@ -50,6 +50,8 @@ using Func = std::function<double(const mesh::Point&)>;
 [[nodiscard]] Eigen::VectorXd cell_load(CellType t, const Coords& x, const Func& f = {});
 /// ∫ f N_a over a boundary facet (f = 1 when empty), n; x has `dim` columns of the body.
 [[nodiscard]] Eigen::VectorXd facet_load(FacetType t, const Coords& x, const Func& f = {});
+/// ∫ N_a N_b over a boundary facet, n²: the film (Robin) matrix of one facet per unit h.
+[[nodiscard]] Eigen::MatrixXd facet_mass(FacetType t, const Coords& x);
 
 // ---- Post-processing at the cell centre. --------------------------------------------------
 

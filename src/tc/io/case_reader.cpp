@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -130,6 +131,8 @@ class CaseReader {
   [[nodiscard]] bool box_size_ok(const TableReader& box, const std::array<int, 3>& cells) const;
   void read_boundaries(const TableReader& root);
   void read_boundary(const toml::table& t, size_t index);
+  /// film = { coefficient, ambient } and radiation = { emissivity, ambient } of a [[boundary]].
+  void read_boundary_heat(const TableReader& b, physics::BoundaryCondition& bc);
   void read_contact(const TableReader& root);
   void read_conductance(const TableReader& contact, physics::ContactSettings& c);
   void read_solver(const TableReader& root);
@@ -482,7 +485,8 @@ void CaseReader::read_boundaries(const TableReader& root) {
 
 void CaseReader::read_boundary(const toml::table& t, size_t index) {
   const TableReader b(t, detail::at("boundary", index), issues_,
-                      {"body", "where", "displacement", "traction", "temperature", "heat_flux"});
+                      {"body", "where", "displacement", "traction", "temperature", "heat_flux",
+                       "film", "radiation"});
   physics::BoundaryCondition bc;
   const auto body = body_index(b, "body");
   if (const auto where = b.string("where", Need::Required)) {
@@ -514,11 +518,43 @@ void CaseReader::read_boundary(const toml::table& t, size_t index) {
     b.issue("heat_flux",
             "found both temperature and heat_flux, expected one of them per "
             "[[boundary]] (add another [[boundary]] for the other)");
-  if (!b.has("displacement") && !b.has("traction") && !b.has("temperature") && !b.has("heat_flux"))
+  read_boundary_heat(b, bc);
+  for (const auto* k : {"film", "radiation"})
+    if (b.has("temperature") && b.has(k))
+      b.issue(k, fmt::format("found both temperature and {} on one face, expected one of them: "
+                             "a prescribed temperature leaves nothing for the {} to change",
+                             k, k));
+  if (!b.has("displacement") && !b.has("traction") && !b.has("temperature") &&
+      !b.has("heat_flux") && !b.has("film") && !b.has("radiation"))
     issues_.add(b.line(), b.path(),
                 "prescribes nothing; expected at least one of displacement, traction, "
-                "temperature, heat_flux");
+                "temperature, heat_flux, film, radiation");
   p_.boundaries.push_back(std::move(bc));
+}
+
+namespace {
+
+/// Member k of a film or radiation table: a number or a time table within `range`.
+std::optional<core::TimeTable> table_member(const TableReader& t, std::string_view k,
+                                            const Range& range) {
+  const auto* n = t.get(k, Need::Required, range.expected + " (a number or a time table)");
+  return n ? detail::read_time_table(*n, t.key(k), t.issues(), range) : std::nullopt;
+}
+
+}  // namespace
+
+void CaseReader::read_boundary_heat(const TableReader& b, physics::BoundaryCondition& bc) {
+  if (const auto f = b.sub_table("film", Need::Optional, {"coefficient", "ambient"})) {
+    const auto h = table_member(*f, "coefficient", positive("a film coefficient h [W/(m²K)]"));
+    const auto ambient = table_member(*f, "ambient", kTemperature);
+    if (h && ambient) bc.film = physics::Film{*h, *ambient};
+  }
+  if (const auto r = b.sub_table("radiation", Need::Optional, {"emissivity", "ambient"})) {
+    const auto e = table_member(
+        *r, "emissivity", {[](double x) { return x > 0 && x <= 1; }, "an emissivity in (0, 1]"});
+    const auto ambient = table_member(*r, "ambient", kTemperature);
+    if (e && ambient) bc.radiation = physics::Radiation{*e, *ambient};
+  }
 }
 
 void CaseReader::read_contact(const TableReader& root) {
@@ -572,11 +608,11 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
 }
 
 void CaseReader::read_solver(const TableReader& root) {
-  const auto s =
-      root.sub_table("solver", Need::Optional,
-                     {"coupling_tolerance", "max_coupling_iterations", "friction_loop",
-                      "qp_tolerance", "max_qp_iterations", "factorization", "feti_tolerance",
-                      "max_feti_iterations", "feti_preconditioner", "contact_dual"});
+  const auto s = root.sub_table(
+      "solver", Need::Optional,
+      {"coupling_tolerance", "max_coupling_iterations", "friction_loop", "qp_tolerance",
+       "max_qp_iterations", "factorization", "feti_tolerance", "max_feti_iterations",
+       "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -597,6 +633,10 @@ void CaseReader::read_solver(const TableReader& root) {
     settings.feti_tolerance = *v;
   if (const auto v = s->integer("max_feti_iterations", Need::Optional, 1))
     settings.max_feti_iterations = *v;
+  if (const auto v = s->number("newton_tolerance", Need::Optional, unit))
+    settings.newton_tolerance = *v;
+  if (const auto v = s->integer("max_newton_iterations", Need::Optional, 1))
+    settings.max_newton_iterations = *v;
   if (const auto v =
           s->choice("feti_preconditioner", Need::Optional, {"dirichlet", "lumped", "none"}))
     settings.feti_preconditioner = *v == "dirichlet" ? feti::Preconditioner::dirichlet
@@ -662,6 +702,18 @@ void CaseReader::check_boundary_conflicts() {
       const auto here = detail::at("boundary", j);
       const auto other = fmt::format("boundary[{}] (line {})", i, detail::line_of(*a->get(i)));
       const auto& body = p_.bodies[static_cast<size_t>(later.body)];
+      const bool first_cools = first.film || first.radiation;
+      const bool later_cools = later.film || later.radiation;
+      if (first.where == later.where &&
+          ((first.temperature && later_cools) || (first_cools && later.temperature)))
+        issues_.add(line,
+                    detail::join(here, later.temperature ? "temperature"
+                                       : later.film      ? "film"
+                                                         : "radiation"),
+                    fmt::format("found a film or radiation and a prescribed temperature on \"{}\" "
+                                "of body \"{}\" (with {}); expected one of them: a prescribed "
+                                "temperature leaves nothing for the film or radiation to change",
+                                later.where, body.name, other));
       if (first.where == later.where && any_of(first.displacement) && any_of(later.displacement))
         issues_.add(line, detail::join(here, "displacement"),
                     fmt::format("found displacements on \"{}\" of body \"{}\", which {} "

@@ -127,6 +127,7 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
     e.put(d);
   for (const double d : {c.heat.generated, c.heat.to_slave, c.heat.to_master, c.heat.conducted})
     e.put(d);
+  for (const double d : {c.boundary_heat.film, c.boundary_heat.radiation}) e.put(d);
   return e.finish();
 }
 
@@ -193,6 +194,7 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
     *x = d.get<double>();
   for (double* x : {&c.heat.generated, &c.heat.to_slave, &c.heat.to_master, &c.heat.conducted})
     *x = d.get<double>();
+  for (double* x : {&c.boundary_heat.film, &c.boundary_heat.radiation}) *x = d.get<double>();
   if (d.position() != body_size) d.fail("unexpected bytes after the data");
   return c;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace tc::physics {
 
@@ -33,6 +34,8 @@ BodySystem::BodySystem(const Problem& problem, int index)
   th_loads_.push_back({body_->heat_source, 0, sparse_weights(volumes_)});
   for (const auto& bc : problem.boundaries)
     if (bc.body == index) add_boundary(bc, body_->name);
+  if (!constant_film_facets_.empty())
+    constant_film_ = fem::boundary_mass(body_->mesh, constant_film_facets_);
   u_dofs_ = keys(u_prescribed_);
   th_dofs_ = keys(th_prescribed_);
   lumped_ = problem.physics.lumped_heat_capacity;
@@ -67,6 +70,90 @@ fem::BodyMatrices BodySystem::subdomain_matrices(int s) const {
   return m;
 }
 
+core::SparseMatrix BodySystem::subdomain_constant_film(int s) const {
+  if (constant_film_facets_.empty()) return {};
+  const auto& sub = subdomains_.at(static_cast<size_t>(s));
+  std::map<int, int> cell, node;  // body → subdomain numbering
+  for (size_t c = 0; c < sub.global_cell.size(); ++c)
+    cell[sub.global_cell[c]] = static_cast<int>(c);
+  for (size_t a = 0; a < sub.global_node.size(); ++a)
+    node[sub.global_node[a]] = static_cast<int>(a);
+  std::vector<fem::WeightedFacet> local;
+  for (const auto& f : constant_film_facets_) {
+    const auto it = cell.find(f.facet.cell);
+    if (it == cell.end()) continue;  // a facet of another subdomain's cell
+    auto g = f;
+    g.facet.cell = it->second;
+    for (int k = 0; k < mesh::n_nodes(g.facet.type); ++k)
+      g.facet.nodes[static_cast<size_t>(k)] = node.at(f.facet.nodes[static_cast<size_t>(k)]);
+    local.push_back(g);
+  }
+  return fem::boundary_mass(sub.mesh, local);
+}
+
+void BodySystem::add_boundary_term(double t, const core::Vector& theta, core::Vector& y) const {
+  for (const auto& f : films_)
+    if (!f.constant) {
+      core::Vector hx(y.size());
+      f.unit.mult(theta, hx);
+      y.axpy(f.film.coefficient(t), hx);
+    }
+  if (radiation_.empty()) return;
+  const auto th = theta.read();
+  auto yv = y.view();
+  for (const auto& r : radiation_) {
+    const double es = r.radiation.emissivity(t) * stefan_boltzmann;
+    const double amb = r.radiation.ambient(t);
+    const double amb4 = amb * amb * amb * amb;
+    for (const auto& [a, w] : r.weights) {
+      const double x = th[a];
+      yv[a] += w * es * (x * std::abs(x * x * x) - amb4);
+    }
+  }
+}
+
+void BodySystem::add_boundary_derivative(double t, const core::Vector& theta, const core::Vector& x,
+                                         core::Vector& y) const {
+  for (const auto& f : films_)
+    if (!f.constant) {
+      core::Vector hx(y.size());
+      f.unit.mult(x, hx);
+      y.axpy(f.film.coefficient(t), hx);
+    }
+  if (radiation_.empty()) return;
+  const auto th = theta.read();
+  const auto xv = x.read();
+  auto yv = y.view();
+  for (const auto& r : radiation_) {
+    const double es = r.radiation.emissivity(t) * stefan_boltzmann;
+    for (const auto& [a, w] : r.weights) {
+      const double v = th[a];
+      yv[a] += 4.0 * w * es * std::abs(v * v * v) * xv[a];
+    }
+  }
+}
+
+BodySystem::BoundaryPower BodySystem::boundary_heat_loss(double t,
+                                                         const core::Vector& theta) const {
+  BoundaryPower p;
+  if (films_.empty() && radiation_.empty()) return p;
+  const auto th = theta.read();
+  for (const auto& f : films_) {
+    const double h = f.film.coefficient(t), amb = f.film.ambient(t);
+    for (const auto& [a, w] : f.weights) p.film += h * w * (th[a] - amb);
+  }
+  for (const auto& r : radiation_) {
+    const double es = r.radiation.emissivity(t) * stefan_boltzmann;
+    const double amb = r.radiation.ambient(t);
+    const double amb4 = amb * amb * amb * amb;
+    for (const auto& [a, w] : r.weights) {
+      const double x = th[a];
+      p.radiation += w * es * (x * std::abs(x * x * x) - amb4);
+    }
+  }
+  return p;
+}
+
 void BodySystem::lump(core::SparseMatrix& m) {
   // Row sums on the diagonal, the pattern kept (so a·M + b·K still shares it with K).
   core::Vector sums(m.rows());
@@ -99,6 +186,23 @@ void BodySystem::add_boundary(const BoundaryCondition& bc, const std::string& bo
   if (bc.temperature)
     for (const int a : nodes) th_prescribed_[a] = *bc.temperature;
   if (bc.heat_flux) th_loads_.push_back({*bc.heat_flux, 0, facet_weights});
+  if (bc.film || bc.radiation) {
+    const auto weights = sparse_weights(fem::boundary_integrals(mesh, bc.where));
+    if (bc.film) {
+      FilmBoundary f{*bc.film, true, weights, {}};
+      const auto& h = bc.film->coefficient.values();
+      f.constant = std::all_of(h.begin(), h.end(), [&](double v) { return v == h.front(); });
+      std::vector<fem::WeightedFacet> facets;
+      for (const auto& facet : mesh.boundary(bc.where))
+        facets.push_back({facet, f.constant ? h.front() : 1.0});
+      if (f.constant)
+        constant_film_facets_.insert(constant_film_facets_.end(), facets.begin(), facets.end());
+      else
+        f.unit = fem::boundary_mass(mesh, facets);
+      films_.push_back(std::move(f));
+    }
+    if (bc.radiation) radiation_.push_back({*bc.radiation, weights});
+  }
 }
 
 void BodySystem::prescribe_u(double t, core::Vector& x) const {
@@ -134,6 +238,12 @@ void BodySystem::mechanical_load(double t, core::Vector& f) const {
 
 void BodySystem::thermal_load(double t, core::Vector& f) const {
   apply(th_loads_, 1, t, f);
+  if (films_.empty()) return;
+  auto v = f.view();
+  for (const auto& film : films_) {  // h ∫ θ∞ N_a dS: the ambient's side of h(θ − θ∞)
+    const double value = film.film.coefficient(t) * film.film.ambient(t);
+    for (const auto& [a, w] : film.weights) v[a] += value * w;
+  }
 }
 
 }  // namespace tc::physics

@@ -2,6 +2,7 @@
 // One body's discrete thermo-elastic system (ch. 4): its constant matrices, its Dirichlet
 // dofs with their time tables, and its time-dependent loads f_u(t) (3.2) and f_θ(t) (3.3).
 // Displacement dofs are interleaved (dim·a + k), temperature dofs one per node.
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -43,6 +44,36 @@ class BodySystem {
   /// f_θ(t) of (3.3): heat flux q_N on Γ_θN and heat source r.
   void thermal_load(double t, core::Vector& f) const;
 
+  // Film and radiation boundaries (q = h(θ − θ∞), q = εσ(θ⁴ − θ∞⁴) leaving the body).
+  // A film whose h is constant in time is linear and fixed: H = Σ h∫N_aN_b dS joins the heat
+  // operator M_θ/τ + K_θ + H (factorised once), its h∫θ∞N_a dS the load (thermal_load). A film
+  // whose h changes in time and every radiation are the boundary term N(t, θ) of the heat
+  // step A θ + N(t, θ) = b, solved by Newton (physics/boundary_heat.hpp).
+
+  /// Σ h ∫N_aN_b dS of the films with constant h (K_θ's pattern); null when there is none.
+  [[nodiscard]] const core::SparseMatrix* constant_film() const {
+    return constant_film_.get() ? &constant_film_ : nullptr;
+  }
+  /// The same on the cells of subdomain s (Σ_s = constant_film()); empty when there is none.
+  [[nodiscard]] core::SparseMatrix subdomain_constant_film(int s) const;
+  /// The heat step has the boundary term N(t, θ): radiation, or a film with h(t).
+  [[nodiscard]] bool has_boundary_term() const {
+    return !radiation_.empty() ||
+           std::any_of(films_.begin(), films_.end(), [](const auto& f) { return !f.constant; });
+  }
+  /// y += N(t, θ) = Σ_{films with h(t)} h(t) H θ + Σ_radiation w_a εσ(θ_a|θ_a|³ − θ∞⁴), the
+  /// radiation integrated by the nodal (trapezoidal) rule, w_a = ∫N_a dS (docs/choices.md).
+  void add_boundary_term(double t, const core::Vector& theta, core::Vector& y) const;
+  /// y += N'(t, θ) x, the derivative: h(t) H x + diag(4 w_a εσ |θ_a|³) x.
+  void add_boundary_derivative(double t, const core::Vector& theta, const core::Vector& x,
+                               core::Vector& y) const;
+  /// The heat leaving the body at t through its film and its radiation boundaries [W]:
+  /// Σ h ∫(θ − θ∞) dS = Σ_a h w_a (θ_a − θ∞) and Σ_a w_a εσ(θ_a|θ_a|³ − θ∞⁴).
+  struct BoundaryPower {
+    double film = 0, radiation = 0;
+  };
+  [[nodiscard]] BoundaryPower boundary_heat_loss(double t, const core::Vector& theta) const;
+
   [[nodiscard]] const std::vector<ReactionGroup>& reaction_groups() const { return reactions_; }
   /// ∫ N_a dx per node: turns nodal fields into integrals (e.g. thermal energy).
   [[nodiscard]] const std::vector<double>& node_volumes() const { return volumes_; }
@@ -65,6 +96,16 @@ class BodySystem {
     std::vector<std::pair<PetscInt, double>> weights;
   };
   void add_boundary(const BoundaryCondition& bc, const std::string& body_name);
+  struct FilmBoundary {
+    Film film;
+    bool constant = true;                              // h the same at every t
+    std::vector<std::pair<PetscInt, double>> weights;  // ∫N_a dS
+    core::SparseMatrix unit;                           // ∫N_aN_b dS (h(t) films only)
+  };
+  struct RadiationBoundary {
+    Radiation radiation;
+    std::vector<std::pair<PetscInt, double>> weights;  // ∫N_a dS
+  };
   static void lump(core::SparseMatrix& m);  // row-sum lumping, in place
   static void apply(const std::vector<NodalLoad>& loads, int block, double t, core::Vector& f);
 
@@ -81,6 +122,10 @@ class BodySystem {
   bool lumped_ = false;
   std::vector<char> massless_;  // per node
   std::vector<PetscInt> massless_dofs_;
+  std::vector<FilmBoundary> films_;
+  std::vector<RadiationBoundary> radiation_;
+  std::vector<fem::WeightedFacet> constant_film_facets_;  // body numbering, weight h
+  core::SparseMatrix constant_film_;
 };
 
 }  // namespace tc::physics

@@ -61,6 +61,21 @@ struct Body {
   int subdomains = 1;
 };
 
+/// Stefan–Boltzmann constant σ [W/(m²K⁴)] (CODATA 2018, exact in SI since 2019).
+inline constexpr double stefan_boltzmann = 5.670374419e-8;
+
+/// A film (convection, Robin) boundary: q = h (θ − θ∞) leaves the body [W/m²].
+struct Film {
+  TimeTable coefficient;  // h [W/(m²K)], > 0
+  TimeTable ambient;      // θ∞ [K], > 0
+};
+
+/// A radiating boundary: q = εσ(θ⁴ − θ∞⁴) leaves the body [W/m²].
+struct Radiation {
+  TimeTable emissivity;  // ε, in (0, 1]
+  TimeTable ambient;     // θ∞ [K], > 0
+};
+
 /// One [[boundary]] entry: per component a displacement or a traction (or neither = free).
 struct BoundaryCondition {
   int body = 0;  // index into Problem::bodies
@@ -69,6 +84,8 @@ struct BoundaryCondition {
   std::array<std::optional<TimeTable>, 3> traction;  // p_N [Pa]
   std::optional<TimeTable> temperature;              // θ_D [K]
   std::optional<TimeTable> heat_flux;                // q_N [W/m²] into the body
+  std::optional<Film> film;                          // h(θ − θ∞) out of the body
+  std::optional<Radiation> radiation;                // εσ(θ⁴ − θ∞⁴) out of the body
 };
 
 struct ContactSettings {
@@ -106,6 +123,10 @@ struct SolverSettings {
   double feti_tolerance = 1e-10;
   int max_feti_iterations = 1000;
   feti::Preconditioner feti_preconditioner = feti::Preconditioner::dirichlet;
+  // Newton's method in the heat step of a body with radiation (or a film whose h changes in
+  // time): ‖residual‖ ≤ newton_tolerance × the scale of the equation, iteration cap.
+  double newton_tolerance = 1e-10;
+  int max_newton_iterations = 50;
 };
 
 struct OutputSettings {

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "tc/core/error.hpp"
+#include "tc/physics/boundary_heat.hpp"
 
 namespace tc::physics {
 
@@ -89,8 +90,11 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
                        : m.stiffness_u.copy();
       case Operator::statics:
         return m.stiffness_u.copy();
-      case Operator::heat:
-        return combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+      case Operator::heat: {
+        auto heat = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+        if (sys.constant_film()) heat.axpy(1.0, sys.subdomain_constant_film(s));
+        return heat;
+      }
       case Operator::mass: {
         // TFETI keeps the Dirichlet dofs in the subdomain matrices (multipliers fix them), so
         // the massless dofs, which ü = 0 constrains as Dirichlet dofs, need a pivot: the mean
@@ -253,6 +257,7 @@ Simulation::Simulation(const Problem& problem)
       s->a_u =
           dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u) : m.stiffness_u.copy();
       s->a_theta = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+      if (const auto* film = sys.constant_film()) s->a_theta.axpy(1.0, *film);  // + h∫θv
       s->mech = body_solver(problem_, sys, s->a_u, Operator::mechanics);
       s->heat = body_solver(problem_, sys, s->a_theta, Operator::heat);
     }
@@ -345,7 +350,9 @@ void Simulation::initialise() {
               "slip_nodes",
               "wall_seconds",
               "friction_iterations",
-              "contact_tangential_force_sum"};
+              "contact_tangential_force_sum",
+              "heat_film",
+              "heat_radiation"};
   const char* axes = "xyz";
   for (const auto& sys : systems_)
     for (const auto& g : sys->reaction_groups())
@@ -471,8 +478,24 @@ void Simulation::heat_step(int b, int iteration) {
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   heat_rhs(b);
-  sys.prescribe_theta((step_ + 1) * problem_.time.step, s.theta_new);
-  s.heat->solve(s.rhs_theta, s.theta_new);
+  const double t = (step_ + 1) * problem_.time.step;
+  sys.prescribe_theta(t, s.theta_new);
+  if (!sys.has_boundary_term()) {
+    s.heat->solve(s.rhs_theta, s.theta_new);
+  } else {  // radiation or a film with h(t): Newton (boundary_heat.hpp)
+    const auto& settings = problem_.solver;
+    const auto o = solve_boundary_heat(sys, s.a_theta, *s.heat, t, s.rhs_theta, s.theta_new,
+                                       settings.newton_tolerance, settings.max_newton_iterations);
+    total_newton_ += o.iterations;
+    total_newton_inner_ += o.inner_iterations;
+    if (!o.converged)
+      throw NumericalError(
+          fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
+                      "body '{}' did not converge to {:.1e} in {} iterations (staggered "
+                      "iteration {})",
+                      sys.body().name, settings.newton_tolerance, o.iterations, iteration),
+          step_ + 1, o.iterations, o.residual);
+  }
   require_finite(s.theta_new, "temperature", step_ + 1, iteration);
 }
 
@@ -537,7 +560,8 @@ void Simulation::contact_heat_step(int iteration) {
   }
   systems_[sb]->prescribe_theta(t, ss.theta_new);
   systems_[mb]->prescribe_theta(t, sm.theta_new);
-  if (conduct && conductance_treatment_ == ConductanceTreatment::Implicit) {
+  const bool implicit = conduct && conductance_treatment_ == ConductanceTreatment::Implicit;
+  if (implicit) {
     if (!interface_heat_) {
       const auto& p = problem_;
       interface_heat_ = std::make_unique<InterfaceHeatSolver>(
@@ -545,6 +569,10 @@ void Simulation::contact_heat_step(int iteration) {
           *sm.heat, systems_[mb]->n_theta(), p.bodies[mb].mesh.boundary_nodes(c.master_where));
     }
     interface_heat_->set_conductance(*conductance_);
+  }
+  if (systems_[sb]->has_boundary_term() || systems_[mb]->has_boundary_term()) {
+    pair_boundary_heat(implicit, t, iteration);
+  } else if (implicit) {
     interface_heat_->solve(ss.rhs_theta, sm.rhs_theta, ss.theta_new, sm.theta_new);
   } else {
     ss.heat->solve(ss.rhs_theta, ss.theta_new);
@@ -552,6 +580,51 @@ void Simulation::contact_heat_step(int iteration) {
   }
   require_finite(ss.theta_new, "temperature", step_ + 1, iteration);
   require_finite(sm.theta_new, "temperature", step_ + 1, iteration);
+}
+
+void Simulation::pair_boundary_heat(bool implicit, double t, int iteration) {
+  // The contact pair's heat step with radiation or an h(t) film on either body: Newton over
+  // both bodies (boundary_heat.hpp) on A = diag(A_s, A_m) (+ L_θγ when implicit), each
+  // correction preconditioned by the pair's exact linear solve.
+  const auto& c = *problem_.contact;
+  const int sb = c.slave_body, mb = c.master_body;
+  auto& ss = *solvers_[sb];
+  auto& sm = *solvers_[mb];
+  HeatOperator op;
+  op.systems = {systems_[sb].get(), systems_[mb].get()};
+  op.apply = [&](const auto& x, const auto& y) {
+    ss.a_theta.mult(*x[0], *y[0]);
+    sm.a_theta.mult(*x[1], *y[1]);
+    if (implicit) {
+      const auto& l = *conductance_;
+      l.ss.mult_add(*x[0], *y[0]);
+      l.sm.mult_add(*x[1], *y[0]);
+      l.ms.mult_add(*x[0], *y[1]);
+      l.mm.mult_add(*x[1], *y[1]);
+    }
+  };
+  op.solve = [&](const auto& r, const auto& z) {
+    if (implicit) {
+      interface_heat_->solve(*r[0], *r[1], *z[0], *z[1]);
+    } else {
+      ss.heat->solve(*r[0], *z[0]);
+      sm.heat->solve(*r[1], *z[1]);
+    }
+  };
+  const auto& settings = problem_.solver;
+  const auto o =
+      solve_boundary_heat(op, t, {&ss.rhs_theta, &sm.rhs_theta}, {&ss.theta_new, &sm.theta_new},
+                          settings.newton_tolerance, settings.max_newton_iterations);
+  total_newton_ += o.iterations;
+  total_newton_inner_ += o.inner_iterations;
+  if (!o.converged)
+    throw NumericalError(
+        fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
+                    "the contact pair '{}'–'{}' did not converge to {:.1e} in {} iterations "
+                    "(staggered iteration {})",
+                    problem_.bodies[sb].name, problem_.bodies[mb].name, settings.newton_tolerance,
+                    o.iterations, iteration),
+        step_ + 1, o.iterations, o.residual);
 }
 
 void Simulation::mech_load(int b) {
@@ -1211,6 +1284,14 @@ void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u,
     support_forces(b, forces_[b]);
     external_work_ += 0.5 * (before + forces_[b].dot(s.work_u));
   }
+  // Heat lost through the film and radiation boundaries in the step: τ Σ h∫(θ − θ∞)dS and
+  // τ Σ ∫εσ(θ⁴ − θ∞⁴)dS at t^{k+1} with θ^{k+1}, the terms of the backward Euler step, so
+  // that Δthermal_energy = heat in − heat_film − heat_radiation closes to the solver tolerance.
+  for (int b = 0; b < n_bodies(); ++b) {
+    const auto p = systems_[b]->boundary_heat_loss(time(), states_[b].theta);
+    boundary_heat_.film += problem_.time.step * p.film;
+    boundary_heat_.radiation += problem_.time.step * p.radiation;
+  }
   total_coupling_ += coupling;
   last_coupling_ = coupling;
   fill_row(coupling, wall);
@@ -1287,7 +1368,9 @@ void Simulation::fill_row(int coupling, double wall) {
           static_cast<double>(contact_stats_.slip_nodes),
           wall,
           static_cast<double>(contact_stats_.friction_iterations),
-          contact_stats_.tangential_force_sum};
+          contact_stats_.tangential_force_sum,
+          boundary_heat_.film,
+          boundary_heat_.radiation};
   for (int b = 0; b < n_bodies(); ++b) {
     const auto f = forces_[b].to_std();
     for (const auto& g : systems_[b]->reaction_groups())
@@ -1397,6 +1480,7 @@ Checkpoint Simulation::checkpoint() const {
   c.total_smalbe_outer = total_smalbe_outer_;
   c.contact = contact_stats_;
   c.heat = heat_;
+  c.boundary_heat = boundary_heat_;
   return c;
 }
 
@@ -1464,6 +1548,7 @@ void Simulation::restore(const Checkpoint& c) {
   total_smalbe_outer_ = c.total_smalbe_outer;
   contact_stats_ = c.contact;
   heat_ = c.heat;
+  boundary_heat_ = c.boundary_heat;
 }
 
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {

@@ -74,6 +74,13 @@ struct ContactHeat {
   double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
 };
 
+/// Heat lost through the film and the radiation boundaries of all bodies, cumulative from
+/// t = 0 [J] (history.csv heat_film, heat_radiation): Σ_steps τ Σ h∫(θ − θ∞)dS and
+/// Σ_steps τ Σ ∫εσ(θ⁴ − θ∞⁴)dS at t^{k+1} (negative when the body gained heat).
+struct BoundaryHeat {
+  double film = 0, radiation = 0;
+};
+
 /// Everything the steps after `step` depend on, for a restart (io/checkpoint.hpp writes it):
 /// the state of every body, the multipliers and their slave nodes (the next step's warm
 /// start), and the cumulative ledger behind the history.csv columns.
@@ -102,6 +109,7 @@ struct Checkpoint {
   long total_smalbe_outer = 0;
   ContactStatistics contact;
   ContactHeat heat;
+  BoundaryHeat boundary_heat;
 };
 
 /// Receives the run's progress: output writers, progress lines, tests.
@@ -147,6 +155,11 @@ class Simulation {
   /// Implicit (default) or lagged conductance; for measurements (docs/choices.md).
   void set_conductance_treatment(ConductanceTreatment t) { conductance_treatment_ = t; }
   [[nodiscard]] const ContactHeat& contact_heat() const { return heat_; }
+  [[nodiscard]] const BoundaryHeat& boundary_heat() const { return boundary_heat_; }
+  /// Newton corrections and their conjugate-gradient iterations so far (heat steps with
+  /// radiation or a film with h(t); boundary_heat.hpp).
+  [[nodiscard]] long total_newton_iterations() const { return total_newton_; }
+  [[nodiscard]] long total_newton_inner_iterations() const { return total_newton_inner_; }
   /// Aitken relaxation of the Tresca → Coulomb fixed point (default on; docs/choices.md).
   void set_coupling_acceleration(bool on) { accelerate_ = on; }
   /// Overrides problem().solver.friction_loop (comparisons).
@@ -209,6 +222,8 @@ class Simulation {
   void velocity_iterate(int b);           // u̇ of the current displacement iterate → velocity
   void heat_rhs(int b);                   // right-hand side of (6.1) without contact terms
   void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
+  // Its solve by Newton when a body of the pair has radiation or an h(t) film.
+  void pair_boundary_heat(bool implicit, double t, int iteration);
   void mech_load(int b);  // right-hand side of (5.3) at the current θ iterate, Dirichlet values
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
   void subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f);
@@ -274,6 +289,8 @@ class Simulation {
   std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step
   contact::FrictionalHeat frictional_heat_;             // d_θγ of the last heat step
   ContactHeat heat_;
+  BoundaryHeat boundary_heat_;
+  long total_newton_ = 0, total_newton_inner_ = 0;
   std::vector<double> heat_flux_;
 };
 
