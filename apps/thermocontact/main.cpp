@@ -15,6 +15,7 @@
 
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/io/auto_subdomains.hpp"
 #include "tc/io/case_reader.hpp"
 #include "tc/io/checkpoint.hpp"
 #include "tc/io/files.hpp"
@@ -251,6 +252,14 @@ int check(const std::string& case_file, const char* program) {
     fmt::print("{}: valid ({}D, {} bod{}, {} nodes, {} cells, {} steps)\n", case_file,
                problem.dimension, problem.bodies.size(), problem.bodies.size() == 1 ? "y" : "ies",
                nodes, cells, problem.time.n_steps());
+    for (const auto& b : problem.bodies)
+      if (b.subdomains > 1)
+        fmt::print(
+            "  body \"{}\": {} FETI subdomains (solved directly it would need about {:.1f} GiB)\n",
+            b.name, b.subdomains,
+            tc::io::direct_memory(problem.dimension,
+                                  static_cast<double>(b.mesh.n_nodes()) * problem.dimension) /
+                (1024.0 * 1024.0 * 1024.0));
     return 0;
   } catch (const tc::InputError& e) {
     return report_input_error(e);

@@ -1,10 +1,12 @@
 // read_case on the valid cases of tests/cases/valid: every value of the file lands in the
 // Problem, tables evaluate to the right values at given times, defaults fill the rest.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 
 #include "tc/core/error.hpp"
+#include "tc/io/auto_subdomains.hpp"
 #include "tc/io/case_reader.hpp"
 
 namespace {
@@ -216,6 +218,50 @@ TEST(CaseReader, FactorizationNamesAndMissingFile) {
     ASSERT_EQ(e.issues().size(), 1u);
     EXPECT_EQ(e.issues()[0].file, (dir / "absent.toml").string());
   }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(AutoSubdomains, OneWhileTheDirectSolveFitsThenAboutFortyThousandDofsEach) {
+  // The model reproduces the peaks it was fitted to within 15 % (2D 300² and 600² cells, 3D
+  // 20³ and 32³; measured 0.833, 3.36, 0.573, 2.94 GB) and never below them by more than 3 %.
+  EXPECT_NEAR(tc::io::direct_memory(2, 181202), 0.833e9, 0.03 * 0.833e9);
+  EXPECT_NEAR(tc::io::direct_memory(2, 722402), 3.36e9, 0.15 * 3.36e9);
+  EXPECT_NEAR(tc::io::direct_memory(3, 27783), 0.573e9, 0.15 * 0.573e9);
+  EXPECT_NEAR(tc::io::direct_memory(3, 107811), 2.94e9, 0.03 * 2.94e9);
+  EXPECT_GT(tc::io::direct_memory(3, 1e6), tc::io::direct_memory(2, 1e6));  // 3D fills more
+  EXPECT_EQ(tc::io::auto_subdomains(3, 1e5, 12e9), 1);
+  EXPECT_EQ(tc::io::auto_subdomains(3, 2.17e6, 12e9), 55);  // ⌈2.17e6 / 4e4⌉
+  EXPECT_EQ(tc::io::auto_subdomains(3, 5e4, 1e8), 2);       // at least two when cut
+  EXPECT_EQ(tc::io::auto_subdomains(3, 1e9, 0), 1);         // memory unknown: as before
+}
+
+TEST(CaseReader, SubdomainsAutoIsTheDefaultAndAnyOtherStringIsAnError) {
+  const auto dir = fs::temp_directory_path() / ("tc-auto-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto text = [](const std::string& subdomains) {
+    return "dimension = 2\n[time]\nstep = 0.1\nend = 0.1\n[materials.m]\ndensity = 1.0\n"
+           "young_modulus = 1.0\npoisson_ratio = 0.3\nthermal_expansion = 0.0\n"
+           "specific_heat = 1.0\nthermal_conductivity = 1.0\n[[bodies]]\nname = \"b\"\n"
+           "material = \"m\"\nmesh = { box = { min = [0.0, 0.0], max = [1.0, 1.0], "
+           "cells = [4, 4] } }\n" +
+           subdomains;
+  };
+  std::ofstream(dir / "auto.toml") << text("subdomains = \"auto\"\n");
+  EXPECT_EQ(read_case(dir / "auto.toml").bodies[0].subdomains, 1);
+  std::ofstream(dir / "absent.toml") << text("");
+  EXPECT_EQ(read_case(dir / "absent.toml").bodies[0].subdomains, 1);
+  std::ofstream(dir / "bad.toml") << text("subdomains = \"many\"\n");
+  try {
+    (void)read_case(dir / "bad.toml");
+    ADD_FAILURE() << "subdomains = \"many\" was accepted";
+  } catch (const tc::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies[0].subdomains"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("expected \"auto\""), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

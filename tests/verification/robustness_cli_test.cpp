@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "support/cli.hpp"
+#include "tc/io/auto_subdomains.hpp"
 
 namespace fs = std::filesystem;
 using tc::test::replace_all;
@@ -404,4 +405,28 @@ TEST(Startup, ASerialRunNeedsNoOpenMpiSessionDirectory) {
                                        tmp.string() + " " + TC_BINARY + " info");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("MPI ranks: 1"), std::string::npos) << r.output;
+}
+
+TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {
+  // subdomains = "auto" (the default): a 3D box of 2.17 M dofs would need ~86 GiB solved
+  // directly (io::direct_memory), so it is cut into FETI subdomains of about 40 k dofs, and
+  // `check` says so before anything runs. The count follows this machine's memory (half of it
+  // for the bodies): the expected line is computed from the same rule.
+  const auto file = write_case(
+      "auto-subdomains",
+      replace_all(replace_all(kCase, "dimension = 2", "dimension = 3"),
+                  "min = [0.0, 0.0], max = [0.01, 0.01], cells = [2, 2]",
+                  "min = [0.0, 0.0, 0.0], max = [0.01, 0.01, 0.007], cells = [100, 100, 70]"));
+  const auto r = limited("check " + file.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  const double dofs = 101.0 * 101.0 * 71.0 * 3.0;
+  const int n = tc::io::auto_subdomains(3, dofs, 0.5 * static_cast<double>(pages) * page);
+  if (n > 1)
+    EXPECT_NE(r.output.find("body \"b\": " + std::to_string(n) + " FETI subdomains"),
+              std::string::npos)
+        << r.output;
+  else
+    EXPECT_EQ(r.output.find("FETI subdomains"), std::string::npos) << r.output;
+  std::printf("check: %s", r.output.c_str());
 }

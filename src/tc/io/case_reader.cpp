@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "tc/io/auto_subdomains.hpp"
 #include "tc/io/case_schema.hpp"
 #include "tc/io/files.hpp"
 #include "tc/mesh/box.hpp"
@@ -124,6 +125,9 @@ class CaseReader {
   void read_body_loads(const TableReader& b, physics::Body& body);
   /// Issue when the body's mesh cannot be cut into its subdomains (as the run would find).
   void check_subdomains(const TableReader& b, const physics::Body& body);
+  /// `subdomains = "auto"` (or absent) → 1, or FETI subdomains where the direct factorisation
+  /// would not fit comfortably (auto_subdomains).
+  void resolve_auto_subdomains(const toml::array& bodies);
   void read_mesh(const TableReader& b, physics::Body& body);
   void read_box(const TableReader& box, physics::Body& body);
   void read_mesh_file(const TableReader& mesh, physics::Body& body);
@@ -300,6 +304,33 @@ void CaseReader::read_bodies(const TableReader& root) {
                   detail::join(detail::at("bodies", i), "name"),
                   fmt::format("found \"{}\" again, expected a unique body name", printable(name)));
   }
+  resolve_auto_subdomains(*a);
+}
+
+void CaseReader::resolve_auto_subdomains(const toml::array& bodies) {
+  // Half the machine's memory shared by the bodies: the rest is for the contact dual, the
+  // output and what else runs. Measured peaks and the rule: docs/choices.md.
+  const double budget = 0.5 * physical_memory() / static_cast<double>(p_.bodies.size());
+  for (size_t i = 0; i < p_.bodies.size(); ++i) {
+    auto& body = p_.bodies[i];
+    if (body.subdomains != 0) continue;
+    body.subdomains = 1;
+    if (!mesh_built_[i]) continue;
+    const double dofs = static_cast<double>(body.mesh.n_nodes()) * dim_;
+    const int n = auto_subdomains(dim_, dofs, budget);
+    if (n == 1) continue;
+    body.subdomains = std::min(n, body.mesh.n_cells());
+    try {
+      (void)mesh::partition_cells(body.mesh, body.subdomains);
+    } catch (const MeshError& e) {
+      issues_.add(detail::line_of(*bodies.get(i)->as_table()),
+                  detail::join(detail::at("bodies", i), "subdomains"),
+                  fmt::format("\"auto\" chose {} subdomains (the direct factorisation would "
+                              "need about {:.1f} GiB), which the body's mesh cannot be cut "
+                              "into: {}; expected a number that it can",
+                              body.subdomains, direct_memory(dim_, dofs) / kGiB, e.what()));
+    }
+  }
 }
 
 void CaseReader::read_body(const toml::table& t, size_t index) {
@@ -326,9 +357,17 @@ void CaseReader::read_body(const toml::table& t, size_t index) {
   }
   read_mesh(b, body);
   read_body_loads(b, body);
-  if (const auto s = b.integer("subdomains", Need::Optional, 1)) {
-    body.subdomains = *s;
-    check_subdomains(b, body);
+  body.subdomains = 0;  // "auto", resolved by read_bodies once every body is known
+  if (const auto* n = b.get("subdomains", Need::Optional, "");
+      n && !(n->is_string() && n->as_string()->get() == "auto")) {
+    if (n->is_string())
+      b.issue("subdomains", fmt::format("found \"{}\", expected \"auto\" or a whole number "
+                                        "of subdomains",
+                                        printable(n->as_string()->get())));
+    else if (const auto s = b.integer("subdomains", Need::Optional, 1)) {
+      body.subdomains = *s;
+      check_subdomains(b, body);
+    }
   }
   p_.bodies.push_back(std::move(body));
 }
