@@ -49,8 +49,10 @@ void DualContactSolver::set_rows(ContactRows rows) {
   normal_floor_.clear();
   assert(rows_.slave.rows() == rows_.n_rows() && rows_.master.rows() == rows_.n_rows());
   const PetscInt m = rows_.n_rows();
-  kind_ = m > 0 && m <= settings_.explicit_limit ? DualOperator::explicit_schur
-                                                 : DualOperator::matrix_free;
+  const bool small = m <= settings_.explicit_limit;
+  const bool covered = settings_.explicit_limit > 0 && m <= settings_.covered_limit &&
+                       settings_.compliance_limit > 0 && compliance_covers();
+  kind_ = m > 0 && (small || covered) ? DualOperator::explicit_schur : DualOperator::matrix_free;
   setup_solves_ = 0;
   if (kind_ == DualOperator::explicit_schur) form_explicit();
   if (kind_ == DualOperator::explicit_schur || m != lambda_max_rows_) lambda_max_ = 0;
@@ -207,6 +209,17 @@ void DualContactSolver::form_scaled() {
   TC_PETSC(MatDenseRestoreArray(f_scaled_.get(), &g));
   TC_PETSC(MatDenseRestoreArrayRead(f_dense_.get(), &f));
   assemble(f_scaled_.get());
+}
+
+bool DualContactSolver::compliance_covers() const {
+  const core::SparseMatrix* b[2] = {&rows_.slave, &rows_.master};
+  for (int i = 0; i < 2; ++i) {
+    std::vector<PetscInt> cols;
+    for (const auto& e : nonzeros(*b[i])) cols.push_back(e.col());
+    if (compliance_[i].size() + compliance_[i].missing(cols) > settings_.compliance_limit)
+      return false;
+  }
+  return true;
 }
 
 bool DualContactSolver::form_from_compliance() {

@@ -31,10 +31,16 @@ struct DualContactSettings {
   /// F is formed explicitly when it has at most this many rows (m solves per body and an
   /// m×m dense matrix, against two solves per QP iteration matrix-free); 0 = never.
   PetscInt explicit_limit = 1500;
+  /// Beyond explicit_limit, F is still formed explicitly up to this many rows while the
+  /// compliance covers them (compliance_limit): then forming it costs no solve beyond the new
+  /// dofs, and its dense products (m² flops, 512 MB at 8000 rows) cost less than the two body
+  /// solves per QP iteration of the matrix-free F. Without it a case of 1875 rows spent 139 s
+  /// in 6 steps' QPs (issue 22's "cliff at 1500 multipliers").
+  PetscInt covered_limit = 8000;
   /// Explicit F from the compliance S = (A_i⁻¹)_TT on the dofs T the rows have touched while
-  /// |T| stays at most this per body (|T|² doubles: 4000 → 128 MB); beyond, or with 0, F is
+  /// |T| stays at most this per body (|T|² doubles: 8000 → 512 MB); beyond, or with 0, F is
   /// formed by 2m solves at every set_rows.
-  PetscInt compliance_limit = 4000;
+  PetscInt compliance_limit = 8000;
   /// Explicit F only: solve the QP in μ = Σ⁻¹λ with Σ diagonal, one scale for the normal row
   /// and one for the tangent rows of each node (discs stay discs): Σ F Σ has a unit diagonal
   /// per node (docs/choices.md). Same minimiser; the stopping test is on Σ g^P against Σ d.
@@ -129,6 +135,7 @@ class DualContactSolver {
   void form_scaled();           // Σ and Σ F Σ from f_dense_
   void form_by_solves();        // F column blocks by multi-right-hand-side solves
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
+  [[nodiscard]] bool compliance_covers() const;  // T ∪ the rows' dofs within the limit
 
  public:
   /// The slave's (0) and master's (1) compliance, for checkpoints.
