@@ -114,41 +114,9 @@ TEST_P(MortarThermal, ConductanceWithANodalGammaIntegratesGamma) {
             1e-12);
 }
 
-TEST_P(MortarThermal, FrictionalHeatOfAUniformSlip) {
-  const int d = GetParam().dim;
-  const double gamma = 1.5e6, friction = 0.3, delta_c = 0.35;
-  std::vector<double> vs(d * slave_.n_nodes()), vm(d * master_.n_nodes());
-  const double us[3] = {0.3, -0.2, 0}, um[3] = {0.1, 0.05, 0};  // tangential (z = 0 plane)
-  for (int j = 0; j < slave_.n_nodes(); ++j)
-    for (int k = 0; k < d - 1; ++k) vs[d * j + k] = us[k];
-  for (int j = 0; j < master_.n_nodes(); ++j)
-    for (int k = 0; k < d - 1; ++k) vm[d * j + k] = um[k];
-  const double slip = d == 2 ? 0.2 : std::hypot(0.2, 0.25);
-  const auto heat = pair_->frictional_heat(constant(gamma), friction, delta_c, vs, vm);
-  const double expected = friction * gamma * slip * area_;
-  EXPECT_LT(relative("heat total", heat.total, expected), 1e-12);
-  EXPECT_LT(relative("heat slave", total(heat.slave), delta_c * expected), 1e-12);
-  EXPECT_LT(relative("heat master", total(heat.master), (1 - delta_c) * expected), 1e-12);
-  // Normal approach at different speeds plus a common rigid sliding velocity: no slip, no heat.
-  for (int j = 0; j < slave_.n_nodes(); ++j) vs[d * j + d - 1] = 0.7, vs[d * j] = 0.4;
-  for (int j = 0; j < master_.n_nodes(); ++j) vm[d * j + d - 1] = -0.3, vm[d * j] = 0.4;
-  for (int j = 0; j < slave_.n_nodes(); ++j)
-    if (d == 3) vs[d * j + 1] = 0;
-  for (int j = 0; j < master_.n_nodes(); ++j)
-    if (d == 3) vm[d * j + 1] = 0;
-  const auto none = pair_->frictional_heat(constant(gamma), friction, delta_c, vs, vm);
-  EXPECT_NEAR(none.total, 0.0, 1e-14 * expected);
-  for (const double q : none.slave) EXPECT_NEAR(q, 0.0, 1e-14 * expected);
-  for (const double q : none.master) EXPECT_NEAR(q, 0.0, 1e-14 * expected);
-  // At rest (empty velocities) nothing either.
-  EXPECT_EQ(pair_->frictional_heat(constant(gamma), friction, delta_c, {}, {}).total, 0.0);
-}
-
 TEST_P(MortarThermal, WrongSizesAreReported) {
   const std::vector<double> short_gamma(pair_->contact_nodes().size() + 1, 1.0);
   EXPECT_THROW((void)pair_->thermal_conductance(short_gamma, 1.0), Error);
-  const std::vector<double> v(5, 0.0);
-  EXPECT_THROW((void)pair_->frictional_heat(constant(1), 0.3, 0.5, v, {}), Error);
 }
 
 INSTANTIATE_TEST_SUITE_P(

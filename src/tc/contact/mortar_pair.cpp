@@ -458,47 +458,4 @@ ThermalContact MortarPair::thermal_conductance(std::span<const double> gamma, do
   return {std::move(out[0]), std::move(out[1]), std::move(out[2]), std::move(out[3])};
 }
 
-FrictionalHeat MortarPair::frictional_heat(std::span<const double> gamma, double friction,
-                                           double delta_c, std::span<const double> v_slave,
-                                           std::span<const double> v_master) const {
-  check_size(gamma, contact_nodes_.size(), "gamma (one per contact node)");
-  const int d = dim_;
-  if (!v_slave.empty()) check_size(v_slave, d * slave_->n_nodes(), "the slave velocity");
-  if (!v_master.empty()) check_size(v_master, d * master_->n_nodes(), "the master velocity");
-  FrictionalHeat heat;
-  heat.slave.assign(slave_->n_nodes(), 0.0);
-  heat.master.assign(master_->n_nodes(), 0.0);
-  const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
-  auto velocity = [d](std::span<const double> v, int node) {
-    Vec3 out{0, 0, 0};
-    if (!v.empty())
-      for (int k = 0; k < d; ++k) out[k] = v[d * node + k];
-    return out;
-  };
-  for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
-                       bool warped, const PlacedFacet& m) {
-    const auto& sn = slave_facets_[seg.slave].nodes;
-    const auto& mn = master_facets_[seg.master].nodes;
-    for_each_point(d, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
-      double g = 0;
-      Vec3 n{0, 0, 0}, jump{0, 0, 0};
-      for (int a = 0; a < q.slave.n; ++a) {
-        if (contact_index_[sn[a]] >= 0) g += gamma[contact_index_[sn[a]]] * q.slave.phi[a];
-        n = n + q.slave.phi[a] * node_normals_[sn[a]];
-        jump = jump + q.slave.phi[a] * velocity(v_slave, sn[a]);
-      }
-      for (int b = 0; b < q.master.n; ++b)
-        jump = jump - q.master.phi[b] * velocity(v_master, mn[b]);
-      n = normalized(n);
-      const Vec3 slip = jump - dot(jump, n) * n;
-      const double power = friction * g * norm(slip) * q.weight;  // 𝔉γ‖[u̇]_τ‖ dS
-      heat.total += power;
-      for (int a = 0; a < q.slave.n; ++a) heat.slave[sn[a]] += delta_c * power * q.slave.phi[a];
-      for (int b = 0; b < q.master.n; ++b)
-        heat.master[mn[b]] += (1 - delta_c) * power * q.master.phi[b];
-    });
-  });
-  return heat;
-}
-
 }  // namespace tc::contact

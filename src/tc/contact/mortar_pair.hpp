@@ -63,8 +63,8 @@ struct ThermalContact {
   core::SparseMatrix ss, sm, ms, mm;
 };
 
-/// d_θγ of §4.4: nodal heat inputs over each body's nodes [W] and their sum
-/// total = ∫ 𝔉 γ ‖[u̇]_τ‖ dS.
+/// d_θγ of §4.4: nodal heat inputs over each body's nodes [W] and their sum, the friction
+/// work of the step over τ (physics::Simulation::contact_heat_step).
 struct FrictionalHeat {
   std::vector<double> slave, master;
   double total = 0;
@@ -114,12 +114,6 @@ class MortarPair {
   /// returned ones as they are); copy them to keep them.
   [[nodiscard]] ThermalContact thermal_conductance(std::span<const double> gamma,
                                                    double beta_c) const;
-  /// d_θγ of §4.4: ∫ 𝔉 γ ‖[u̇]_τ‖ χ dS, δ_C of it to the slave and 1 − δ_C to the master;
-  /// [u̇]_τ is the part of u̇_s − u̇_m orthogonal to the interpolated nodal normal. v_* are the
-  /// bodies' velocities (interleaved dofs; empty = at rest).
-  [[nodiscard]] FrictionalHeat frictional_heat(std::span<const double> gamma, double friction,
-                                               double delta_c, std::span<const double> v_slave,
-                                               std::span<const double> v_master) const;
 
   [[nodiscard]] const MortarTimings& timings() const { return timings_; }
   /// The mortar segments of the last update (slave face, master face, clip cell).
