@@ -23,6 +23,16 @@ void check_mpi(int rc, const char* call) {
 
 }  // namespace
 
+void sum_over_ranks(MPI_Comm comm, double* data, long n, const char* who) {
+  int size = 1;
+  if (MPI_Comm_size(comm, &size) != MPI_SUCCESS)
+    throw Error(fmt::format("{}: MPI_Comm_size failed", who));
+  if (size == 1) return;
+  if (MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, comm) !=
+      MPI_SUCCESS)
+    throw Error(fmt::format("{}: MPI_Allreduce failed", who));
+}
+
 void collective_check(MPI_Comm comm, const char* what, const std::function<void()>& phase) {
   int size = 1, rank = 0;
   check_mpi(MPI_Comm_size(comm, &size), "MPI_Comm_size");

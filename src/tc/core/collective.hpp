@@ -17,6 +17,10 @@ namespace tc::core {
 /// others in them). Collective on `comm`; with one rank it only calls `phase`.
 void collective_check(MPI_Comm comm, const char* what, const std::function<void()>& phase);
 
+/// data[0 … n) ← its sum over the ranks of `comm` (in place; nothing to do on one rank).
+/// `who` names the caller in the error thrown if MPI fails.
+void sum_over_ranks(MPI_Comm comm, double* data, long n, const char* who);
+
 /// Test-only fault injection (docs/robustness.md): true on the rank given by the PETSc option
 /// -tc_fail_on_rank when -tc_fail_phase (default "factorisation") is `phase`. Lets the tests
 /// make one rank fail in a chosen phase and check that all stop.

@@ -114,12 +114,7 @@ ContactFeti::ContactFeti(const Feti& slave, const Feti& master, const core::Spar
 ContactFeti::~ContactFeti() = default;
 
 void ContactFeti::sum_over_ranks(double* data, Eigen::Index n) const {
-  int size = 1;
-  if (MPI_Comm_size(comm_, &size) != MPI_SUCCESS) throw Error("ContactFeti: MPI_Comm_size failed");
-  if (size == 1) return;
-  if (MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, comm_) !=
-      MPI_SUCCESS)
-    throw Error("ContactFeti: MPI_Allreduce failed");
+  core::sum_over_ranks(comm_, data, n, "ContactFeti");
 }
 
 void ContactFeti::sum_subdomain_products(const Eigen::VectorXd& x, Eigen::VectorXd& y,

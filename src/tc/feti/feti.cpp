@@ -293,12 +293,7 @@ void Feti::deflate(Block& z) const {
 }
 
 void Feti::sum_over_ranks(double* data, Eigen::Index n) const {
-  int size = 1;
-  if (MPI_Comm_size(options_.comm, &size) != MPI_SUCCESS) throw Error("FETI: MPI_Comm_size failed");
-  if (size == 1) return;
-  const int rc =
-      MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, options_.comm);
-  if (rc != MPI_SUCCESS) throw Error("FETI: MPI_Allreduce failed");
+  core::sum_over_ranks(options_.comm, data, n, "FETI");
 }
 
 Eigen::ArrayXd Feti::column_dots(const Block& a, const Block& b) const {

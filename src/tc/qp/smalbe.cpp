@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::qp {
@@ -69,9 +70,7 @@ Smalbe::Smalbe(const LinearOperator& f, const FeasibleSet& set,
   if (g_.cols() != set.local_size() || e.size() != g_.rows())
     throw std::invalid_argument("Smalbe: G, e and the set disagree in size");
   Eigen::MatrixXd ggt = Eigen::MatrixXd(g_ * g_.transpose());
-  if (MPI_Allreduce(MPI_IN_PLACE, ggt.data(), static_cast<int>(ggt.size()), MPI_DOUBLE, MPI_SUM,
-                    comm_) != MPI_SUCCESS)
-    throw Error("Smalbe: MPI_Allreduce failed");
+  core::sum_over_ranks(comm_, ggt.data(), ggt.size(), "Smalbe");
   // T = Λ^(−1/2) Vᵀ over the eigenpairs of GGᵀ above round-off: G̃ = TG has orthonormal rows
   // spanning Im G whatever the dependent rows (a body held only by contact has a rigid motion
   // that B does not see; build_deflation of Feti drops it the same way).
@@ -90,9 +89,7 @@ Eigen::VectorXd Smalbe::g_times(const Vector& x) const {
   const auto xv = x.read();
   const Eigen::Map<const Eigen::VectorXd> xl(xv.span().data(), set_.local_size());
   Eigen::VectorXd y = g_ * xl;
-  if (MPI_Allreduce(MPI_IN_PLACE, y.data(), static_cast<int>(y.size()), MPI_DOUBLE, MPI_SUM,
-                    comm_) != MPI_SUCCESS)
-    throw Error("Smalbe: MPI_Allreduce failed");
+  core::sum_over_ranks(comm_, y.data(), y.size(), "Smalbe");
   return t_ * y;
 }
 
