@@ -91,13 +91,17 @@ core::SparseMatrix BodySystem::subdomain_constant_film(int s) const {
   return fem::boundary_mass(sub.mesh, local);
 }
 
-void BodySystem::add_boundary_term(double t, const core::Vector& theta, core::Vector& y) const {
+void BodySystem::add_varying_films(double t, const core::Vector& x, core::Vector& y) const {
   for (const auto& f : films_)
     if (!f.constant) {
       core::Vector hx(y.size());
-      f.unit.mult(theta, hx);
+      f.unit.mult(x, hx);
       y.axpy(f.film.coefficient(t), hx);
     }
+}
+
+void BodySystem::add_boundary_term(double t, const core::Vector& theta, core::Vector& y) const {
+  add_varying_films(t, theta, y);
   if (radiation_.empty()) return;
   const auto th = theta.read();
   auto yv = y.view();
@@ -114,12 +118,7 @@ void BodySystem::add_boundary_term(double t, const core::Vector& theta, core::Ve
 
 void BodySystem::add_boundary_derivative(double t, const core::Vector& theta, const core::Vector& x,
                                          core::Vector& y) const {
-  for (const auto& f : films_)
-    if (!f.constant) {
-      core::Vector hx(y.size());
-      f.unit.mult(x, hx);
-      y.axpy(f.film.coefficient(t), hx);
-    }
+  add_varying_films(t, x, y);  // linear in θ: its derivative is itself
   if (radiation_.empty()) return;
   const auto th = theta.read();
   const auto xv = x.read();

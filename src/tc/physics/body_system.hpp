@@ -90,6 +90,8 @@ class BodySystem {
   [[nodiscard]] const std::vector<PetscInt>& massless_dofs() const { return massless_dofs_; }
 
  private:
+  // y += h(t) H x over the films whose h changes in time (H = ∫N_aN_b dS of each)
+  void add_varying_films(double t, const core::Vector& x, core::Vector& y) const;
   struct NodalLoad {  // value(t) · weights[a] on dof block·a + component
     TimeTable value;
     int component = 0;
