@@ -103,17 +103,8 @@ void BodySystem::add_varying_films(double t, const core::Vector& x, core::Vector
 void BodySystem::add_boundary_term(double t, const core::Vector& theta, core::Vector& y) const {
   add_varying_films(t, theta, y);
   if (radiation_.empty()) return;
-  const auto th = theta.read();
   auto yv = y.view();
-  for (const auto& r : radiation_) {
-    const double es = r.radiation.emissivity(t) * stefan_boltzmann;
-    const double amb = r.radiation.ambient(t);
-    const double amb4 = amb * amb * amb * amb;
-    for (const auto& [a, w] : r.weights) {
-      const double x = th[a];
-      yv[a] += w * es * (x * std::abs(x * x * x) - amb4);
-    }
-  }
+  for_each_radiated(t, theta, [&](PetscInt a, double q) { yv[a] += q; });
 }
 
 void BodySystem::add_boundary_derivative(double t, const core::Vector& theta, const core::Vector& x,
@@ -136,21 +127,29 @@ BodySystem::BoundaryPower BodySystem::boundary_heat_loss(double t,
                                                          const core::Vector& theta) const {
   BoundaryPower p;
   if (films_.empty() && radiation_.empty()) return p;
-  const auto th = theta.read();
-  for (const auto& f : films_) {
-    const double h = f.film.coefficient(t), amb = f.film.ambient(t);
-    for (const auto& [a, w] : f.weights) p.film += h * w * (th[a] - amb);
+  {
+    const auto th = theta.read();
+    for (const auto& f : films_) {
+      const double h = f.film.coefficient(t), amb = f.film.ambient(t);
+      for (const auto& [a, w] : f.weights) p.film += h * w * (th[a] - amb);
+    }
   }
+  for_each_radiated(t, theta, [&](PetscInt, double q) { p.radiation += q; });
+  return p;
+}
+
+template <class Visit>
+void BodySystem::for_each_radiated(double t, const core::Vector& theta, Visit&& visit) const {
+  const auto th = theta.read();
   for (const auto& r : radiation_) {
     const double es = r.radiation.emissivity(t) * stefan_boltzmann;
     const double amb = r.radiation.ambient(t);
     const double amb4 = amb * amb * amb * amb;
     for (const auto& [a, w] : r.weights) {
       const double x = th[a];
-      p.radiation += w * es * (x * std::abs(x * x * x) - amb4);
+      visit(a, w * es * (x * std::abs(x * x * x) - amb4));
     }
   }
-  return p;
 }
 
 void BodySystem::lump(core::SparseMatrix& m) {

@@ -92,6 +92,9 @@ class BodySystem {
  private:
   // y += h(t) H x over the films whose h changes in time (H = ∫N_aN_b dS of each)
   void add_varying_films(double t, const core::Vector& x, core::Vector& y) const;
+  // visit(a, q) for each radiating node a, q = w_a εσ(θ_a|θ_a|³ − θ∞⁴) its heat loss [W]
+  template <class Visit>
+  void for_each_radiated(double t, const core::Vector& theta, Visit&& visit) const;
   struct NodalLoad {  // value(t) · weights[a] on dof block·a + component
     TimeTable value;
     int component = 0;
