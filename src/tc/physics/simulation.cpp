@@ -8,6 +8,7 @@
 #include <map>
 
 #include "tc/core/error.hpp"
+#include "tc/physics/body_field.hpp"
 #include "tc/physics/boundary_heat.hpp"
 
 namespace tc::physics {
@@ -20,109 +21,12 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// a·X + b·Y as a new matrix (same nonzero pattern: both come from the same node graph).
-core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
-                           const core::SparseMatrix& y) {
-  core::SparseMatrix out = x.copy();
-  out.scale(a);
-  out.axpy(b, y);
-  return out;
-}
-
 /// The phase that produced a quantity, for the message (docs/robustness.md).
 const char* phase_of(std::string_view what) {
   if (what == "temperature") return "heat step (5.6)";
   if (what == "displacement") return "mechanical step (5.3)";
   if (what.starts_with("u =") || what == "contact multiplier") return "contact QP (6.9)";
   return "bookkeeping";
-}
-
-/// Which of a body's operators a solver is for (FETI assembles it per subdomain).
-enum class Operator { mechanics, heat, mass, statics };
-
-/// A unit pivot, scaled by the mean diagonal, on the massless dofs of subdomain s's M_u.
-void massless_pivots(const BodySystem& sys, int s, core::SparseMatrix& mass) {
-  const auto& sub = sys.subdomains().at(static_cast<size_t>(s));
-  const int d = sys.dim();
-  core::Vector diag(mass.rows());
-  TC_PETSC(MatGetDiagonal(mass.get(), diag.get()));
-  double mean = 0;
-  {
-    const auto v = diag.read();
-    for (PetscInt i = 0; i < mass.rows(); ++i) mean += v[i];
-  }
-  mean /= static_cast<double>(std::max<PetscInt>(mass.rows(), 1));
-  const auto& massless = sys.massless_dofs();
-  {
-    auto v = diag.view();
-    for (PetscInt i = 0; i < mass.rows(); ++i) v[i] = 0.0;
-    for (size_t a = 0; a < sub.global_node.size(); ++a)
-      for (int k = 0; k < d; ++k)
-        if (std::binary_search(massless.begin(), massless.end(),
-                               static_cast<PetscInt>(d * sub.global_node[a] + k)))
-          v[d * static_cast<PetscInt>(a) + k] = mean;
-  }
-  TC_PETSC(MatDiagonalSet(mass.get(), diag.get(), ADD_VALUES));
-}
-
-/// The solver of A x = b for one body: a direct factorisation of A, or Total FETI over the
-/// body's subdomains when it is decomposed (6.2), with a·M + b·K assembled per subdomain.
-std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySystem& sys,
-                                               const core::SparseMatrix& a, Operator op) {
-  const bool mech = op != Operator::heat;
-  std::vector<PetscInt> dirichlet = mech ? sys.u_dirichlet_dofs() : sys.theta_dirichlet_dofs();
-  if (op == Operator::mass && !sys.massless_dofs().empty()) {
-    // M_u is singular on the massless dofs: ü = 0 there (their equations are static ones).
-    std::vector<PetscInt> both;
-    std::set_union(dirichlet.begin(), dirichlet.end(), sys.massless_dofs().begin(),
-                   sys.massless_dofs().end(), std::back_inserter(both));
-    dirichlet = std::move(both);
-  }
-  if (sys.subdomains().empty())
-    return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization);
-  const double tau = p.time.step;
-  const bool dynamic = p.time.scheme == Scheme::Dynamic;
-  auto local = [&](int s) {
-    const auto m = sys.subdomain_matrices(s);
-    switch (op) {
-      case Operator::mechanics:
-        return dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u)
-                       : m.stiffness_u.copy();
-      case Operator::statics:
-        return m.stiffness_u.copy();
-      case Operator::heat: {
-        auto heat = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
-        if (sys.constant_film()) heat.axpy(1.0, sys.subdomain_constant_film(s));
-        return heat;
-      }
-      case Operator::mass: {
-        // TFETI keeps the Dirichlet dofs in the subdomain matrices (multipliers fix them), so
-        // the massless dofs, which ü = 0 constrains as Dirichlet dofs, need a pivot: the mean
-        // diagonal, which changes only their multipliers.
-        auto mass = m.mass_u.copy();
-        if (!sys.massless_dofs().empty()) massless_pivots(sys, s, mass);
-        return mass;
-      }
-    }
-    return core::SparseMatrix{};
-  };
-  // Without inertia the subdomains of an elastic body float: TFETI's rigid-body kernels. With
-  // it they nearly float when τ is large, and the same modes deflate (feti.hpp); constants
-  // likewise for heat. The mass matrix alone needs no coarse space.
-  const auto kernel = op == Operator::heat   ? feti::Kernel::constant
-                      : op == Operator::mass ? feti::Kernel::none
-                                             : feti::Kernel::rigid;
-  const auto singular = (op == Operator::mechanics && !dynamic) || op == Operator::statics
-                            ? feti::Singular::yes
-                            : feti::Singular::no;
-  feti::FetiOptions options;
-  options.tolerance = p.solver.feti_tolerance;
-  options.max_iterations = p.solver.max_feti_iterations;
-  options.preconditioner = p.solver.feti_preconditioner;
-  options.package = p.solver.factorization;
-  return std::make_unique<ConstrainedSolver>(std::make_unique<feti::Feti>(
-      sys.subdomains(), sys.body().mesh.n_nodes(), mech ? sys.dim() : 1, dirichlet, kernel,
-      singular, local, options));
 }
 
 /// rate = (u − u_old)/τ on the given dofs (the massless ones: Simulation::massless_rates).
@@ -221,56 +125,20 @@ std::vector<double> nonnegative_heat(std::vector<double> work) {
 
 }  // namespace
 
-/// Factorised operators and work vectors of one body.
-struct Simulation::Solvers {
-  core::SparseMatrix a_u;      // 4/τ² M_u + K_u (5.3), or K_u (quasistatic)
-  core::SparseMatrix a_theta;  // M_θ/τ + K_θ (5.6)
-  std::unique_ptr<ConstrainedSolver> mech, heat;
-  core::Vector f_u, f_theta, rhs_u_base, rhs_theta_base, rhs_u, rhs_theta;
-  core::Vector u_new, theta_new, u_prev, theta_prev, velocity, dtheta, work_u, work_theta;
-  core::Vector u_pred;  // Newmark's u^k + τu̇^k, projected onto the admissible set if stabilised
-  // Contact-stabilised Newmark only: M_u factorised, and the force without inertia and contact
-  // g^k = f^k − K_u u^k − K_uθ(θ^k − θ₀) that replaces M_u ü^k (which holds the contact force).
-  std::unique_ptr<ConstrainedSolver> mass;
-  core::Vector g_free;
-  // M_u factorised for the initial acceleration, kept until the stabiliser takes it
-  // (enable_contact) or the first step drops it: one factorisation less per body.
-  std::unique_ptr<ConstrainedSolver> initial_mass;
-  bool expansion = false;  // θ drives u (thermal expansion on, α ≠ 0)
-  bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
-};
-
 Simulation::Simulation(const Problem& problem)
     : problem_(problem), friction_loop_(problem.solver.friction_loop) {
-  const double tau = problem_.time.step;
-  const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
   for (int b = 0; b < static_cast<int>(problem_.bodies.size()); ++b) {
     {
       auto t = timers_.scope("assembly");
       systems_.push_back(std::make_unique<BodySystem>(problem_, b));
     }
     const auto& sys = *systems_.back();
-    const auto& m = sys.matrices();
-    auto s = std::make_unique<Solvers>();
+    std::unique_ptr<BodyField> s;
     {
       auto t = timers_.scope("factorization");
-      s->a_u =
-          dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u) : m.stiffness_u.copy();
-      s->a_theta = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
-      if (const auto* film = sys.constant_film()) s->a_theta.axpy(1.0, *film);  // + h∫θv
-      s->mech = body_solver(problem_, sys, s->a_u, Operator::mechanics);
-      s->heat = body_solver(problem_, sys, s->a_theta, Operator::heat);
+      s = std::make_unique<BodyField>(problem_, sys);
     }
     factorization_ = s->mech->package();
-    const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
-    s->expansion = problem_.physics.thermal_expansion && coupled_material;
-    s->heating = problem_.physics.thermoelastic_heating && coupled_material;
-    for (auto* v : {&s->f_u, &s->rhs_u_base, &s->rhs_u, &s->u_new, &s->u_prev, &s->velocity,
-                    &s->work_u, &s->u_pred})
-      *v = core::Vector(sys.n_u());
-    for (auto* v : {&s->f_theta, &s->rhs_theta_base, &s->rhs_theta, &s->theta_new, &s->theta_prev,
-                    &s->dtheta, &s->work_theta})
-      *v = core::Vector(sys.n_theta());
     solvers_.push_back(std::move(s));
   }
   initialise();
@@ -320,7 +188,7 @@ void Simulation::initialise() {
       s.rhs_u.axpy(-1.0, s.work_u);
       if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.rhs_u);
       s.g_free = s.rhs_u.clone();  // g⁰ = M ü⁰ (no contact force at t = 0)
-      s.initial_mass = body_solver(problem_, sys, m.mass_u, Operator::mass);
+      s.initial_mass = body_solver(problem_, sys, m.mass_u, BodyOperator::mass);
       st.a.zero();
       s.initial_mass->solve(s.rhs_u, st.a);
     }
@@ -382,7 +250,7 @@ void Simulation::static_initial_state(int b, BodyState& st) {
   auto& s = *solvers_[b];
   sys.mechanical_load(0.0, s.rhs_u);
   if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.rhs_u);
-  body_solver(problem_, sys, m.stiffness_u, Operator::statics)->solve(s.rhs_u, st.u);
+  body_solver(problem_, sys, m.stiffness_u, BodyOperator::statics)->solve(s.rhs_u, st.u);
   require_finite(st.u, "displacement", 0, 0);
 }
 
@@ -755,7 +623,7 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
       auto& sv = *solvers_[b];
       sv.mass = sv.initial_mass ? std::move(sv.initial_mass)
                                 : body_solver(problem_, *systems_[b],
-                                              systems_[b]->matrices().mass_u, Operator::mass);
+                                              systems_[b]->matrices().mass_u, BodyOperator::mass);
     }
     stabiliser_ =
         std::make_unique<DualContactSolver>(*solvers_[sb]->mass, *solvers_[mb]->mass,

@@ -18,6 +18,7 @@
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/core/timer.hpp"
 #include "tc/feti/contact_feti.hpp"
+#include "tc/physics/body_field.hpp"
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/dual_contact.hpp"
@@ -214,7 +215,6 @@ class Simulation {
   [[nodiscard]] double thermal_free_energy() const;
 
  private:
-  struct Solvers;
   void initialise();
   int couple_body(int b);    // the staggered loop of 6.3 for one body; returns iterations
   void prepare_step(int b);  // right-hand sides fixed within the step, predictor
@@ -249,7 +249,7 @@ class Simulation {
 
   const Problem& problem_;
   std::vector<std::unique_ptr<BodySystem>> systems_;
-  std::vector<std::unique_ptr<Solvers>> solvers_;
+  std::vector<std::unique_ptr<BodyField>> solvers_;
   std::vector<BodyState> states_;
   std::vector<core::Vector> forces_;  // f_ext + reactions at the current step, per body
   int step_ = 0;
