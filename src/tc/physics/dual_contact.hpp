@@ -131,9 +131,10 @@ class DualContactSolver {
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
 
  public:
-  /// The slave's (0) and master's (1) compliance, for checkpoints.
-  [[nodiscard]] DofCompliance& compliance(int i) { return compliance_[i]; }
-  [[nodiscard]] const DofCompliance& compliance(int i) const { return compliance_[i]; }
+  /// The checkpoint's part of the compliance: the slave's dofs and chunks, then the master's
+  /// (DofCompliance::dofs, chunks); replay_compliance rebuilds S from them with the same bits.
+  void save_compliance(std::span<std::vector<int>, 4> record) const;
+  void replay_compliance(std::span<const std::vector<int>, 4> record);
 
  private:
   const ConstrainedSolver& slave_;

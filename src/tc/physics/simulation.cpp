@@ -123,6 +123,22 @@ std::vector<double> nonnegative_heat(std::vector<double> work) {
   return work;
 }
 
+/// The largest (or smallest) temperature of all bodies.
+double extreme_temperature(const std::vector<BodyState>& states, bool largest) {
+  double e = largest ? -INFINITY : INFINITY;
+  for (const auto& st : states) {
+    PetscReal v = 0;
+    if (largest) {
+      TC_PETSC(VecMax(st.theta.get(), nullptr, &v));
+      e = std::max(e, static_cast<double>(v));
+    } else {
+      TC_PETSC(VecMin(st.theta.get(), nullptr, &v));
+      e = std::min(e, static_cast<double>(v));
+    }
+  }
+  return e;
+}
+
 }  // namespace
 
 Simulation::Simulation(const Problem& problem)
@@ -196,38 +212,9 @@ void Simulation::initialise() {
     forces_.emplace_back(sys.n_u());
   }
 
-  columns_ = {"step",
-              "time",
-              "coupling_iterations",
-              "qp_iterations",
-              "operator_applications",
-              "kinetic_energy",
-              "strain_energy",
-              "thermal_energy",
-              "external_work",
-              "contact_normal_force",
-              "contact_tangential_force",
-              "frictional_dissipation",
-              "heat_generated",
-              "heat_to_slave",
-              "heat_to_master",
-              "heat_conducted",
-              "max_temperature",
-              "min_temperature",
-              "active_nodes",
-              "slip_nodes",
-              "wall_seconds",
-              "friction_iterations",
-              "contact_tangential_force_sum",
-              "heat_film",
-              "heat_radiation"};
-  const char* axes = "xyz";
-  for (const auto& sys : systems_)
-    for (const auto& g : sys->reaction_groups())
-      for (int k = 0; k < problem_.dimension; ++k) columns_.push_back(g.label + "_" + axes[k]);
-
   for (int b = 0; b < n_bodies(); ++b) support_forces(b, forces_[b]);
-  fill_row(0, 0.0);
+  register_history();
+  history_.record();
 }
 
 void Simulation::subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f) {
@@ -1162,7 +1149,8 @@ void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u,
   }
   total_coupling_ += coupling;
   last_coupling_ = coupling;
-  fill_row(coupling, wall);
+  last_wall_ = wall;
+  history_.record();
 }
 
 double Simulation::kinetic_energy() const {
@@ -1205,55 +1193,48 @@ double Simulation::thermal_free_energy() const {
   return e;
 }
 
-void Simulation::fill_row(int coupling, double wall) {
-  double tmax = -INFINITY, tmin = INFINITY;
-  for (const auto& st : states_) {
-    PetscReal v = 0;
-    TC_PETSC(VecMax(st.theta.get(), nullptr, &v));
-    tmax = std::max(tmax, static_cast<double>(v));
-    TC_PETSC(VecMin(st.theta.get(), nullptr, &v));
-    tmin = std::min(tmin, static_cast<double>(v));
-  }
-  row_ = {static_cast<double>(step_),
-          time(),
-          static_cast<double>(coupling),
-          static_cast<double>(contact_stats_.qp_iterations),
-          static_cast<double>(contact_stats_.operator_applications),
-          kinetic_energy(),
-          strain_energy(),
-          thermal_energy(),
-          external_work_,
-          contact_stats_.normal_force,
-          contact_stats_.tangential_force,
-          contact_stats_.dissipation,
-          heat_.generated,
-          heat_.to_slave,
-          heat_.to_master,
-          heat_.conducted,
-          tmax,
-          tmin,
-          static_cast<double>(contact_stats_.active_nodes),
-          static_cast<double>(contact_stats_.slip_nodes),
-          wall,
-          static_cast<double>(contact_stats_.friction_iterations),
-          contact_stats_.tangential_force_sum,
-          boundary_heat_.film,
-          boundary_heat_.radiation};
-  for (int b = 0; b < n_bodies(); ++b) {
-    const auto f = forces_[b].to_std();
+void Simulation::register_history() {
+  // The columns of history.csv in their order (docs/case-format.md), each with its quantity.
+  auto& h = history_;
+  const auto& cs = contact_stats_;
+  const auto count = [](const int& n) { return [&n] { return static_cast<double>(n); }; };
+  const auto value = [](const double& x) { return [&x] { return x; }; };
+  h.add("step", count(step_));
+  h.add("time", [this] { return time(); });
+  h.add("coupling_iterations", count(last_coupling_));
+  h.add("qp_iterations", count(cs.qp_iterations));
+  h.add("operator_applications", count(cs.operator_applications));
+  h.add("kinetic_energy", [this] { return kinetic_energy(); });
+  h.add("strain_energy", [this] { return strain_energy(); });
+  h.add("thermal_energy", [this] { return thermal_energy(); });
+  h.add("external_work", value(external_work_));
+  h.add("contact_normal_force", value(cs.normal_force));
+  h.add("contact_tangential_force", value(cs.tangential_force));
+  h.add("frictional_dissipation", value(cs.dissipation));
+  h.add("heat_generated", value(heat_.generated));
+  h.add("heat_to_slave", value(heat_.to_slave));
+  h.add("heat_to_master", value(heat_.to_master));
+  h.add("heat_conducted", value(heat_.conducted));
+  h.add("max_temperature", [this] { return extreme_temperature(states_, true); });
+  h.add("min_temperature", [this] { return extreme_temperature(states_, false); });
+  h.add("active_nodes", count(cs.active_nodes));
+  h.add("slip_nodes", count(cs.slip_nodes));
+  h.add("wall_seconds", value(last_wall_));
+  h.add("friction_iterations", count(cs.friction_iterations));
+  h.add("contact_tangential_force_sum", value(cs.tangential_force_sum));
+  h.add("heat_film", value(boundary_heat_.film));
+  h.add("heat_radiation", value(boundary_heat_.radiation));
+  // The force on each reaction group per axis, Σ F_d over its dofs (F: support_forces).
+  const char* axes = "xyz";
+  for (int b = 0; b < n_bodies(); ++b)
     for (const auto& g : systems_[b]->reaction_groups())
-      for (int k = 0; k < problem_.dimension; ++k) {
-        double sum = 0;
-        for (const PetscInt d : g.dofs[k]) sum += f[d];
-        row_.push_back(sum);
-      }
-  }
-}
-
-double Simulation::history(const std::string& column) const {
-  const auto it = std::find(columns_.begin(), columns_.end(), column);
-  if (it == columns_.end()) throw Error("no history column named '" + column + "'");
-  return row_[it - columns_.begin()];
+      for (int k = 0; k < problem_.dimension; ++k)
+        h.add(g.label + "_" + axes[k], [this, b, &dofs = g.dofs[k]] {
+          const auto f = forces_[b].read();
+          double sum = 0;
+          for (const PetscInt d : dofs) sum += f[d];
+          return sum;
+        });
 }
 
 void Simulation::check_setup_finite() const {
@@ -1312,111 +1293,6 @@ ContactRowsBuilder Simulation::finite_rows(ContactRowsBuilder builder) const {
           step_ + 1, 0, std::nan(""));
     return rows;
   };
-}
-
-Checkpoint Simulation::checkpoint() const {
-  Checkpoint c;
-  c.step = step_;
-  for (int b = 0; b < n_bodies(); ++b) {
-    const auto& st = states_[b];
-    const auto& g = solvers_[b]->g_free;
-    c.bodies.push_back({st.u.to_std(), st.v.to_std(), st.a.to_std(), st.theta.to_std(),
-                        forces_[b].to_std(), g.get() ? g.to_std() : std::vector<double>{}});
-  }
-  c.lambda = contact_multipliers();
-  c.lambda_nodes = lambda_nodes_;
-  for (const auto& tl : lambda_tangents_)
-    for (const auto& t : tl) c.lambda_tangents.insert(c.lambda_tangents.end(), t.begin(), t.end());
-  const DualContactSolver* duals[2] = {dual_.get(), stabiliser_.get()};
-  for (int d = 0; d < 2; ++d)
-    for (int i = 0; d < 2 && duals[d] && i < 2; ++i) {
-      const auto& comp = duals[d]->compliance(i);
-      c.compliance[4 * d + 2 * i].assign(comp.dofs().begin(), comp.dofs().end());
-      c.compliance[4 * d + 2 * i + 1].assign(comp.chunks().begin(), comp.chunks().end());
-    }
-  c.slip = slip_;
-  c.heat_flux = heat_flux_;
-  c.row = row_;
-  c.external_work = external_work_;
-  c.total_coupling = total_coupling_;
-  c.total_qp = total_qp_;
-  c.total_applications = total_applications_;
-  c.last_coupling = last_coupling_;
-  c.feti_body_lambda.assign(feti_state_.body.data(),
-                            feti_state_.body.data() + feti_state_.body.size());
-  c.feti_mu.assign(feti_state_.mu.data(), feti_state_.mu.data() + feti_state_.mu.size());
-  c.total_smalbe_outer = total_smalbe_outer_;
-  c.contact = contact_stats_;
-  c.heat = heat_;
-  c.boundary_heat = boundary_heat_;
-  return c;
-}
-
-void Simulation::restore(const Checkpoint& c) {
-  // Copies into the existing vectors (their layout stays): the same bits as the run that wrote
-  // the checkpoint, so the steps after it repeat that run's arithmetic exactly.
-  auto fill = [](core::Vector& v, const std::vector<double>& x, const char* what) {
-    if (!v.get() && x.empty()) return;
-    if (!v.get() || static_cast<size_t>(v.size()) != x.size())
-      throw Error(fmt::format("checkpoint: {} has {} entries, this problem {}", what, x.size(),
-                              v.get() ? v.size() : 0));
-    auto view = v.view();
-    std::copy(x.begin(), x.end(), view.span().begin());
-  };
-  if (static_cast<int>(c.bodies.size()) != n_bodies())
-    throw Error(fmt::format("checkpoint: {} bodies, this problem {}", c.bodies.size(), n_bodies()));
-  if (c.step < 0 || c.step > problem_.time.n_steps())
-    throw Error(fmt::format("checkpoint: step {} outside 0…{}", c.step, problem_.time.n_steps()));
-  if (c.row.size() != columns_.size())
-    throw Error(fmt::format("checkpoint: {} history columns, this problem {}", c.row.size(),
-                            columns_.size()));
-  for (int b = 0; b < n_bodies(); ++b) {
-    auto& st = states_[b];
-    const auto& cb = c.bodies[b];
-    fill(st.u, cb.u, "u");
-    fill(st.v, cb.v, "u̇");
-    fill(st.a, cb.a, "ü");
-    fill(st.theta, cb.theta, "θ");
-    fill(forces_[b], cb.force, "the force");
-    fill(solvers_[b]->g_free, cb.g_free, "g");
-  }
-  if (c.lambda.size() != c.lambda_nodes.size() * static_cast<size_t>(problem_.dimension) &&
-      !c.lambda_nodes.empty())
-    throw Error("checkpoint: the multipliers do not match their contact nodes");
-  lambda_ = c.lambda.empty() ? core::Vector() : core::Vector::from(c.lambda);
-  lambda_nodes_ = c.lambda_nodes;
-  DualContactSolver* duals[2] = {dual_.get(), stabiliser_.get()};
-  for (int d = 0; d < 2; ++d)
-    for (int i = 0; duals[d] && i < 2; ++i) {
-      const auto& dofs = c.compliance[4 * d + 2 * i];
-      const auto& chunks = c.compliance[4 * d + 2 * i + 1];
-      duals[d]->compliance(i).replay(std::vector<PetscInt>(dofs.begin(), dofs.end()),
-                                     std::vector<PetscInt>(chunks.begin(), chunks.end()));
-    }
-  const size_t per_basis = c.lambda_tangents.size() / 6;  // nodes with two tangents of 3
-  for (int l = 0; l < 2; ++l) {
-    lambda_tangents_[l].resize(per_basis);
-    for (size_t k = 0; k < per_basis; ++k)
-      for (int x = 0; x < 3; ++x)
-        lambda_tangents_[l][k][x] = c.lambda_tangents[3 * (l * per_basis + k) + x];
-  }
-  slip_ = c.slip;
-  heat_flux_ = c.heat_flux;
-  row_ = c.row;
-  step_ = c.step;
-  external_work_ = c.external_work;
-  total_coupling_ = c.total_coupling;
-  total_qp_ = c.total_qp;
-  total_applications_ = c.total_applications;
-  last_coupling_ = c.last_coupling;
-  feti_state_.body = Eigen::Map<const Eigen::VectorXd>(
-      c.feti_body_lambda.data(), static_cast<Eigen::Index>(c.feti_body_lambda.size()));
-  feti_state_.mu = Eigen::Map<const Eigen::VectorXd>(c.feti_mu.data(),
-                                                     static_cast<Eigen::Index>(c.feti_mu.size()));
-  total_smalbe_outer_ = c.total_smalbe_outer;
-  contact_stats_ = c.contact;
-  heat_ = c.heat;
-  boundary_heat_ = c.boundary_heat;
 }
 
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {

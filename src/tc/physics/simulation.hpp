@@ -20,8 +20,11 @@
 #include "tc/feti/contact_feti.hpp"
 #include "tc/physics/body_field.hpp"
 #include "tc/physics/body_system.hpp"
+#include "tc/physics/checkpoint.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/dual_contact.hpp"
+#include "tc/physics/history.hpp"
+#include "tc/physics/ledger.hpp"
 #include "tc/physics/thermal_contact.hpp"
 
 namespace tc::physics {
@@ -45,72 +48,10 @@ class Simulation;
 using ContactRowsBuilder =
     std::function<ContactRows(const core::Vector& u_slave, const core::Vector& u_master)>;
 
-/// What the contact did in the last step (history.csv columns).
-struct ContactStatistics {
-  int qp_iterations = 0;
-  int operator_applications = 0;
-  int friction_iterations = 0;      // QPs of the step: Tresca → Coulomb updates γ = λ_n (6.3)
-  double normal_force = 0;          // Σ_k w_k λ_n,k
-  double tangential_force = 0;      // ‖Σ_k w_k λ_τ,k‖: the resultant's magnitude
-  double tangential_force_sum = 0;  // Σ_k w_k ‖λ_τ,k‖
-  double dissipation = 0;           // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
-  int active_nodes = 0;             // λ_n,k > 0
-  int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − 1e-6))
-};
-
 /// How the contact conductance L_θγ of §4.4 enters the heat step of the fixed point (6.3).
 enum class ConductanceTreatment {
   Implicit,  // L θ^{p+1} on the left, solved exactly through the interface (default)
   Lagged     // the thesis' (6.2): L θ^p of the previous iterate on the right-hand side
-};
-
-/// Heat through the contact interface, cumulative from t = 0 [J] (history.csv):
-///  generated = Σ_steps λ_τᵀB_τΔu (the friction work of the step, the discrete τ∫𝔉λ_n‖[u̇]_τ‖dS;
-///  = frictional_dissipation), to_slave / to_master its δ_C / 1 − δ_C shares,
-///  conducted = Σ_steps τ β_C ∫ λ_n (θ_s − θ_m) dS: the heat that crossed by conductance from
-///  the slave to the master (negative when it went the other way), θ at t^{k+1}. With the
-///  contact-stabilised Newmark λ/2 is the traction (simulation.cpp, traction_per_multiplier):
-///  these sums, the conductance and the history's forces use it.
-struct ContactHeat {
-  double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
-};
-
-/// Heat lost through the film and the radiation boundaries of all bodies, cumulative from
-/// t = 0 [J] (history.csv heat_film, heat_radiation): Σ_steps τ Σ h∫(θ − θ∞)dS and
-/// Σ_steps τ Σ ∫εσ(θ⁴ − θ∞⁴)dS at t^{k+1} (negative when the body gained heat).
-struct BoundaryHeat {
-  double film = 0, radiation = 0;
-};
-
-/// Everything the steps after `step` depend on, for a restart (io/checkpoint.hpp writes it):
-/// the state of every body, the multipliers and their slave nodes (the next step's warm
-/// start), and the cumulative ledger behind the history.csv columns.
-struct Checkpoint {
-  struct Body {
-    std::vector<double> u, v, a, theta;
-    std::vector<double> force;  // f_ext + reactions at t^step (trapezoidal external work)
-    std::vector<double> g_free;  // f − K u − K_uθ(θ − θ₀) (dynamic runs; contact-stabilised)
-  };
-  int step = 0;
-  std::vector<Body> bodies;
-  std::vector<double> lambda;           // node-major multipliers of the last step
-  std::vector<int> lambda_nodes;        // slave mesh node of each contact node of lambda
-  std::vector<double> lambda_tangents;  // 3D mortar: t_1 then t_2 of each node, xyz (warm start)
-  // The compliance records (DofCompliance::dofs, chunks) of the contact solver's slave and
-  // master, then of the stabiliser's: replayed on restore, so F has the same bits.
-  std::array<std::vector<int>, 8> compliance;
-  std::vector<double> slip, heat_flux;
-  std::vector<double> row;  // the history row of `step`
-  double external_work = 0;
-  long total_coupling = 0, total_qp = 0, total_applications = 0;
-  int last_coupling = 0;
-  // The combined contact dual's warm start (gluing and Dirichlet λ, μ) and SMALBE's outer
-  // iterations so far (empty and 0 with the nested dual).
-  std::vector<double> feti_body_lambda, feti_mu;
-  long total_smalbe_outer = 0;
-  ContactStatistics contact;
-  ContactHeat heat;
-  BoundaryHeat boundary_heat;
 };
 
 /// Receives the run's progress: output writers, progress lines, tests.
@@ -201,9 +142,11 @@ class Simulation {
   [[nodiscard]] feti::FetiStatistics feti_statistics() const;
 
   /// history.csv: names of the columns and the row of the current step.
-  [[nodiscard]] const std::vector<std::string>& history_columns() const { return columns_; }
-  [[nodiscard]] const std::vector<double>& history_row() const { return row_; }
-  [[nodiscard]] double history(const std::string& column) const;
+  [[nodiscard]] const std::vector<std::string>& history_columns() const {
+    return history_.columns();
+  }
+  [[nodiscard]] const std::vector<double>& history_row() const { return history_.row(); }
+  [[nodiscard]] double history(const std::string& column) const { return history_[column]; }
   [[nodiscard]] long total_coupling_iterations() const { return total_coupling_; }
 
   /// Discrete energies of the current state (J, or J/m in 2D).
@@ -243,7 +186,7 @@ class Simulation {
   void contact_bookkeeping();
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void support_forces(int b, core::Vector& r) const;  // reactions at constrained dofs
-  void fill_row(int coupling, double wall);
+  void register_history();          // the columns of history.csv, each with what fills it
   void check_setup_finite() const;  // NaN/Inf of the assembly and the initial state
   [[nodiscard]] ContactRowsBuilder finite_rows(ContactRowsBuilder builder) const;
 
@@ -257,10 +200,10 @@ class Simulation {
   long total_coupling_ = 0;
   long total_qp_ = 0, total_applications_ = 0;
   int last_coupling_ = 0;
+  double last_wall_ = 0;  // seconds of the last step (history.csv wall_seconds)
   core::PhaseTimers timers_;
   std::string factorization_;
-  std::vector<std::string> columns_;
-  std::vector<double> row_;
+  History history_;
 
   ContactRowsBuilder contact_rows_;
   std::unique_ptr<contact::MortarPair> mortar_;
