@@ -484,7 +484,7 @@ void Simulation::pair_boundary_heat(bool implicit, double t, int iteration) {
 
 void Simulation::mech_load(int b) {
   // The loads of (5.3) at θ^{k+1,p+1} in rhs_u, the prescribed values in u_new: what the
-  // body's solver (mech_step) or the combined contact dual (coulomb_fixed_point) solves with.
+  // body's solver (mech_step) or the combined contact dual (contact_mech_step) solves with.
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   s.rhs_u.copy_from(s.rhs_u_base);
@@ -734,66 +734,8 @@ std::vector<double> Simulation::contact_multipliers() const {
   return lambda_.get() ? lambda_.to_std() : std::vector<double>{};
 }
 
-// The Tresca → Coulomb fixed point γ = λ_n(γ) of (6.3) with Aitken's Δ² (Irons–Tuck, vector
-// form as in Küttler & Wall 2008): γ ← max(γ + ω r, 0), r = λ_n(γ) − γ, ω from the last two
-// residuals (ω = 1 at the first update: the plain update of 6.3).
-struct Simulation::TrescaIteration {
-  std::vector<double> gamma, bound, residual, residual_prev;
-  double omega = 1.0;
-  double last = 1.0;  // ‖λ_n(γ) − γ‖/‖λ‖ of the last update (1 before the first of a step)
-  bool converged = false;      // the last update met the tolerance, its QP solved to qp_tolerance
-  bool exact_qps = false;      // the QPs of the rest of the step to qp_tolerance
-  bool cut_short = false;      // stop after a 100-fold fall (θ, hence u_free, moves next)
-  bool relax = false;          // Aitken on (friction > 0 and acceleration on)
-  bool defer = false;          // u formed after convergence (only B u inside, see couple_contact)
-  std::vector<double> bu_old;  // B u^k, when deferred
-
-  // γ = λ_n of the current multipliers, the relaxation forgotten.
-  void restart(const core::Vector& lambda, int dim, double friction) {
-    const auto lv = lambda.read();
-    const auto nc = static_cast<size_t>(lambda.size() / dim);
-    gamma.resize(nc);
-    bound.resize(nc);
-    residual.resize(nc);
-    residual_prev.clear();
-    omega = 1.0;
-    for (size_t k = 0; k < nc; ++k) {
-      gamma[k] = std::max(lv[dim * static_cast<PetscInt>(k)], 0.0);
-      bound[k] = friction * gamma[k];
-    }
-  }
-
-  // One update from λ(γ); returns ‖r‖.
-  double update(const core::Vector& lambda, int dim, double friction) {
-    const auto lv = lambda.read();
-    const size_t nc = gamma.size();
-    for (size_t k = 0; k < nc; ++k)
-      residual[k] = std::max(lv[dim * static_cast<PetscInt>(k)], 0.0) - gamma[k];
-    if (relax && !residual_prev.empty()) {
-      double num = 0, den = 0;
-      for (size_t k = 0; k < nc; ++k) {
-        const double dr = residual[k] - residual_prev[k];
-        num += residual_prev[k] * dr;
-        den += dr * dr;
-      }
-      // kept near the plain step: once λ is at the QP's accuracy the residuals are noise and
-      // so would be ω
-      if (den > 0) omega = std::clamp(-omega * num / den, 0.5, 1.5);
-    }
-    const double w = relax ? omega : 1.0;
-    double norm = 0;
-    for (size_t k = 0; k < nc; ++k) {
-      norm += residual[k] * residual[k];
-      gamma[k] = std::max(gamma[k] + w * residual[k], 0.0);
-      bound[k] = friction * gamma[k];
-    }
-    residual_prev = residual;
-    return std::sqrt(norm);
-  }
-};
-
-double Simulation::coulomb_fixed_point(TrescaIteration& t, std::span<const double> targets,
-                                       int outer, int max_updates) {
+double Simulation::contact_mech_step(TrescaIteration& t, std::span<const double> targets, int outer,
+                                     int max_updates) {
   // The mechanical half of (6.3) at the θ of this iteration: u_free is fixed, so each update
   // of γ costs one QP with the same F and no solve. Nested, the heat–mechanics iterations
   // are left with the thermal coupling alone (docs/choices.md, "friction loop").
@@ -801,29 +743,18 @@ double Simulation::coulomb_fixed_point(TrescaIteration& t, std::span<const doubl
   const auto& c = *problem_.contact;
   auto& ss = *solvers_[c.slave_body];
   auto& sm = *solvers_[c.master_body];
-  const int dim = dual_->rows().dim;
-  const double tol = problem_.solver.coupling_tolerance;
   const int step = step_ + 1;
   ss.u_prev.copy_from(ss.u_new);  // u_free, the QP's data
   sm.u_prev.copy_from(sm.u_new);
-  double residual = 0;
-  const double qp_tol = problem_.solver.qp_tolerance;
-  // Inexact where it cannot matter (forcing terms as in inexact Newton methods):
-  // - a QP to 1e-2 of the last fixed-point residual (clamped to [qp_tolerance, 1e-3]); a
-  //   residual that rises shows a loose QP's λ passed for converged (seen on bench/contact's
-  //   long quasistatic slides: the loop cycled), and the step's QPs are exact from then on;
-  // - with thermal expansion, while the residual is above the tolerance, the loop at this θ
-  //   stops once its residual fell 100-fold: θ moves in the next heat step, and with it
-  //   u_free and λ (measured on example 06: λ_n(γ) − γ jumps back to ~2e-3 of ‖λ‖ at the next
-  //   iteration whatever the accuracy reached before).
-  // The outer loop stops only on an update that met the tolerance with a QP to the QP
-  // tolerance, so the fixed point it returns is that of the exact scheme.
-  constexpr double qp_forcing = 1e-2, loop_forcing = 1e-2;
-  const bool friction = c.friction > 0;
-  double first = -1;
-  for (int update = 1; update <= max_updates; ++update) {
-    const double rtol =
-        friction && !t.exact_qps ? std::clamp(qp_forcing * t.last, qp_tol, 1e-3) : qp_tol;
+  const CoulombFixedPoint p{.dim = dual_->rows().dim,
+                            .friction = c.friction,
+                            .tolerance = problem_.solver.coupling_tolerance,
+                            .qp_tolerance = problem_.solver.qp_tolerance,
+                            .max_updates = max_updates,
+                            .step = step,
+                            .outer = outer};
+  // The QP at the Tresca bound t.bound: the contact enforcement.
+  const double residual = coulomb_fixed_point(t, lambda_, p, [&](double rtol) {
     if (combined_) {
       // The whole mechanical step at this Tresca bound: one TFETI QP over the gluing, Dirichlet
       // and contact multipliers (6.4), SMALBE warm-started from the last one's λ and μ; u
@@ -854,25 +785,7 @@ double Simulation::coulomb_fixed_point(TrescaIteration& t, std::span<const doubl
                              step, outer, r.projected_gradient);
     }
     require_finite(lambda_, "contact multiplier", step, outer);
-    t.converged = rtol <= qp_tol;
-    if (!friction) break;  // γ plays no part
-    residual = t.update(lambda_, dim, c.friction);
-    const double ln = lambda_.norm();
-    const double before = t.last;
-    t.last = ln > 0 ? residual / ln : residual;
-    // A residual that rises shows a loose QP's λ had passed for converged: exact QPs from here.
-    if (update > 1 && t.last > before) t.exact_qps = true;
-    if (first < 0) first = t.last;
-    t.converged = t.last <= tol && rtol <= qp_tol;
-    if (t.converged) break;
-    if (t.cut_short && t.last > tol && t.last <= loop_forcing * first) break;
-    if (update == max_updates && max_updates > 1)
-      throw NumericalError(
-          fmt::format("the Tresca → Coulomb fixed point γ = λ_n (6.3) did not converge to {:.1e} "
-                      "in {} updates",
-                      tol, max_updates),
-          step, outer, residual);
-  }
+  });
   if (combined_) {  // u came with λ
     require_finite(ss.u_new, "displacement", step, outer);
     require_finite(sm.u_new, "displacement", step, outer);
@@ -1005,7 +918,7 @@ int Simulation::couple_contact() {
     // Nested: γ = λ_n(γ) to convergence at this θ, Aitken restarted (the map changed with θ);
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.
     if (nested || tresca.gamma.empty()) tresca.restart(lambda_, dim, c.friction);
-    const double fixed_residual = coulomb_fixed_point(
+    const double fixed_residual = contact_mech_step(
         tresca, targets, iteration, nested ? problem_.solver.max_coupling_iterations : 1);
     lambda_prev.axpy(-1.0, lambda_);
     const double dl = lambda_prev.norm(), ln = lambda_.norm();

@@ -23,6 +23,7 @@
 #include "tc/physics/checkpoint.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/dual_contact.hpp"
+#include "tc/physics/friction_fixed_point.hpp"
 #include "tc/physics/history.hpp"
 #include "tc/physics/ledger.hpp"
 #include "tc/physics/thermal_contact.hpp"
@@ -177,11 +178,10 @@ class Simulation {
   void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
   // −max(λ_n^k, 0) per node: the modified mass scheme's lower bound on λ_n^{k+1}
   static std::vector<double> release_floor(const core::Vector& lambda_k, int dim);
-  struct TrescaIteration;
-  // QPs with u_free fixed, γ ← λ_n (Aitken), at most `max_updates` times or until
-  // ‖λ_n(γ) − γ‖ ≤ tol‖λ‖; returns ‖λ_n(γ) − γ‖ of the last update.
-  double coulomb_fixed_point(TrescaIteration& t, std::span<const double> targets, int outer,
-                             int max_updates);
+  // The mechanical half of (6.3) with u_free fixed: coulomb_fixed_point over the contact QPs
+  // (nested dual or combined TFETI), then u; returns ‖λ_n(γ) − γ‖ of the last update.
+  double contact_mech_step(TrescaIteration& t, std::span<const double> targets, int outer,
+                           int max_updates);
   void stabilise_predictor(std::span<const double> normal_targets);
   void contact_bookkeeping();
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
