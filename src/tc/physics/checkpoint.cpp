@@ -36,9 +36,7 @@ Checkpoint Simulation::checkpoint() const {
                         forces_[b].to_std(), g.get() ? g.to_std() : std::vector<double>{}});
   }
   c.lambda = contact_multipliers();
-  c.lambda_nodes = lambda_nodes_;
-  for (const auto& tl : lambda_tangents_)
-    for (const auto& t : tl) c.lambda_tangents.insert(c.lambda_tangents.end(), t.begin(), t.end());
+  transfer_.save(c);
   const DualContactSolver* duals[2] = {dual_.get(), stabiliser_.get()};
   for (int d = 0; d < 2; ++d)
     if (duals[d])
@@ -83,18 +81,11 @@ void Simulation::restore(const Checkpoint& c) {
       !c.lambda_nodes.empty())
     throw Error("checkpoint: the multipliers do not match their contact nodes");
   lambda_ = c.lambda.empty() ? core::Vector() : core::Vector::from(c.lambda);
-  lambda_nodes_ = c.lambda_nodes;
+  transfer_.restore(c);
   DualContactSolver* duals[2] = {dual_.get(), stabiliser_.get()};
   for (int d = 0; d < 2; ++d)
     if (duals[d])
       duals[d]->replay_compliance(std::span<const std::vector<int>, 4>(&c.compliance[4 * d], 4));
-  const size_t per_basis = c.lambda_tangents.size() / 6;  // nodes with two tangents of 3
-  for (int l = 0; l < 2; ++l) {
-    lambda_tangents_[l].resize(per_basis);
-    for (size_t k = 0; k < per_basis; ++k)
-      for (int x = 0; x < 3; ++x)
-        lambda_tangents_[l][k][x] = c.lambda_tangents[3 * (l * per_basis + k) + x];
-  }
   slip_ = c.slip;
   heat_flux_ = c.heat_flux;
   step_ = c.step;

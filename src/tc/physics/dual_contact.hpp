@@ -110,7 +110,7 @@ class DualContactSolver {
                      bool recover = true, double rtol = 0);
   /// λ_n,k ≥ floor_k ≤ 0 instead of λ_n,k ≥ 0 in the solves until the next set_rows (empty:
   /// all 0). The modified mass scheme lets a node release with λ_n^{k+1} ≥ −λ_n^k, so that
-  /// the step's mean contact force does no work (Simulation::release_floor).
+  /// the step's mean contact force does no work (release_floor, multiplier_transfer.hpp).
   void set_normal_floor(std::vector<double> floor) { normal_floor_ = std::move(floor); }
   /// u_i −= A_i⁻¹ B_iᵀ λ (two solves): what solve() skips with recover = false.
   void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const;

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 
 #include "tc/core/error.hpp"
 #include "tc/physics/body_field.hpp"
@@ -672,60 +671,6 @@ void Simulation::stabilise_predictor(std::span<const double> normal_targets) {
   }
 }
 
-void Simulation::warm_start(const ContactRows& rows) {
-  // λ of the last step, node by node: by slave mesh node when the rows name them (the contact
-  // nodes of a mortar pair change as bodies slide), else by position while the count holds.
-  const int dim = rows.dim;
-  const std::vector<double> previous = lambda_.get() ? lambda_.to_std() : std::vector<double>{};
-  lambda_ = core::Vector(rows.n_rows());
-  auto lv = lambda_.view();
-  // The mortar pair's tangents of a node may turn from one step to the next (measured on
-  // example 06: 0.19 rad per step on average, up to π/2, the basis of the tangent plane being
-  // arbitrary): λ_τ is carried over as the traction vector Σ_l λ_τ,l t_l, in the new basis.
-  const bool turn = mortar_ && dim == 3 && !lambda_tangents_[0].empty();
-  if (!rows.nodes.empty() && !lambda_nodes_.empty()) {
-    std::map<int, size_t> where;
-    for (size_t k = 0; k < lambda_nodes_.size(); ++k) where[lambda_nodes_[k]] = k;
-    for (size_t k = 0; k < rows.nodes.size(); ++k)
-      if (const auto it = where.find(rows.nodes[k]); it != where.end()) {
-        const size_t j = it->second;
-        for (int i = 0; i < dim; ++i) lv[dim * k + i] = previous[dim * j + i];
-        if (!turn || k >= mortar_->tangents(0).size()) continue;
-        std::array<double, 3> traction{0, 0, 0};
-        for (int l = 0; l < 2; ++l)
-          for (int x = 0; x < 3; ++x)
-            traction[x] += previous[dim * j + 1 + l] * lambda_tangents_[l][j][x];
-        for (int l = 0; l < 2; ++l) {
-          const auto& t = mortar_->tangents(l)[k];
-          lv[dim * k + 1 + l] = traction[0] * t[0] + traction[1] * t[1] + traction[2] * t[2];
-        }
-      }
-  } else if (static_cast<PetscInt>(previous.size()) == rows.n_rows()) {
-    for (PetscInt i = 0; i < rows.n_rows(); ++i) lv[i] = previous[i];
-  }
-  lambda_nodes_ = rows.nodes;
-  if (mortar_ && dim == 3)
-    for (int l = 0; l < 2; ++l) lambda_tangents_[l] = mortar_->tangents(l);
-}
-
-std::vector<double> Simulation::release_floor(const core::Vector& lambda_k, int dim) {
-  // With the modified mass the contact faces carry no inertia, so their rows are in
-  // equilibrium at every t^k and the trapezoidal rule's energy changes by the work of the
-  // mean contact force, ½(λ^k + λ^{k+1})·(g^{k+1} − g^k) with g the gap. Complementarity at
-  // t^{k+1} alone (λ ≥ 0, g ≥ 0, λg = 0) leaves ½λ^k g^{k+1} > 0 where a node releases: the
-  // energy grew by O(τ) at each release (+4.1 % through one impact at τ = 1e-5). Allowing
-  // λ_n^{k+1} ≥ −λ_n^k at a node that carried force at t^k (Laursen–Chawla's persistency,
-  // only at release) makes that term vanish: the node either stays closed (g^{k+1} = 0, no
-  // work) or opens with zero mean force. Where λ_n^k ≤ 0 the bound is λ_n ≥ 0, so a node
-  // opens with a negative force for at most one step, and an impact still dissipates
-  // −½λ^{k+1}g^k ≤ 0. The bound tends to 0 with the force at release: consistent in τ.
-  const auto lv = lambda_k.read();
-  std::vector<double> floor(static_cast<size_t>(lambda_k.size() / dim));
-  for (size_t k = 0; k < floor.size(); ++k)
-    floor[k] = -std::max(lv[dim * static_cast<PetscInt>(k)], 0.0);
-  return floor;
-}
-
 double Simulation::traction_per_multiplier() const {
   return physics::traction_per_multiplier(stabiliser_ != nullptr);
 }
@@ -852,7 +797,7 @@ int Simulation::couple_contact() {
   }
   const auto& rows = dual_->rows();
   const int dim = rows.dim;
-  warm_start(rows);
+  transfer_.warm_start(rows, mortar_.get(), lambda_);  // λ of the last step on these rows
   if (dynamic && problem_.time.contact_scheme == ContactScheme::ModifiedMass)
     dual_->set_normal_floor(release_floor(lambda_, dim));
   if (stabiliser_) {

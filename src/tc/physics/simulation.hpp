@@ -26,6 +26,7 @@
 #include "tc/physics/friction_fixed_point.hpp"
 #include "tc/physics/history.hpp"
 #include "tc/physics/ledger.hpp"
+#include "tc/physics/multiplier_transfer.hpp"
 #include "tc/physics/thermal_contact.hpp"
 
 namespace tc::physics {
@@ -175,9 +176,6 @@ class Simulation {
   void update_state(int b);
   void massless_rates(int b);  // Newmark/backward-difference updates of u̇, ü
   int couple_contact();        // the staggered loop of 6.3 for the contact pair (heat, dual QP)
-  void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
-  // −max(λ_n^k, 0) per node: the modified mass scheme's lower bound on λ_n^{k+1}
-  static std::vector<double> release_floor(const core::Vector& lambda_k, int dim);
   // The mechanical half of (6.3) with u_free fixed: coulomb_fixed_point over the contact QPs
   // (nested dual or combined TFETI), then u; returns ‖λ_n(γ) − γ‖ of the last update.
   double contact_mech_step(TrescaIteration& t, std::span<const double> targets, int outer,
@@ -216,9 +214,8 @@ class Simulation {
   feti::ContactFetiState feti_state_;
   long total_smalbe_outer_ = 0;
   core::Vector lambda_;
-  std::vector<int> lambda_nodes_;  // slave mesh node of each contact node of lambda_
-  std::vector<std::array<double, 3>> lambda_tangents_[2];  // tangents lambda_'s λ_τ refer to
-  std::vector<double> slip_;  // B_τ Δu of the last step (node-major, normal rows unused)
+  MultiplierTransfer transfer_;  // what lambda_ refers to, for the next step's warm start
+  std::vector<double> slip_;     // B_τ Δu of the last step (node-major, normal rows unused)
   // B(u − u^k) of the current iterate while couple_contact defers forming u (empty: from u)
   std::vector<double> iterate_slip_;
   ContactStatistics contact_stats_;
