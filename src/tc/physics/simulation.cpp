@@ -9,6 +9,7 @@
 #include "tc/core/error.hpp"
 #include "tc/physics/body_field.hpp"
 #include "tc/physics/boundary_heat.hpp"
+#include "tc/physics/contact_heat.hpp"
 
 namespace tc::physics {
 
@@ -42,84 +43,6 @@ void require_finite(const core::Vector& v, const char* what, int step, int itera
   if (!v.all_finite())
     throw NumericalError(fmt::format("{}: {} is not finite (NaN or Inf)", phase_of(what), what),
                          step, iteration, std::nan(""));
-}
-
-/// The mean contact traction of a step per unit of λ. The contact-stabilised Newmark puts the
-/// whole step's contact impulse on λ^{k+1}: its position update has τ²/4 Bᵀλ^{k+1} where every
-/// other force enters as τ²/4 (F^k + F^{k+1}), so at rest 2(f − K u) = Bᵀλ, and the contact's
-/// work in the discrete energy identity is ½ λᵀB(u^{k+1} − u^k). λ/2 is the traction there
-/// (pressure for the conductance, force and work for the history); plain Newmark and the
-/// quasistatic scheme have λ^{k+1} itself. The QP's bounds 𝔉λ_n are homogeneous: unchanged.
-double traction_per_multiplier(bool stabilised) {
-  return stabilised ? 0.5 : 1.0;
-}
-
-/// The work of friction in a step per contact node [J], W_k = λ_τ,k · (B_τ(u − u^k))_k (λ_τ a
-/// traction, B_τ carries the weights). It is what leaves the mechanical energy: with Newmark's
-/// average acceleration the discrete energy identity holds with λᵀB(u^{k+1} − u^k) as the
-/// contact's work, and B_τ(u^{k+1} − u^k) = τ B_τ(u̇^k + u̇^{k+1})/2 is the slip of the step
-/// (quasistatic: τ B_τu̇^{k+1}). W_k/τ is the step's mean of 𝔉γ‖[u̇]_τ‖ w_k of d_θγ (2.13,
-/// §4.4): on a node sliding steadily λ_τ,k ∥ its slip with ‖λ_τ,k‖ = 𝔉λ_n,k. The power at
-/// t^{k+1} alone, λ_τ·B_τu̇^{k+1}, would follow Newmark's step-to-step oscillation of u̇ (2v, 0,
-/// 2v, … after a sudden start; docs/choices.md). W_k < 0 only where the slip reverses within a
-/// step (nonnegative_heat).
-std::vector<double> friction_work(const ContactRows& rows, std::span<const double> lambda,
-                                  std::span<const double> slip) {
-  const int dim = rows.dim;
-  std::vector<double> work(static_cast<size_t>(rows.n_nodes()), 0.0);
-  for (PetscInt k = 0; k < rows.n_nodes(); ++k)
-    for (int l = 1; l < dim; ++l) work[k] += lambda[dim * k + l] * slip[dim * k + l];
-  return work;
-}
-
-/// B(u_s − u_s^k) + B(u_m − u_m^k), node-major (the normal rows are not used).
-std::vector<double> step_slip(const ContactRows& rows, const core::Vector& du_slave,
-                              const core::Vector& du_master) {
-  core::Vector inc(rows.n_rows());
-  rows.slave.mult(du_slave, inc);
-  rows.master.mult_add(du_master, inc);
-  return inc.to_std();
-}
-
-/// Nodal heat inputs of one body from the contact nodes' powers P_k ≥ 0 and the mortar matrix
-/// X (D for the slave, M for the master): q_j = share Σ_k P_k X⁺_kj / Σ_j' X⁺_kj', X⁺ = max(X, 0).
-/// With a flux density Σ_k (P_k/D_kk) ψ_k this is its integral against the body's shape
-/// functions (∫ψ_kφ_j = X_kj, Σ_j X_kj = D_kk where the master covers ψ_k's support); the
-/// dual basis ψ_k is negative on part of its support, so M has negative entries (measured in
-/// example 06: 7 master nodes, −17 W of 4.9e5 W), which would cool them: X⁺ keeps every input
-/// ≥ 0, and the row sums make 1ᵀq = share·ΣP exactly, also where the master covers part of it.
-std::vector<double> distribute(std::span<const double> power, double share,
-                               const core::SparseMatrix& x) {
-  std::vector<double> out(static_cast<size_t>(x.cols()), 0.0);
-  for (PetscInt k = 0; k < x.rows(); ++k) {
-    PetscInt nz = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* vals = nullptr;
-    TC_PETSC(MatGetRow(x.get(), k, &nz, &cols, &vals));
-    double sum = 0;
-    for (PetscInt q = 0; q < nz; ++q) sum += std::max(vals[q], 0.0);
-    if (sum > 0)
-      for (PetscInt q = 0; q < nz; ++q)
-        out[cols[q]] += share * power[k] * std::max(vals[q], 0.0) / sum;
-    TC_PETSC(MatRestoreRow(x.get(), k, &nz, &cols, &vals));
-  }
-  return out;
-}
-
-/// The heat of a step per contact node from the friction work W_k: where the slip of the step
-/// opposes λ_τ,k (the slip reverses within the step — the contact nodes' undamped Newmark
-/// chatter; example 06: 5–8 of 42 nodes, −6e4 W against +2e5 W while sliding) W_k < 0 would
-/// be a heat sink. The step's total Σ_k W_k, the mechanical dissipation, is kept and spread
-/// in proportion to the positive parts; a step with Σ W ≤ 0 keeps W as it is.
-std::vector<double> nonnegative_heat(std::vector<double> work) {
-  double total = 0, positive = 0;
-  for (const double w : work) {
-    total += w;
-    positive += std::max(w, 0.0);
-  }
-  if (total > 0 && positive > total)
-    for (double& w : work) w = std::max(w, 0.0) * (total / positive);
-  return work;
 }
 
 /// The largest (or smallest) temperature of all bodies.
@@ -944,25 +867,13 @@ void Simulation::contact_bookkeeping() {
     }
   }
   cs.tangential_force = unit * std::hypot(resultant[0], resultant[1], resultant[2]);
-  if (mortar_) {  // q = β_C λ_n [θ] per contact node, θ_m at the node: (Mθ_m)_k / (D1)_k
+  if (mortar_) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
     const auto& c = *problem_.contact;
     heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
     if (c.heat_conduction && beta_c_ > 0 &&
-        mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {
-      const auto& st_s = states_[c.slave_body];
-      const auto& st_m = states_[c.master_body];
-      core::Vector ones(systems_[c.slave_body]->n_theta()), dsum(rows.n_nodes()),
-          mth(rows.n_nodes());
-      ones.fill(1.0);
-      mortar_->d_matrix().mult(ones, dsum);
-      mortar_->m_matrix().mult(st_m.theta, mth);
-      const auto ds = dsum.to_std(), mt = mth.to_std(), ts = st_s.theta.to_std();
-      for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
-        if (ds[k] <= 0) continue;
-        const double jump = ts[mortar_->contact_nodes()[k]] - mt[k] / ds[k];
-        heat_flux_[k] = beta_c_ * unit * std::max(l[dim * k], 0.0) * jump;
-      }
-    }
+        mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes()))
+      heat_flux_ = conduction_flux(*mortar_, rows, l, beta_c_ * unit, states_[c.slave_body].theta,
+                                   states_[c.master_body].theta);
   }
 }
 
