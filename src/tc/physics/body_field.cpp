@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <iterator>
 
+#include "tc/physics/time_scheme.hpp"
+
 namespace tc::physics {
 
 core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
@@ -14,6 +16,20 @@ core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
 }
 
 namespace {
+
+/// A_u of (5.3): 4/τ² M_u + K_u with Newmark, K_u with the quasistatic scheme.
+core::SparseMatrix mechanics_operator(const Problem& p, const core::SparseMatrix& mass_u,
+                                      const core::SparseMatrix& stiffness_u) {
+  return p.time.scheme == Scheme::Dynamic
+             ? combine(newmark_mass_factor(p.time.step), mass_u, 1.0, stiffness_u)
+             : stiffness_u.copy();
+}
+
+/// A_θ of (5.6), M_θ/τ + K_θ (backward Euler; a constant film's h∫θv is added by the caller).
+core::SparseMatrix heat_operator(const Problem& p, const core::SparseMatrix& mass_theta,
+                                 const core::SparseMatrix& stiffness_theta) {
+  return combine(1.0 / p.time.step, mass_theta, 1.0, stiffness_theta);
+}
 
 /// A unit pivot, scaled by the mean diagonal, on the massless dofs of subdomain s's M_u.
 void massless_pivots(const BodySystem& sys, int s, core::SparseMatrix& mass) {
@@ -55,18 +71,16 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
   }
   if (sys.subdomains().empty())
     return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization);
-  const double tau = p.time.step;
   const bool dynamic = p.time.scheme == Scheme::Dynamic;
   auto local = [&](int s) {
     const auto m = sys.subdomain_matrices(s);
     switch (op) {
       case BodyOperator::mechanics:
-        return dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u)
-                       : m.stiffness_u.copy();
+        return mechanics_operator(p, m.mass_u, m.stiffness_u);
       case BodyOperator::statics:
         return m.stiffness_u.copy();
       case BodyOperator::heat: {
-        auto heat = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+        auto heat = heat_operator(p, m.mass_theta, m.stiffness_theta);
         if (sys.constant_film()) heat.axpy(1.0, sys.subdomain_constant_film(s));
         return heat;
       }
@@ -101,11 +115,9 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
 }
 
 BodyField::BodyField(const Problem& p, const BodySystem& sys) {
-  const double tau = p.time.step;
-  const bool dynamic = p.time.scheme == Scheme::Dynamic;
   const auto& m = sys.matrices();
-  a_u = dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u) : m.stiffness_u.copy();
-  a_theta = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
+  a_u = mechanics_operator(p, m.mass_u, m.stiffness_u);
+  a_theta = heat_operator(p, m.mass_theta, m.stiffness_theta);
   if (const auto* film = sys.constant_film()) a_theta.axpy(1.0, *film);  // + h∫θv
   mech = body_solver(p, sys, a_u, BodyOperator::mechanics);
   heat = body_solver(p, sys, a_theta, BodyOperator::heat);

@@ -10,6 +10,7 @@
 #include "tc/physics/body_field.hpp"
 #include "tc/physics/boundary_heat.hpp"
 #include "tc/physics/contact_heat.hpp"
+#include "tc/physics/time_scheme.hpp"
 
 namespace tc::physics {
 
@@ -203,7 +204,7 @@ void Simulation::prepare_step(int b) {
     s.u_pred.copy_from(st.u);
     s.u_pred.axpy(tau, st.v);
     s.work_u.copy_from(st.a);
-    s.work_u.axpy(4.0 / (tau * tau), s.u_pred);
+    s.work_u.axpy(newmark_mass_factor(tau), s.u_pred);
     m.mass_u.mult_add(s.work_u, s.rhs_u_base);
   }
   sys.thermal_load(t, s.f_theta);
@@ -444,7 +445,7 @@ void Simulation::update_state(int b) {
     s.work_u.copy_from(s.u_new);
     s.work_u.axpy(-1.0, s.u_pred);  // u^{k+1} − u_pred = τ²/4 (ü^k + ü^{k+1})
     st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
-    st.a.axpy(4.0 / (tau * tau), s.work_u);
+    st.a.axpy(newmark_mass_factor(tau), s.work_u);
     st.v.axpy(2.0 / tau, s.work_u);  // u̇^{k+1} = u̇^k + 2/τ(u^{k+1} − u_pred)
     massless_rates(b);
   } else {
@@ -589,7 +590,7 @@ void Simulation::stabilise_predictor(std::span<const double> normal_targets) {
     s.rhs_u_base.copy_from(s.f_u);
     s.rhs_u_base.axpy(1.0, s.g_free);
     systems_[b]->matrices().mass_u.mult(s.u_pred, s.work_u);
-    s.rhs_u_base.axpy(4.0 / (tau * tau), s.work_u);
+    s.rhs_u_base.axpy(newmark_mass_factor(tau), s.work_u);
     s.u_new.copy_from(s.u_pred);
   }
 }
