@@ -22,7 +22,7 @@ struct ContactStatistics {
 ///  = frictional_dissipation), to_slave / to_master its δ_C / 1 − δ_C shares,
 ///  conducted = Σ_steps τ β_C ∫ λ_n (θ_s − θ_m) dS: the heat that crossed by conductance from
 ///  the slave to the master (negative when it went the other way), θ at t^{k+1}. With the
-///  contact-stabilised Newmark λ/2 is the traction (simulation.cpp, traction_per_multiplier):
+///  contact-stabilised Newmark λ/2 is the traction (traction_per_multiplier, contact_heat.hpp):
 ///  these sums, the conductance and the history's forces use it.
 struct ContactHeat {
   double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
