@@ -25,6 +25,11 @@ enum class BodyOperator { mechanics, heat, mass, statics };
                                                              const core::SparseMatrix& a,
                                                              BodyOperator op);
 
+/// Displacement, velocity, acceleration and temperature of one body at the current time.
+struct BodyState {
+  core::Vector u, v, a, theta;
+};
+
 /// Factorised operators and work vectors of one body.
 struct BodyField {
   /// Forms and factorises A_u and A_θ of body `sys`, allocates the vectors.

@@ -54,7 +54,7 @@ Checkpoint Simulation::checkpoint() const {
   c.feti_mu.assign(feti_state_.mu.data(), feti_state_.mu.data() + feti_state_.mu.size());
   c.total_smalbe_outer = total_smalbe_outer_;
   c.contact = contact_stats_;
-  c.heat = heat_;
+  c.heat = heat_coupling_.heat();
   c.boundary_heat = boundary_heat_;
   return c;
 }
@@ -100,7 +100,7 @@ void Simulation::restore(const Checkpoint& c) {
                                                      static_cast<Eigen::Index>(c.feti_mu.size()));
   total_smalbe_outer_ = c.total_smalbe_outer;
   contact_stats_ = c.contact;
-  heat_ = c.heat;
+  heat_coupling_.heat() = c.heat;
   boundary_heat_ = c.boundary_heat;
 }
 

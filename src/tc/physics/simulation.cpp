@@ -279,130 +279,25 @@ void Simulation::heat_step(int b, int iteration) {
 
 void Simulation::contact_heat_step(int iteration) {
   // (4.3) for the two bodies of the contact pair, backward Euler:
-  //   (M_θ/τ + K_θ) θ + L_θγ θ = rhs + d_θγ(u̇),
-  // γ = λ_n of the current multiplier iterate (nodal pressures, ≥ 0), u̇ of the current
-  // displacement iterate. L on the left through the interface (InterfaceHeatSolver), or lagged.
+  //   (M_θ/τ + K_θ) θ + L_θγ θ = rhs + d_θγ(u̇)   (ContactHeatCoupling::heat_step),
+  // rhs with the thermoelastic term of each body.
   auto scope = timers_.scope("heat_solve");
   const auto& c = *problem_.contact;
-  const int sb = c.slave_body, mb = c.master_body;
-  auto& ss = *solvers_[sb];
-  auto& sm = *solvers_[mb];
-  heat_rhs(sb);
-  heat_rhs(mb);
-  frictional_heat_ = {};
-  conductance_.reset();
-  std::vector<double> gamma;
-  if (mortar_) {
-    const auto& rows = dual_->rows();
-    const auto lv = lambda_.read();
-    gamma.resize(static_cast<size_t>(rows.n_nodes()));
-    const double unit = traction_per_multiplier();
-    for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = unit * std::max(lv[rows.dim * k], 0.0);
-    if (static_cast<size_t>(rows.n_nodes()) != mortar_->contact_nodes().size())
-      throw Error("thermal contact: the multipliers do not match the mortar pair's nodes");
-  }
-  if (mortar_ && c.frictional_heating && c.friction > 0) {
-    // d_θγ from the multipliers: the friction work of the step λ_τ,k·(B_τ(u − u^k))_k per
-    // contact node over τ, δ_C of it to the slave through D, 1 − δ_C to the master through M;
-    // contact_bookkeeping sums the same work at u^{k+1}: heat = dissipation by construction.
-    const double tau = problem_.time.step;
-    for (auto [s, st] : {std::pair{&ss, &states_[sb]}, {&sm, &states_[mb]}}) {
-      s->velocity.copy_from(s->u_new);  // (the thermoelastic term of heat_rhs used it above)
-      s->velocity.axpy(-1.0, st->u);
-    }
-    std::vector<double> power = nonnegative_heat(
-        friction_work(dual_->rows(), lambda_.to_std(),
-                      iterate_slip_.empty() ? step_slip(dual_->rows(), ss.velocity, sm.velocity)
-                                            : iterate_slip_));
-    for (double& p : power) p *= traction_per_multiplier() / tau;
-    for (const double p : power) frictional_heat_.total += p;
-    frictional_heat_.slave = distribute(power, delta_c_, mortar_->d_matrix());
-    frictional_heat_.master = distribute(power, 1.0 - delta_c_, mortar_->m_matrix());
-    for (auto [s, d] : {std::pair{&ss, &frictional_heat_.slave}, {&sm, &frictional_heat_.master}}) {
-      auto rv = s->rhs_theta.view();
-      for (size_t a = 0; a < d->size(); ++a) rv[static_cast<PetscInt>(a)] += (*d)[a];
-    }
-  }
-  const double t = (step_ + 1) * problem_.time.step;
-  const bool conduct = mortar_ && c.heat_conduction && beta_c_ > 0;
-  if (conduct) conductance_ = mortar_->thermal_conductance(gamma, beta_c_);
-  if (conduct && conductance_treatment_ == ConductanceTreatment::Lagged) {
-    // (6.2): L θ^p of the previous iterate to the right-hand side.
-    const auto& l = *conductance_;
-    l.ss.mult(ss.theta_new, ss.work_theta);
-    l.sm.mult_add(sm.theta_new, ss.work_theta);
-    l.ms.mult(ss.theta_new, sm.work_theta);
-    l.mm.mult_add(sm.theta_new, sm.work_theta);
-    ss.rhs_theta.axpy(-1.0, ss.work_theta);
-    sm.rhs_theta.axpy(-1.0, sm.work_theta);
-  }
-  systems_[sb]->prescribe_theta(t, ss.theta_new);
-  systems_[mb]->prescribe_theta(t, sm.theta_new);
-  const bool implicit = conduct && conductance_treatment_ == ConductanceTreatment::Implicit;
-  if (implicit) {
-    if (!interface_heat_) {
-      const auto& p = problem_;
-      interface_heat_ = std::make_unique<InterfaceHeatSolver>(
-          *ss.heat, systems_[sb]->n_theta(), p.bodies[sb].mesh.boundary_nodes(c.slave_where),
-          *sm.heat, systems_[mb]->n_theta(), p.bodies[mb].mesh.boundary_nodes(c.master_where));
-    }
-    interface_heat_->set_conductance(*conductance_);
-  }
-  if (systems_[sb]->has_boundary_term() || systems_[mb]->has_boundary_term()) {
-    pair_boundary_heat(implicit, t, iteration);
-  } else if (implicit) {
-    interface_heat_->solve(ss.rhs_theta, sm.rhs_theta, ss.theta_new, sm.theta_new);
-  } else {
-    ss.heat->solve(ss.rhs_theta, ss.theta_new);
-    sm.heat->solve(sm.rhs_theta, sm.theta_new);
-  }
-  require_finite(ss.theta_new, "temperature", step_ + 1, iteration);
-  require_finite(sm.theta_new, "temperature", step_ + 1, iteration);
+  heat_rhs(c.slave_body);
+  heat_rhs(c.master_body);
+  const auto pair = heat_pair();
+  heat_coupling_.heat_step(
+      problem_, pair,
+      {mortar_.get(), dual_->rows(), lambda_, traction_per_multiplier(), iterate_slip_},
+      (step_ + 1) * problem_.time.step, step_ + 1, iteration);
+  require_finite(pair.slave.theta_new, "temperature", step_ + 1, iteration);
+  require_finite(pair.master.theta_new, "temperature", step_ + 1, iteration);
 }
 
-void Simulation::pair_boundary_heat(bool implicit, double t, int iteration) {
-  // The contact pair's heat step with radiation or an h(t) film on either body: Newton over
-  // both bodies (boundary_heat.hpp) on A = diag(A_s, A_m) (+ L_θγ when implicit), each
-  // correction preconditioned by the pair's exact linear solve.
+HeatPair Simulation::heat_pair() {
   const auto& c = *problem_.contact;
   const int sb = c.slave_body, mb = c.master_body;
-  auto& ss = *solvers_[sb];
-  auto& sm = *solvers_[mb];
-  HeatOperator op;
-  op.systems = {systems_[sb].get(), systems_[mb].get()};
-  op.apply = [&](const auto& x, const auto& y) {
-    ss.a_theta.mult(*x[0], *y[0]);
-    sm.a_theta.mult(*x[1], *y[1]);
-    if (implicit) {
-      const auto& l = *conductance_;
-      l.ss.mult_add(*x[0], *y[0]);
-      l.sm.mult_add(*x[1], *y[0]);
-      l.ms.mult_add(*x[0], *y[1]);
-      l.mm.mult_add(*x[1], *y[1]);
-    }
-  };
-  op.solve = [&](const auto& r, const auto& z) {
-    if (implicit) {
-      interface_heat_->solve(*r[0], *r[1], *z[0], *z[1]);
-    } else {
-      ss.heat->solve(*r[0], *z[0]);
-      sm.heat->solve(*r[1], *z[1]);
-    }
-  };
-  const auto& settings = problem_.solver;
-  const auto o =
-      solve_boundary_heat(op, t, {&ss.rhs_theta, &sm.rhs_theta}, {&ss.theta_new, &sm.theta_new},
-                          settings.newton_tolerance, settings.max_newton_iterations);
-  total_newton_ += o.iterations;
-  total_newton_inner_ += o.inner_iterations;
-  if (!o.converged)
-    throw NumericalError(
-        fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
-                    "the contact pair '{}'–'{}' did not converge to {:.1e} in {} iterations "
-                    "(staggered iteration {})",
-                    problem_.bodies[sb].name, problem_.bodies[mb].name, settings.newton_tolerance,
-                    o.iterations, iteration),
-        step_ + 1, o.iterations, o.residual);
+  return {*solvers_[sb], *solvers_[mb], *systems_[sb], *systems_[mb], states_[sb], states_[mb]};
 }
 
 void Simulation::mech_load(int b) {
@@ -510,9 +405,7 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   settings.qp.rtol = problem_.solver.qp_tolerance;
   settings.qp.max_iterations = problem_.solver.max_qp_iterations;
   contact_rows_ = finite_rows(std::move(builder));
-  const double gs = c.conductance_slave, gm = c.conductance_master;
-  beta_c_ = gs + gm > 0 ? gs * gm / (gs + gm) : 0.0;  // (2.13)
-  delta_c_ = gs + gm > 0 ? gs / (gs + gm) : 0.5;
+  heat_coupling_.set_conductances(c.conductance_slave, c.conductance_master);
   const int sb = c.slave_body, mb = c.master_body;
   const auto mode = problem_.solver.contact_dual;
   const auto why = combined_contact_dual_unavailable(problem_);
@@ -772,7 +665,7 @@ int Simulation::couple_contact() {
     // Coulomb solution to the tolerance) stays exact, and so is this heat step with it, unless
     // the conductance is lagged (then θ itself iterates).
     if (one_way && tresca.converged &&
-        (conductance_treatment_ != ConductanceTreatment::Lagged || dth <= tol * thn)) {
+        (heat_coupling_.treatment() != ConductanceTreatment::Lagged || dth <= tol * thn)) {
       change = thn > 0 ? dth / thn : dth;
       break;
     }
@@ -820,14 +713,7 @@ int Simulation::couple_contact() {
   slip_ = step_slip(rows, ss.work_u, sm.work_u);
   // Heat through the interface in this step, with the L and d of the last heat step (those
   // that produced θ^{k+1}): then the thermal energy balance of the pair closes to round-off.
-  heat_.generated += tau * frictional_heat_.total;
-  for (const double q : frictional_heat_.slave) heat_.to_slave += tau * q;
-  for (const double q : frictional_heat_.master) heat_.to_master += tau * q;
-  if (conductance_) {  // 1ᵀ(L_ss θ_s + L_sm θ_m) = β_C ∫ γ (θ_s − θ_m) dS, slave → master
-    conductance_->ss.mult(ss.theta_new, ss.work_theta);
-    conductance_->sm.mult_add(sm.theta_new, ss.work_theta);
-    heat_.conducted += tau * ss.work_theta.sum();
-  }
+  heat_coupling_.account_step(heat_pair(), tau);
   update_state(sb);
   update_state(mb);
   for (int b = 0; b < n_bodies(); ++b)
@@ -871,10 +757,10 @@ void Simulation::contact_bookkeeping() {
   if (mortar_) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
     const auto& c = *problem_.contact;
     heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
-    if (c.heat_conduction && beta_c_ > 0 &&
+    if (c.heat_conduction && heat_coupling_.beta_c() > 0 &&
         mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes()))
-      heat_flux_ = conduction_flux(*mortar_, rows, l, beta_c_ * unit, states_[c.slave_body].theta,
-                                   states_[c.master_body].theta);
+      heat_flux_ = conduction_flux(*mortar_, rows, l, heat_coupling_.beta_c() * unit,
+                                   states_[c.slave_body].theta, states_[c.master_body].theta);
   }
 }
 
@@ -981,10 +867,10 @@ void Simulation::register_history() {
   h.add("contact_normal_force", value(cs.normal_force));
   h.add("contact_tangential_force", value(cs.tangential_force));
   h.add("frictional_dissipation", value(cs.dissipation));
-  h.add("heat_generated", value(heat_.generated));
-  h.add("heat_to_slave", value(heat_.to_slave));
-  h.add("heat_to_master", value(heat_.to_master));
-  h.add("heat_conducted", value(heat_.conducted));
+  h.add("heat_generated", value(heat_coupling_.heat().generated));
+  h.add("heat_to_slave", value(heat_coupling_.heat().to_slave));
+  h.add("heat_to_master", value(heat_coupling_.heat().to_master));
+  h.add("heat_conducted", value(heat_coupling_.heat().conducted));
   h.add("max_temperature", [this] { return extreme_temperature(states_, true); });
   h.add("min_temperature", [this] { return extreme_temperature(states_, false); });
   h.add("active_nodes", count(cs.active_nodes));

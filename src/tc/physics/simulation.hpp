@@ -22,6 +22,7 @@
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/checkpoint.hpp"
 #include "tc/physics/constrained_solver.hpp"
+#include "tc/physics/contact_heat_coupling.hpp"
 #include "tc/physics/dual_contact.hpp"
 #include "tc/physics/friction_fixed_point.hpp"
 #include "tc/physics/history.hpp"
@@ -30,11 +31,6 @@
 #include "tc/physics/thermal_contact.hpp"
 
 namespace tc::physics {
-
-/// Displacement, velocity, acceleration and temperature of one body at the current time.
-struct BodyState {
-  core::Vector u, v, a, theta;
-};
 
 struct RunStatus {
   bool completed = false;
@@ -49,12 +45,6 @@ class Simulation;
 /// slave and master at t^k: the configuration in which the constraints are linearised.
 using ContactRowsBuilder =
     std::function<ContactRows(const core::Vector& u_slave, const core::Vector& u_master)>;
-
-/// How the contact conductance L_θγ of §4.4 enters the heat step of the fixed point (6.3).
-enum class ConductanceTreatment {
-  Implicit,  // L θ^{p+1} on the left, solved exactly through the interface (default)
-  Lagged     // the thesis' (6.2): L θ^p of the previous iterate on the right-hand side
-};
 
 /// Receives the run's progress: output writers, progress lines, tests.
 class Observer {
@@ -97,20 +87,24 @@ class Simulation {
   /// SMALBE's outer iterations so far (combined contact dual; 0 otherwise).
   [[nodiscard]] long total_smalbe_outer_iterations() const { return total_smalbe_outer_; }
   /// Implicit (default) or lagged conductance; for measurements (docs/choices.md).
-  void set_conductance_treatment(ConductanceTreatment t) { conductance_treatment_ = t; }
-  [[nodiscard]] const ContactHeat& contact_heat() const { return heat_; }
+  void set_conductance_treatment(ConductanceTreatment t) { heat_coupling_.set_treatment(t); }
+  [[nodiscard]] const ContactHeat& contact_heat() const { return heat_coupling_.heat(); }
   [[nodiscard]] const BoundaryHeat& boundary_heat() const { return boundary_heat_; }
   /// Newton corrections and their conjugate-gradient iterations so far (heat steps with
   /// radiation or a film with h(t); boundary_heat.hpp).
-  [[nodiscard]] long total_newton_iterations() const { return total_newton_; }
-  [[nodiscard]] long total_newton_inner_iterations() const { return total_newton_inner_; }
+  [[nodiscard]] long total_newton_iterations() const {
+    return total_newton_ + heat_coupling_.newton_iterations();
+  }
+  [[nodiscard]] long total_newton_inner_iterations() const {
+    return total_newton_inner_ + heat_coupling_.newton_inner_iterations();
+  }
   /// Aitken relaxation of the Tresca → Coulomb fixed point (default on; docs/choices.md).
   void set_coupling_acceleration(bool on) { accelerate_ = on; }
   /// Overrides problem().solver.friction_loop (comparisons).
   void set_friction_loop(FrictionLoop loop) { friction_loop_ = loop; }
   /// β_C and δ_C of (2.13) from the contact's γ_C^s, γ_C^m (δ_C = ½ when both are 0).
-  [[nodiscard]] double beta_c() const { return beta_c_; }
-  [[nodiscard]] double delta_c() const { return delta_c_; }
+  [[nodiscard]] double beta_c() const { return heat_coupling_.beta_c(); }
+  [[nodiscard]] double delta_c() const { return heat_coupling_.delta_c(); }
   /// Per contact node of the last step (order of the multipliers): q_C^s conduction part
   /// β_C λ_n [θ] (λ_n/2 with the contact-stabilised scheme), [θ] = θ_s − θ_m (θ_m of the master at
   /// the node, (Mθ_m)_k/(D1)_k), in W/m²: the heat flux out of the slave into the master (positive
@@ -118,7 +112,7 @@ class Simulation {
   [[nodiscard]] const std::vector<double>& contact_heat_flux() const { return heat_flux_; }
   /// The solver of the implicit heat step (null until conductance first appears).
   [[nodiscard]] const InterfaceHeatSolver* interface_heat_solver() const {
-    return interface_heat_.get();
+    return heat_coupling_.interface_heat_solver();
   }
 
   /// The state after the current step (restart: io/checkpoint.hpp).
@@ -167,8 +161,7 @@ class Simulation {
   void velocity_iterate(int b);           // u̇ of the current displacement iterate → velocity
   void heat_rhs(int b);                   // right-hand side of (6.1) without contact terms
   void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
-  // Its solve by Newton when a body of the pair has radiation or an h(t) film.
-  void pair_boundary_heat(bool implicit, double t, int iteration);
+  [[nodiscard]] HeatPair heat_pair();     // the contact pair's fields, systems and states
   void mech_load(int b);  // right-hand side of (5.3) at the current θ iterate, Dirichlet values
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
   void subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f);
@@ -221,14 +214,9 @@ class Simulation {
   ContactStatistics contact_stats_;
 
   // Thermal contact (2.13, §4.4), with the mortar pair only.
-  double beta_c_ = 0, delta_c_ = 0.5;
   bool accelerate_ = true;
   FrictionLoop friction_loop_;
-  ConductanceTreatment conductance_treatment_ = ConductanceTreatment::Implicit;
-  std::unique_ptr<InterfaceHeatSolver> interface_heat_;
-  std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step
-  contact::FrictionalHeat frictional_heat_;             // d_θγ of the last heat step
-  ContactHeat heat_;
+  ContactHeatCoupling heat_coupling_;
   BoundaryHeat boundary_heat_;
   long total_newton_ = 0, total_newton_inner_ = 0;
   std::vector<double> heat_flux_;
