@@ -131,4 +131,13 @@ BodyField::BodyField(const Problem& p, const BodySystem& sys) {
     *v = core::Vector(sys.n_theta());
 }
 
+void subtract_thermal_force(const Problem& p, const BodySystem& sys, BodyField& s,
+                            const core::Vector& theta, core::Vector& f) {
+  // f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with the body's scratch vectors.
+  s.dtheta.copy_from(theta);
+  s.dtheta.shift(-p.physics.reference_temperature);
+  sys.matrices().coupling_u_theta.mult(s.dtheta, s.work_u);
+  f.axpy(-1.0, s.work_u);
+}
+
 }  // namespace tc::physics

@@ -52,4 +52,8 @@ struct BodyField {
   bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
 };
 
+/// f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with s's scratch vectors.
+void subtract_thermal_force(const Problem& p, const BodySystem& sys, BodyField& s,
+                            const core::Vector& theta, core::Vector& f);
+
 }  // namespace tc::physics

@@ -30,16 +30,6 @@ const char* phase_of(std::string_view what) {
   return "bookkeeping";
 }
 
-/// rate = (u − u_old)/τ on the given dofs (the massless ones: Simulation::massless_rates).
-void step_mean_rate(const std::vector<PetscInt>& dofs, const core::Vector& u,
-                    const core::Vector& u_old, double tau, core::Vector& rate) {
-  if (dofs.empty()) return;
-  const auto un = u.read();
-  const auto uo = u_old.read();
-  auto v = rate.view();
-  for (const PetscInt d : dofs) v[d] = (un[d] - uo[d]) / tau;
-}
-
 void require_finite(const core::Vector& v, const char* what, int step, int iteration) {
   if (!v.all_finite())
     throw NumericalError(fmt::format("{}: {} is not finite (NaN or Inf)", phase_of(what), what),
@@ -125,7 +115,8 @@ void Simulation::initialise() {
       sys.mechanical_load(0.0, s.rhs_u);
       m.stiffness_u.mult(st.u, s.work_u);
       s.rhs_u.axpy(-1.0, s.work_u);
-      if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.rhs_u);
+      if (problem_.physics.thermal_expansion)
+        subtract_thermal_force(problem_, sys, s, st.theta, s.rhs_u);
       s.g_free = s.rhs_u.clone();  // g⁰ = M ü⁰ (no contact force at t = 0)
       s.initial_mass = body_solver(problem_, sys, m.mass_u, BodyOperator::mass);
       st.a.zero();
@@ -140,15 +131,6 @@ void Simulation::initialise() {
   history_.record();
 }
 
-void Simulation::subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f) {
-  // f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with the body's scratch vectors.
-  auto& s = *solvers_[b];
-  s.dtheta.copy_from(theta);
-  s.dtheta.shift(-problem_.physics.reference_temperature);
-  systems_[b]->matrices().coupling_u_theta.mult(s.dtheta, s.work_u);
-  f.axpy(-1.0, s.work_u);
-}
-
 void Simulation::static_initial_state(int b, BodyState& st) {
   // K u⁰ = f(0) − K_uθ(θ⁰ − θ₀) with u⁰ = u_D(0) on the supports: the body starts expanded
   // by its initial temperature and loaded, so ü⁰ = 0 off the supports. Released from u⁰ = 0
@@ -159,7 +141,8 @@ void Simulation::static_initial_state(int b, BodyState& st) {
   const auto& m = sys.matrices();
   auto& s = *solvers_[b];
   sys.mechanical_load(0.0, s.rhs_u);
-  if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.rhs_u);
+  if (problem_.physics.thermal_expansion)
+    subtract_thermal_force(problem_, sys, s, st.theta, s.rhs_u);
   body_solver(problem_, sys, m.stiffness_u, BodyOperator::statics)->solve(s.rhs_u, st.u);
   require_finite(st.u, "displacement", 0, 0);
 }
@@ -188,62 +171,12 @@ void Simulation::support_forces(int b, core::Vector& r) const {
   r.copy_from(f);
 }
 
-void Simulation::prepare_step(int b) {
-  const double tau = problem_.time.step;
-  const double t = (step_ + 1) * tau;
-  const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
-  const auto& sys = *systems_[b];
-  const auto& m = sys.matrices();
-  auto& st = states_[b];
-  auto& s = *solvers_[b];
-
-  // Right-hand sides that do not change within the fixed point.
-  sys.mechanical_load(t, s.f_u);
-  s.rhs_u_base.copy_from(s.f_u);
-  if (dynamic) {  // f_u^{k+1} of (5.3): + M(4/τ² u + 4/τ u̇ + ü) = M(4/τ² u_pred + ü)
-    s.u_pred.copy_from(st.u);
-    s.u_pred.axpy(tau, st.v);
-    s.work_u.copy_from(st.a);
-    s.work_u.axpy(newmark_mass_factor(tau), s.u_pred);
-    m.mass_u.mult_add(s.work_u, s.rhs_u_base);
-  }
-  sys.thermal_load(t, s.f_theta);
-  s.rhs_theta_base.copy_from(s.f_theta);  // f_θ^{k+1} of (5.6): + M_θ θ/τ
-  s.work_theta.copy_from(st.theta);
-  s.work_theta.scale(1.0 / tau);
-  m.mass_theta.mult_add(s.work_theta, s.rhs_theta_base);
-
-  // Predictor: Newmark with ü^{k+1} = ü^k (the thesis starts from u^k; this is closer).
-  s.u_new.copy_from(st.u);
-  s.u_new.axpy(tau, st.v);
-  if (dynamic) s.u_new.axpy(0.5 * tau * tau, st.a);
-  if (!dynamic) s.u_pred.copy_from(st.u);
-  s.theta_new.copy_from(st.theta);
-}
-
-void Simulation::velocity_iterate(int b) {
-  // The velocity of the current displacement iterate: (5.2) with γ = 1/2,
-  // u̇ = u̇^k + 2/τ(u − u_pred) (dynamic; u_pred projected when contact-stabilised), or
-  // (u − u^k)/τ (quasistatic, where u_pred = u^k).
-  const double tau = problem_.time.step;
-  auto& s = *solvers_[b];
-  s.velocity.copy_from(s.u_new);
-  s.velocity.axpy(-1.0, s.u_pred);
-  if (problem_.time.scheme == Scheme::Dynamic) {
-    s.velocity.scale(2.0 / tau);
-    s.velocity.axpy(1.0, states_[b].v);
-    step_mean_rate(systems_[b]->massless_dofs(), s.u_new, states_[b].u, tau, s.velocity);
-  } else {
-    s.velocity.scale(1.0 / tau);
-  }
-}
-
 void Simulation::heat_rhs(int b) {
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   s.rhs_theta.copy_from(s.rhs_theta_base);
   if (s.heating) {  // −K_θu u̇ = θ₀ K_uθᵀ u̇ (docs/choices.md)
-    velocity_iterate(b);
+    iterate_velocity(problem_, sys, states_[b], s);
     s.work_theta.zero();
     sys.matrices().coupling_u_theta.mult_transpose(s.velocity, s.work_theta);
     s.rhs_theta.axpy(problem_.physics.reference_temperature, s.work_theta);
@@ -306,7 +239,7 @@ void Simulation::mech_load(int b) {
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   s.rhs_u.copy_from(s.rhs_u_base);
-  if (s.expansion) subtract_thermal_force(b, s.theta_new, s.rhs_u);
+  if (s.expansion) subtract_thermal_force(problem_, sys, s, s.theta_new, s.rhs_u);
   sys.prescribe_u((step_ + 1) * problem_.time.step, s.u_new);
 }
 
@@ -319,51 +252,10 @@ void Simulation::mech_step(int b, int iteration) {
   require_finite(s.u_new, "displacement", step_ + 1, iteration);
 }
 
-void Simulation::massless_rates(int b) {
-  // Dofs without inertia (modified mass) follow the equilibrium of each t^k: Newmark's
-  // u̇^{k+1} = 2/τ Δu − u̇^k would carry the step-to-step oscillation of a quasistatic
-  // variable (2v, 0, 2v, … after a sudden start) into the slip and the thermoelastic heat.
-  // Their rate is the step's mean Δu/τ, their acceleration zero (M ü has no entry there).
-  const auto& dofs = systems_[b]->massless_dofs();
-  auto& st = states_[b];
-  step_mean_rate(dofs, solvers_[b]->u_new, st.u, problem_.time.step, st.v);
-  auto a = st.a.view();
-  for (const PetscInt d : dofs) a[d] = 0.0;
-}
-
-void Simulation::update_state(int b) {
-  // Newmark / backward-difference updates of u̇ and ü.
-  const double tau = problem_.time.step;
-  auto& st = states_[b];
-  auto& s = *solvers_[b];
-  if (problem_.time.scheme == Scheme::Dynamic) {
-    s.work_u.copy_from(s.u_new);
-    s.work_u.axpy(-1.0, s.u_pred);  // u^{k+1} − u_pred = τ²/4 (ü^k + ü^{k+1})
-    st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
-    st.a.axpy(newmark_mass_factor(tau), s.work_u);
-    st.v.axpy(2.0 / tau, s.work_u);  // u̇^{k+1} = u̇^k + 2/τ(u^{k+1} − u_pred)
-    massless_rates(b);
-  } else {
-    s.work_u.copy_from(s.u_new);
-    s.work_u.axpy(-1.0, st.u);
-    st.v.copy_from(s.work_u);
-    st.v.scale(1.0 / tau);
-  }
-  st.u.copy_from(s.u_new);
-  st.theta.copy_from(s.theta_new);
-  if (s.mass) {  // g^{k+1} = f^{k+1} − K u^{k+1} − K_uθ(θ^{k+1} − θ₀) (f_u still holds f^{k+1})
-    const auto& m = systems_[b]->matrices();
-    s.g_free.copy_from(s.f_u);
-    m.stiffness_u.mult(st.u, s.work_u);
-    s.g_free.axpy(-1.0, s.work_u);
-    if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.g_free);
-  }
-}
-
 int Simulation::couple_body(int b) {
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
-  prepare_step(b);
+  begin_step(problem_, sys, states_[b], s, (step_ + 1) * problem_.time.step);
   int iteration = 1;
   if (!(s.expansion && s.heating)) {
     // One-way coupling: one pass in the right order is the exact solution of the step.
@@ -395,7 +287,7 @@ int Simulation::couple_body(int b) {
                       sys.body().name, tol),
           step_ + 1, iteration - 1, change);
   }
-  update_state(b);
+  end_step(problem_, sys, states_[b], s);
   return iteration;
 }
 
@@ -593,8 +485,8 @@ int Simulation::couple_contact() {
   auto& sm = *solvers_[mb];
   const auto& sts = states_[sb];
   const auto& stm = states_[mb];
-  prepare_step(sb);
-  prepare_step(mb);
+  for (const int b : {sb, mb})
+    begin_step(problem_, *systems_[b], states_[b], *solvers_[b], (step_ + 1) * problem_.time.step);
   contact_stats_.qp_iterations = 0;
   contact_stats_.operator_applications = 0;
   contact_stats_.friction_iterations = 0;
@@ -714,8 +606,7 @@ int Simulation::couple_contact() {
   // Heat through the interface in this step, with the L and d of the last heat step (those
   // that produced θ^{k+1}): then the thermal energy balance of the pair closes to round-off.
   heat_coupling_.account_step(heat_pair(), tau);
-  update_state(sb);
-  update_state(mb);
+  for (const int b : {sb, mb}) end_step(problem_, *systems_[b], states_[b], *solvers_[b]);
   for (int b = 0; b < n_bodies(); ++b)
     if (b != sb && b != mb) couple_body(b);
   return iteration;

@@ -155,20 +155,15 @@ class Simulation {
 
  private:
   void initialise();
-  int couple_body(int b);    // the staggered loop of 6.3 for one body; returns iterations
-  void prepare_step(int b);  // right-hand sides fixed within the step, predictor
+  int couple_body(int b);  // the staggered loop of 6.3 for one body; returns iterations
   void heat_step(int b, int iteration);   // (6.1)/(5.6) with the current u iterate
-  void velocity_iterate(int b);           // u̇ of the current displacement iterate → velocity
   void heat_rhs(int b);                   // right-hand side of (6.1) without contact terms
   void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
   [[nodiscard]] HeatPair heat_pair();     // the contact pair's fields, systems and states
   void mech_load(int b);  // right-hand side of (5.3) at the current θ iterate, Dirichlet values
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
-  void subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f);
   void static_initial_state(int b, BodyState& st);
-  void update_state(int b);
-  void massless_rates(int b);  // Newmark/backward-difference updates of u̇, ü
-  int couple_contact();        // the staggered loop of 6.3 for the contact pair (heat, dual QP)
+  int couple_contact();  // the staggered loop of 6.3 for the contact pair (heat, dual QP)
   // The mechanical half of (6.3) with u_free fixed: coulomb_fixed_point over the contact QPs
   // (nested dual or combined TFETI), then u; returns ‖λ_n(γ) − γ‖ of the last update.
   double contact_mech_step(TrescaIteration& t, std::span<const double> targets, int outer,
