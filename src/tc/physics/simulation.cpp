@@ -22,20 +22,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// The phase that produced a quantity, for the message (docs/robustness.md).
-const char* phase_of(std::string_view what) {
-  if (what == "temperature") return "heat step (5.6)";
-  if (what == "displacement") return "mechanical step (5.3)";
-  if (what.starts_with("u =") || what == "contact multiplier") return "contact QP (6.9)";
-  return "bookkeeping";
-}
-
-void require_finite(const core::Vector& v, const char* what, int step, int iteration) {
-  if (!v.all_finite())
-    throw NumericalError(fmt::format("{}: {} is not finite (NaN or Inf)", phase_of(what), what),
-                         step, iteration, std::nan(""));
-}
-
 /// The largest (or smallest) temperature of all bodies.
 double extreme_temperature(const std::vector<BodyState>& states, bool largest) {
   double e = largest ? -INFINITY : INFINITY;
@@ -71,7 +57,7 @@ Simulation::Simulation(const Problem& problem)
     solvers_.push_back(std::move(s));
   }
   initialise();
-  check_setup_finite();
+  check_setup_finite(systems_, states_);
 }
 
 Simulation::~Simulation() = default;
@@ -296,7 +282,7 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   const auto& c = *problem_.contact;
   settings.qp.rtol = problem_.solver.qp_tolerance;
   settings.qp.max_iterations = problem_.solver.max_qp_iterations;
-  contact_rows_ = finite_rows(std::move(builder));
+  contact_rows_ = finite_rows(std::move(builder), step_);
   heat_coupling_.set_conductances(c.conductance_slave, c.conductance_master);
   const int sb = c.slave_body, mb = c.master_body;
   const auto mode = problem_.solver.contact_dual;
@@ -782,64 +768,6 @@ void Simulation::register_history() {
           for (const PetscInt d : dofs) sum += f[d];
           return sum;
         });
-}
-
-void Simulation::check_setup_finite() const {
-  // NaN/Inf out of the assembly (material values at the ends of double's range) or the initial
-  // state: refused before the first step, where they would otherwise surface as a failed solve.
-  auto finite = [](const core::SparseMatrix& m) {
-    PetscReal norm = 0;
-    TC_PETSC(MatNorm(m.get(), NORM_FROBENIUS, &norm));
-    return std::isfinite(norm);
-  };
-  for (int b = 0; b < n_bodies(); ++b) {
-    const auto& m = systems_[b]->matrices();
-    const auto& name = systems_[b]->body().name;
-    for (const auto& [matrix, what] : {std::pair{&m.mass_u, "M_u"},
-                                       {&m.stiffness_u, "K_u"},
-                                       {&m.coupling_u_theta, "K_uθ"},
-                                       {&m.mass_theta, "M_θ"},
-                                       {&m.stiffness_theta, "K_θ"}})
-      if (!finite(*matrix))
-        throw NumericalError(
-            fmt::format("assembly: {} of body '{}' is not finite (NaN or Inf)", what, name), 0, 0,
-            std::nan(""));
-    const auto& st = states_[b];
-    for (const auto& [v, what] :
-         {std::pair{&st.u, "u"}, {&st.v, "u̇"}, {&st.a, "ü"}, {&st.theta, "θ"}})
-      if (!v->all_finite())
-        throw NumericalError(
-            fmt::format("initial state: {} of body '{}' is not finite (NaN or Inf)", what, name), 0,
-            0, std::nan(""));
-  }
-}
-
-ContactRowsBuilder Simulation::finite_rows(ContactRowsBuilder builder) const {
-  // The contact phase: the rows of the mortar pair (or of a test's builder) in the configuration
-  // of t^k. A NaN there would reach the QP as a NaN operator and be reported as a failure to
-  // converge; named here instead.
-  return [this, builder = std::move(builder)](const core::Vector& us, const core::Vector& um) {
-    // A NaN position makes the mortar search find no overlap, not a NaN: checked before.
-    if (!us.all_finite() || !um.all_finite())
-      throw NumericalError(
-          "contact: the configuration of t^k (u of the contact pair) is not finite (NaN or Inf)",
-          step_ + 1, 0, std::nan(""));
-    auto rows = builder(us, um);
-    PetscReal ns = 0, nm = 0;
-    if (rows.n_rows() > 0) {
-      TC_PETSC(MatNorm(rows.slave.get(), NORM_FROBENIUS, &ns));
-      TC_PETSC(MatNorm(rows.master.get(), NORM_FROBENIUS, &nm));
-    }
-    const auto finite = [](const std::vector<double>& x) {
-      return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
-    };
-    if (!finite(rows.gap) || !finite(rows.weights) || !std::isfinite(ns) || !std::isfinite(nm))
-      throw NumericalError(
-          "contact: the mortar rows (B, gap, weights) in the configuration of t^k are not finite "
-          "(NaN or Inf)",
-          step_ + 1, 0, std::nan(""));
-    return rows;
-  };
 }
 
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {

@@ -24,6 +24,7 @@
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/contact_heat_coupling.hpp"
 #include "tc/physics/dual_contact.hpp"
+#include "tc/physics/finite_checks.hpp"
 #include "tc/physics/friction_fixed_point.hpp"
 #include "tc/physics/history.hpp"
 #include "tc/physics/ledger.hpp"
@@ -40,11 +41,6 @@ struct RunStatus {
 };
 
 class Simulation;
-
-/// The contact rows of a step (B_s, B_m, gap, nodal weights) from the displacements of the
-/// slave and master at t^k: the configuration in which the constraints are linearised.
-using ContactRowsBuilder =
-    std::function<ContactRows(const core::Vector& u_slave, const core::Vector& u_master)>;
 
 /// Receives the run's progress: output writers, progress lines, tests.
 class Observer {
@@ -172,9 +168,7 @@ class Simulation {
   void contact_bookkeeping();
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void support_forces(int b, core::Vector& r) const;  // reactions at constrained dofs
-  void register_history();          // the columns of history.csv, each with what fills it
-  void check_setup_finite() const;  // NaN/Inf of the assembly and the initial state
-  [[nodiscard]] ContactRowsBuilder finite_rows(ContactRowsBuilder builder) const;
+  void register_history();  // the columns of history.csv, each with what fills it
 
   const Problem& problem_;
   std::vector<std::unique_ptr<BodySystem>> systems_;
