@@ -1,6 +1,10 @@
 #pragma once
 // The run's ledger: what the contact, the interface heat and the boundary heat did, step by
 // step and cumulatively (the history.csv columns, summary.json, checkpoints).
+#include <span>
+
+#include "tc/contact/contact_rows.hpp"
+#include "tc/contact/mortar_pair.hpp"
 
 namespace tc::physics {
 
@@ -14,7 +18,17 @@ struct ContactStatistics {
   double tangential_force_sum = 0;  // Σ_k w_k ‖λ_τ,k‖
   double dissipation = 0;           // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
   int active_nodes = 0;             // λ_n,k > 0
-  int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − 1e-6))
+  int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − slip_tolerance))
+
+  /// A node slips when ‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − slip_tolerance).
+  static constexpr double slip_tolerance = 1e-6;
+
+  /// The forces and node counts of the step from its multipliers (node-major, `unit` the
+  /// traction per multiplier), and its friction work Σ_k λ_τ,k·slip_k added to the
+  /// dissipation. The resultant uses the mortar pair's tangents when there is one.
+  void record_step(const contact::ContactRows& rows, std::span<const double> lambda,
+                   std::span<const double> slip, double unit, double friction,
+                   const contact::MortarPair* mortar);
 };
 
 /// Heat through the contact interface, cumulative from t = 0 [J] (history.csv):
