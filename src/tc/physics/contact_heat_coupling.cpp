@@ -125,14 +125,10 @@ void ContactHeatCoupling::pair_boundary_heat(const Problem& p, const HeatPair& p
                           settings.newton_tolerance, settings.max_newton_iterations);
   newton_ += o.iterations;
   newton_inner_ += o.inner_iterations;
-  if (!o.converged)
-    throw NumericalError(
-        fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
-                    "the contact pair '{}'–'{}' did not converge to {:.1e} in {} iterations "
-                    "(staggered iteration {})",
-                    p.bodies[p.contact->slave_body].name, p.bodies[p.contact->master_body].name,
-                    settings.newton_tolerance, o.iterations, iteration),
-        step, o.iterations, o.residual);
+  require_converged(o,
+                    fmt::format("the contact pair '{}'–'{}'", p.bodies[p.contact->slave_body].name,
+                                p.bodies[p.contact->master_body].name),
+                    settings.newton_tolerance, step, iteration);
 }
 
 void ContactHeatCoupling::account_step(const HeatPair& pair, double tau) {

@@ -185,13 +185,8 @@ void Simulation::heat_step(int b, int iteration) {
                                        settings.newton_tolerance, settings.max_newton_iterations);
     total_newton_ += o.iterations;
     total_newton_inner_ += o.inner_iterations;
-    if (!o.converged)
-      throw NumericalError(
-          fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
-                      "body '{}' did not converge to {:.1e} in {} iterations (staggered "
-                      "iteration {})",
-                      sys.body().name, settings.newton_tolerance, o.iterations, iteration),
-          step_ + 1, o.iterations, o.residual);
+    require_converged(o, fmt::format("body '{}'", sys.body().name), settings.newton_tolerance,
+                      step_ + 1, iteration);
   }
   require_finite(s.theta_new, "temperature", step_ + 1, iteration);
 }
