@@ -144,7 +144,7 @@ TEST_P(ContactImpact, NoPenetrationForceThenRelease) {
       // contact force does no work: λ_n > 0 only while the gap rate is zero). Discretely, the
       // trapezoidal rule changes E by the work of the mean contact force ½(λ^k + λ^{k+1}) on
       // the gap increment: −½λ^{k+1}g^k ≤ 0 at the impact, and 0 at release thanks to the
-      // release floor λ_n^{k+1} ≥ −λ_n^k (Simulation::release_floor; without it the release
+      // release floor λ_n^{k+1} ≥ −λ_n^k (physics::release_floor; without it the release
       // step returned ½λ^k g^{k+1} > 0: +4.1 % at τ = 1e-5). So the energy never grows (to
       // the QP tolerance and round-off, 1e-8 relative as for the stabilised scheme), and what
       // the impact dissipates is O(τ): it falls as τ is halved, twice.

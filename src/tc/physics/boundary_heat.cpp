@@ -1,7 +1,11 @@
 #include "tc/physics/boundary_heat.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+
+#include "tc/core/error.hpp"
 
 namespace tc::physics {
 
@@ -162,6 +166,16 @@ NewtonOutcome solve_boundary_heat(const BodySystem& sys, const core::SparseMatri
   op.apply = [&](const auto& x, const auto& y) { a.mult(*x[0], *y[0]); };
   op.solve = [&](const auto& r, const auto& z) { solver.solve(*r[0], *z[0]); };
   return solve_boundary_heat(op, t, {&b}, {&theta}, tolerance, max_iterations);
+}
+
+void require_converged(const NewtonOutcome& o, const std::string& what, double tolerance, int step,
+                       int iteration) {
+  if (!o.converged)
+    throw NumericalError(
+        fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
+                    "{} did not converge to {:.1e} in {} iterations (staggered iteration {})",
+                    what, tolerance, o.iterations, iteration),
+        step, o.iterations, o.residual);
 }
 
 }  // namespace tc::physics

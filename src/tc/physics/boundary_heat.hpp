@@ -15,6 +15,7 @@
 // capacity per step is small; the emitted and the absorbed parts are counted apart because
 // they cancel at equilibrium).
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "tc/physics/body_system.hpp"
@@ -28,6 +29,11 @@ struct NewtonOutcome {
   int inner_iterations = 0;  // conjugate-gradient iterations over all corrections
   double residual = 0;       // ‖r‖ / scale at exit (below)
 };
+
+/// Throws NumericalError when the Newton of a heat step did not converge; `what` names the
+/// body or the contact pair, `step` and `iteration` (of the staggered loop) place it.
+void require_converged(const NewtonOutcome& o, const std::string& what, double tolerance, int step,
+                       int iteration);
 
 /// The linear part A of one or more bodies' heat step (one block per body, numbered like
 /// `systems`): `apply` sets y = A x with every row (as assembled), `solve` sets z = A⁻¹ r with

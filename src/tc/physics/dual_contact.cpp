@@ -222,6 +222,23 @@ bool DualContactSolver::compliance_covers() const {
   return true;
 }
 
+void DualContactSolver::save_compliance(std::span<std::vector<int>, 4> record) const {
+  for (int i = 0; i < 2; ++i) {
+    const auto& comp = compliance_[i];
+    record[2 * i].assign(comp.dofs().begin(), comp.dofs().end());
+    record[2 * i + 1].assign(comp.chunks().begin(), comp.chunks().end());
+  }
+}
+
+void DualContactSolver::replay_compliance(std::span<const std::vector<int>, 4> record) {
+  for (int i = 0; i < 2; ++i) {
+    const auto& dofs = record[2 * i];
+    const auto& chunks = record[2 * i + 1];
+    compliance_[i].replay(std::vector<PetscInt>(dofs.begin(), dofs.end()),
+                          std::vector<PetscInt>(chunks.begin(), chunks.end()));
+  }
+}
+
 bool DualContactSolver::form_from_compliance() {
   // F = Σ_i B_i,T S_i B_i,Tᵀ: W = S_i B_i,Tᵀ (dense × sparse, nnz(B_i)·|T| flops), then
   // B_i,T W (m · nnz(B_i)); no solve unless the rows reach new dofs.

@@ -116,7 +116,7 @@ class DualContactSolver {
                      bool recover = true, double rtol = 0);
   /// λ_n,k ≥ floor_k ≤ 0 instead of λ_n,k ≥ 0 in the solves until the next set_rows (empty:
   /// all 0). The modified mass scheme lets a node release with λ_n^{k+1} ≥ −λ_n^k, so that
-  /// the step's mean contact force does no work (Simulation::release_floor).
+  /// the step's mean contact force does no work (release_floor, multiplier_transfer.hpp).
   void set_normal_floor(std::vector<double> floor) { normal_floor_ = std::move(floor); }
   /// u_i −= A_i⁻¹ B_iᵀ λ (two solves): what solve() skips with recover = false.
   void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const;
@@ -138,9 +138,10 @@ class DualContactSolver {
   [[nodiscard]] bool compliance_covers() const;  // T ∪ the rows' dofs within the limit
 
  public:
-  /// The slave's (0) and master's (1) compliance, for checkpoints.
-  [[nodiscard]] DofCompliance& compliance(int i) { return compliance_[i]; }
-  [[nodiscard]] const DofCompliance& compliance(int i) const { return compliance_[i]; }
+  /// The checkpoint's part of the compliance: the slave's dofs and chunks, then the master's
+  /// (DofCompliance::dofs, chunks); replay_compliance rebuilds S from them with the same bits.
+  void save_compliance(std::span<std::vector<int>, 4> record) const;
+  void replay_compliance(std::span<const std::vector<int>, 4> record);
 
  private:
   const ConstrainedSolver& slave_;

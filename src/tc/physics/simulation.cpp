@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 
 #include "tc/core/error.hpp"
+#include "tc/physics/body_field.hpp"
 #include "tc/physics/boundary_heat.hpp"
+#include "tc/physics/contact_heat.hpp"
+#include "tc/physics/time_scheme.hpp"
 
 namespace tc::physics {
 
@@ -20,261 +22,42 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// a·X + b·Y as a new matrix (same nonzero pattern: both come from the same node graph).
-core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
-                           const core::SparseMatrix& y) {
-  core::SparseMatrix out = x.copy();
-  out.scale(a);
-  out.axpy(b, y);
-  return out;
-}
-
-/// The phase that produced a quantity, for the message (docs/robustness.md).
-const char* phase_of(std::string_view what) {
-  if (what == "temperature") return "heat step (5.6)";
-  if (what == "displacement") return "mechanical step (5.3)";
-  if (what.starts_with("u =") || what == "contact multiplier") return "contact QP (6.9)";
-  return "bookkeeping";
-}
-
-/// Which of a body's operators a solver is for (FETI assembles it per subdomain).
-enum class Operator { mechanics, heat, mass, statics };
-
-/// A unit pivot, scaled by the mean diagonal, on the massless dofs of subdomain s's M_u.
-void massless_pivots(const BodySystem& sys, int s, core::SparseMatrix& mass) {
-  const auto& sub = sys.subdomains().at(static_cast<size_t>(s));
-  const int d = sys.dim();
-  core::Vector diag(mass.rows());
-  TC_PETSC(MatGetDiagonal(mass.get(), diag.get()));
-  double mean = 0;
-  {
-    const auto v = diag.read();
-    for (PetscInt i = 0; i < mass.rows(); ++i) mean += v[i];
-  }
-  mean /= static_cast<double>(std::max<PetscInt>(mass.rows(), 1));
-  const auto& massless = sys.massless_dofs();
-  {
-    auto v = diag.view();
-    for (PetscInt i = 0; i < mass.rows(); ++i) v[i] = 0.0;
-    for (size_t a = 0; a < sub.global_node.size(); ++a)
-      for (int k = 0; k < d; ++k)
-        if (std::binary_search(massless.begin(), massless.end(),
-                               static_cast<PetscInt>(d * sub.global_node[a] + k)))
-          v[d * static_cast<PetscInt>(a) + k] = mean;
-  }
-  TC_PETSC(MatDiagonalSet(mass.get(), diag.get(), ADD_VALUES));
-}
-
-/// The solver of A x = b for one body: a direct factorisation of A, or Total FETI over the
-/// body's subdomains when it is decomposed (6.2), with a·M + b·K assembled per subdomain.
-std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySystem& sys,
-                                               const core::SparseMatrix& a, Operator op) {
-  const bool mech = op != Operator::heat;
-  std::vector<PetscInt> dirichlet = mech ? sys.u_dirichlet_dofs() : sys.theta_dirichlet_dofs();
-  if (op == Operator::mass && !sys.massless_dofs().empty()) {
-    // M_u is singular on the massless dofs: ü = 0 there (their equations are static ones).
-    std::vector<PetscInt> both;
-    std::set_union(dirichlet.begin(), dirichlet.end(), sys.massless_dofs().begin(),
-                   sys.massless_dofs().end(), std::back_inserter(both));
-    dirichlet = std::move(both);
-  }
-  if (sys.subdomains().empty())
-    return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization);
-  const double tau = p.time.step;
-  const bool dynamic = p.time.scheme == Scheme::Dynamic;
-  auto local = [&](int s) {
-    const auto m = sys.subdomain_matrices(s);
-    switch (op) {
-      case Operator::mechanics:
-        return dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u)
-                       : m.stiffness_u.copy();
-      case Operator::statics:
-        return m.stiffness_u.copy();
-      case Operator::heat: {
-        auto heat = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
-        if (sys.constant_film()) heat.axpy(1.0, sys.subdomain_constant_film(s));
-        return heat;
-      }
-      case Operator::mass: {
-        // TFETI keeps the Dirichlet dofs in the subdomain matrices (multipliers fix them), so
-        // the massless dofs, which ü = 0 constrains as Dirichlet dofs, need a pivot: the mean
-        // diagonal, which changes only their multipliers.
-        auto mass = m.mass_u.copy();
-        if (!sys.massless_dofs().empty()) massless_pivots(sys, s, mass);
-        return mass;
-      }
+/// The largest (or smallest) temperature of all bodies.
+double extreme_temperature(const std::vector<BodyState>& states, bool largest) {
+  double e = largest ? -INFINITY : INFINITY;
+  for (const auto& st : states) {
+    PetscReal v = 0;
+    if (largest) {
+      TC_PETSC(VecMax(st.theta.get(), nullptr, &v));
+      e = std::max(e, static_cast<double>(v));
+    } else {
+      TC_PETSC(VecMin(st.theta.get(), nullptr, &v));
+      e = std::min(e, static_cast<double>(v));
     }
-    return core::SparseMatrix{};
-  };
-  // Without inertia the subdomains of an elastic body float: TFETI's rigid-body kernels. With
-  // it they nearly float when τ is large, and the same modes deflate (feti.hpp); constants
-  // likewise for heat. The mass matrix alone needs no coarse space.
-  const auto kernel = op == Operator::heat   ? feti::Kernel::constant
-                      : op == Operator::mass ? feti::Kernel::none
-                                             : feti::Kernel::rigid;
-  const auto singular = (op == Operator::mechanics && !dynamic) || op == Operator::statics
-                            ? feti::Singular::yes
-                            : feti::Singular::no;
-  feti::FetiOptions options;
-  options.tolerance = p.solver.feti_tolerance;
-  options.max_iterations = p.solver.max_feti_iterations;
-  options.preconditioner = p.solver.feti_preconditioner;
-  options.package = p.solver.factorization;
-  return std::make_unique<ConstrainedSolver>(std::make_unique<feti::Feti>(
-      sys.subdomains(), sys.body().mesh.n_nodes(), mech ? sys.dim() : 1, dirichlet, kernel,
-      singular, local, options));
-}
-
-/// rate = (u − u_old)/τ on the given dofs (the massless ones: Simulation::massless_rates).
-void step_mean_rate(const std::vector<PetscInt>& dofs, const core::Vector& u,
-                    const core::Vector& u_old, double tau, core::Vector& rate) {
-  if (dofs.empty()) return;
-  const auto un = u.read();
-  const auto uo = u_old.read();
-  auto v = rate.view();
-  for (const PetscInt d : dofs) v[d] = (un[d] - uo[d]) / tau;
-}
-
-void require_finite(const core::Vector& v, const char* what, int step, int iteration) {
-  if (!v.all_finite())
-    throw NumericalError(fmt::format("{}: {} is not finite (NaN or Inf)", phase_of(what), what),
-                         step, iteration, std::nan(""));
-}
-
-/// The mean contact traction of a step per unit of λ. The contact-stabilised Newmark puts the
-/// whole step's contact impulse on λ^{k+1}: its position update has τ²/4 Bᵀλ^{k+1} where every
-/// other force enters as τ²/4 (F^k + F^{k+1}), so at rest 2(f − K u) = Bᵀλ, and the contact's
-/// work in the discrete energy identity is ½ λᵀB(u^{k+1} − u^k). λ/2 is the traction there
-/// (pressure for the conductance, force and work for the history); plain Newmark and the
-/// quasistatic scheme have λ^{k+1} itself. The QP's bounds 𝔉λ_n are homogeneous: unchanged.
-double traction_per_multiplier(bool stabilised) {
-  return stabilised ? 0.5 : 1.0;
-}
-
-/// The work of friction in a step per contact node [J], W_k = λ_τ,k · (B_τ(u − u^k))_k (λ_τ a
-/// traction, B_τ carries the weights). It is what leaves the mechanical energy: with Newmark's
-/// average acceleration the discrete energy identity holds with λᵀB(u^{k+1} − u^k) as the
-/// contact's work, and B_τ(u^{k+1} − u^k) = τ B_τ(u̇^k + u̇^{k+1})/2 is the slip of the step
-/// (quasistatic: τ B_τu̇^{k+1}). W_k/τ is the step's mean of 𝔉γ‖[u̇]_τ‖ w_k of d_θγ (2.13,
-/// §4.4): on a node sliding steadily λ_τ,k ∥ its slip with ‖λ_τ,k‖ = 𝔉λ_n,k. The power at
-/// t^{k+1} alone, λ_τ·B_τu̇^{k+1}, would follow Newmark's step-to-step oscillation of u̇ (2v, 0,
-/// 2v, … after a sudden start; docs/choices.md). W_k < 0 only where the slip reverses within a
-/// step (nonnegative_heat).
-std::vector<double> friction_work(const ContactRows& rows, std::span<const double> lambda,
-                                  std::span<const double> slip) {
-  const int dim = rows.dim;
-  std::vector<double> work(static_cast<size_t>(rows.n_nodes()), 0.0);
-  for (PetscInt k = 0; k < rows.n_nodes(); ++k)
-    for (int l = 1; l < dim; ++l) work[k] += lambda[dim * k + l] * slip[dim * k + l];
-  return work;
-}
-
-/// B(u_s − u_s^k) + B(u_m − u_m^k), node-major (the normal rows are not used).
-std::vector<double> step_slip(const ContactRows& rows, const core::Vector& du_slave,
-                              const core::Vector& du_master) {
-  core::Vector inc(rows.n_rows());
-  rows.slave.mult(du_slave, inc);
-  rows.master.mult_add(du_master, inc);
-  return inc.to_std();
-}
-
-/// Nodal heat inputs of one body from the contact nodes' powers P_k ≥ 0 and the mortar matrix
-/// X (D for the slave, M for the master): q_j = share Σ_k P_k X⁺_kj / Σ_j' X⁺_kj', X⁺ = max(X, 0).
-/// With a flux density Σ_k (P_k/D_kk) ψ_k this is its integral against the body's shape
-/// functions (∫ψ_kφ_j = X_kj, Σ_j X_kj = D_kk where the master covers ψ_k's support); the
-/// dual basis ψ_k is negative on part of its support, so M has negative entries (measured in
-/// example 06: 7 master nodes, −17 W of 4.9e5 W), which would cool them: X⁺ keeps every input
-/// ≥ 0, and the row sums make 1ᵀq = share·ΣP exactly, also where the master covers part of it.
-std::vector<double> distribute(std::span<const double> power, double share,
-                               const core::SparseMatrix& x) {
-  std::vector<double> out(static_cast<size_t>(x.cols()), 0.0);
-  for (PetscInt k = 0; k < x.rows(); ++k) {
-    PetscInt nz = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* vals = nullptr;
-    TC_PETSC(MatGetRow(x.get(), k, &nz, &cols, &vals));
-    double sum = 0;
-    for (PetscInt q = 0; q < nz; ++q) sum += std::max(vals[q], 0.0);
-    if (sum > 0)
-      for (PetscInt q = 0; q < nz; ++q)
-        out[cols[q]] += share * power[k] * std::max(vals[q], 0.0) / sum;
-    TC_PETSC(MatRestoreRow(x.get(), k, &nz, &cols, &vals));
   }
-  return out;
-}
-
-/// The heat of a step per contact node from the friction work W_k: where the slip of the step
-/// opposes λ_τ,k (the slip reverses within the step — the contact nodes' undamped Newmark
-/// chatter; example 06: 5–8 of 42 nodes, −6e4 W against +2e5 W while sliding) W_k < 0 would
-/// be a heat sink. The step's total Σ_k W_k, the mechanical dissipation, is kept and spread
-/// in proportion to the positive parts; a step with Σ W ≤ 0 keeps W as it is.
-std::vector<double> nonnegative_heat(std::vector<double> work) {
-  double total = 0, positive = 0;
-  for (const double w : work) {
-    total += w;
-    positive += std::max(w, 0.0);
-  }
-  if (total > 0 && positive > total)
-    for (double& w : work) w = std::max(w, 0.0) * (total / positive);
-  return work;
+  return e;
 }
 
 }  // namespace
 
-/// Factorised operators and work vectors of one body.
-struct Simulation::Solvers {
-  core::SparseMatrix a_u;      // 4/τ² M_u + K_u (5.3), or K_u (quasistatic)
-  core::SparseMatrix a_theta;  // M_θ/τ + K_θ (5.6)
-  std::unique_ptr<ConstrainedSolver> mech, heat;
-  core::Vector f_u, f_theta, rhs_u_base, rhs_theta_base, rhs_u, rhs_theta;
-  core::Vector u_new, theta_new, u_prev, theta_prev, velocity, dtheta, work_u, work_theta;
-  core::Vector u_pred;  // Newmark's u^k + τu̇^k, projected onto the admissible set if stabilised
-  // Contact-stabilised Newmark only: M_u factorised, and the force without inertia and contact
-  // g^k = f^k − K_u u^k − K_uθ(θ^k − θ₀) that replaces M_u ü^k (which holds the contact force).
-  std::unique_ptr<ConstrainedSolver> mass;
-  core::Vector g_free;
-  // M_u factorised for the initial acceleration, kept until the stabiliser takes it
-  // (enable_contact) or the first step drops it: one factorisation less per body.
-  std::unique_ptr<ConstrainedSolver> initial_mass;
-  bool expansion = false;  // θ drives u (thermal expansion on, α ≠ 0)
-  bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
-};
-
 Simulation::Simulation(const Problem& problem)
     : problem_(problem), friction_loop_(problem.solver.friction_loop) {
-  const double tau = problem_.time.step;
-  const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
   for (int b = 0; b < static_cast<int>(problem_.bodies.size()); ++b) {
     {
       auto t = timers_.scope("assembly");
       systems_.push_back(std::make_unique<BodySystem>(problem_, b));
     }
     const auto& sys = *systems_.back();
-    const auto& m = sys.matrices();
-    auto s = std::make_unique<Solvers>();
+    std::unique_ptr<BodyField> s;
     {
       auto t = timers_.scope("factorization");
-      s->a_u =
-          dynamic ? combine(4.0 / (tau * tau), m.mass_u, 1.0, m.stiffness_u) : m.stiffness_u.copy();
-      s->a_theta = combine(1.0 / tau, m.mass_theta, 1.0, m.stiffness_theta);
-      if (const auto* film = sys.constant_film()) s->a_theta.axpy(1.0, *film);  // + h∫θv
-      s->mech = body_solver(problem_, sys, s->a_u, Operator::mechanics);
-      s->heat = body_solver(problem_, sys, s->a_theta, Operator::heat);
+      s = std::make_unique<BodyField>(problem_, sys);
     }
     factorization_ = s->mech->package();
-    const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
-    s->expansion = problem_.physics.thermal_expansion && coupled_material;
-    s->heating = problem_.physics.thermoelastic_heating && coupled_material;
-    for (auto* v : {&s->f_u, &s->rhs_u_base, &s->rhs_u, &s->u_new, &s->u_prev, &s->velocity,
-                    &s->work_u, &s->u_pred})
-      *v = core::Vector(sys.n_u());
-    for (auto* v : {&s->f_theta, &s->rhs_theta_base, &s->rhs_theta, &s->theta_new, &s->theta_prev,
-                    &s->dtheta, &s->work_theta})
-      *v = core::Vector(sys.n_theta());
     solvers_.push_back(std::move(s));
   }
   initialise();
-  check_setup_finite();
+  check_setup_finite(systems_, states_);
 }
 
 Simulation::~Simulation() = default;
@@ -318,9 +101,10 @@ void Simulation::initialise() {
       sys.mechanical_load(0.0, s.rhs_u);
       m.stiffness_u.mult(st.u, s.work_u);
       s.rhs_u.axpy(-1.0, s.work_u);
-      if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.rhs_u);
+      if (problem_.physics.thermal_expansion)
+        subtract_thermal_force(problem_, sys, s, st.theta, s.rhs_u);
       s.g_free = s.rhs_u.clone();  // g⁰ = M ü⁰ (no contact force at t = 0)
-      s.initial_mass = body_solver(problem_, sys, m.mass_u, Operator::mass);
+      s.initial_mass = body_solver(problem_, sys, m.mass_u, BodyOperator::mass);
       st.a.zero();
       s.initial_mass->solve(s.rhs_u, st.a);
     }
@@ -328,47 +112,9 @@ void Simulation::initialise() {
     forces_.emplace_back(sys.n_u());
   }
 
-  columns_ = {"step",
-              "time",
-              "coupling_iterations",
-              "qp_iterations",
-              "operator_applications",
-              "kinetic_energy",
-              "strain_energy",
-              "thermal_energy",
-              "external_work",
-              "contact_normal_force",
-              "contact_tangential_force",
-              "frictional_dissipation",
-              "heat_generated",
-              "heat_to_slave",
-              "heat_to_master",
-              "heat_conducted",
-              "max_temperature",
-              "min_temperature",
-              "active_nodes",
-              "slip_nodes",
-              "wall_seconds",
-              "friction_iterations",
-              "contact_tangential_force_sum",
-              "heat_film",
-              "heat_radiation"};
-  const char* axes = "xyz";
-  for (const auto& sys : systems_)
-    for (const auto& g : sys->reaction_groups())
-      for (int k = 0; k < problem_.dimension; ++k) columns_.push_back(g.label + "_" + axes[k]);
-
   for (int b = 0; b < n_bodies(); ++b) support_forces(b, forces_[b]);
-  fill_row(0, 0.0);
-}
-
-void Simulation::subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f) {
-  // f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with the body's scratch vectors.
-  auto& s = *solvers_[b];
-  s.dtheta.copy_from(theta);
-  s.dtheta.shift(-problem_.physics.reference_temperature);
-  systems_[b]->matrices().coupling_u_theta.mult(s.dtheta, s.work_u);
-  f.axpy(-1.0, s.work_u);
+  register_history();
+  history_.record();
 }
 
 void Simulation::static_initial_state(int b, BodyState& st) {
@@ -381,8 +127,9 @@ void Simulation::static_initial_state(int b, BodyState& st) {
   const auto& m = sys.matrices();
   auto& s = *solvers_[b];
   sys.mechanical_load(0.0, s.rhs_u);
-  if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.rhs_u);
-  body_solver(problem_, sys, m.stiffness_u, Operator::statics)->solve(s.rhs_u, st.u);
+  if (problem_.physics.thermal_expansion)
+    subtract_thermal_force(problem_, sys, s, st.theta, s.rhs_u);
+  body_solver(problem_, sys, m.stiffness_u, BodyOperator::statics)->solve(s.rhs_u, st.u);
   require_finite(st.u, "displacement", 0, 0);
 }
 
@@ -410,62 +157,12 @@ void Simulation::support_forces(int b, core::Vector& r) const {
   r.copy_from(f);
 }
 
-void Simulation::prepare_step(int b) {
-  const double tau = problem_.time.step;
-  const double t = (step_ + 1) * tau;
-  const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
-  const auto& sys = *systems_[b];
-  const auto& m = sys.matrices();
-  auto& st = states_[b];
-  auto& s = *solvers_[b];
-
-  // Right-hand sides that do not change within the fixed point.
-  sys.mechanical_load(t, s.f_u);
-  s.rhs_u_base.copy_from(s.f_u);
-  if (dynamic) {  // f_u^{k+1} of (5.3): + M(4/τ² u + 4/τ u̇ + ü) = M(4/τ² u_pred + ü)
-    s.u_pred.copy_from(st.u);
-    s.u_pred.axpy(tau, st.v);
-    s.work_u.copy_from(st.a);
-    s.work_u.axpy(4.0 / (tau * tau), s.u_pred);
-    m.mass_u.mult_add(s.work_u, s.rhs_u_base);
-  }
-  sys.thermal_load(t, s.f_theta);
-  s.rhs_theta_base.copy_from(s.f_theta);  // f_θ^{k+1} of (5.6): + M_θ θ/τ
-  s.work_theta.copy_from(st.theta);
-  s.work_theta.scale(1.0 / tau);
-  m.mass_theta.mult_add(s.work_theta, s.rhs_theta_base);
-
-  // Predictor: Newmark with ü^{k+1} = ü^k (the thesis starts from u^k; this is closer).
-  s.u_new.copy_from(st.u);
-  s.u_new.axpy(tau, st.v);
-  if (dynamic) s.u_new.axpy(0.5 * tau * tau, st.a);
-  if (!dynamic) s.u_pred.copy_from(st.u);
-  s.theta_new.copy_from(st.theta);
-}
-
-void Simulation::velocity_iterate(int b) {
-  // The velocity of the current displacement iterate: (5.2) with γ = 1/2,
-  // u̇ = u̇^k + 2/τ(u − u_pred) (dynamic; u_pred projected when contact-stabilised), or
-  // (u − u^k)/τ (quasistatic, where u_pred = u^k).
-  const double tau = problem_.time.step;
-  auto& s = *solvers_[b];
-  s.velocity.copy_from(s.u_new);
-  s.velocity.axpy(-1.0, s.u_pred);
-  if (problem_.time.scheme == Scheme::Dynamic) {
-    s.velocity.scale(2.0 / tau);
-    s.velocity.axpy(1.0, states_[b].v);
-    step_mean_rate(systems_[b]->massless_dofs(), s.u_new, states_[b].u, tau, s.velocity);
-  } else {
-    s.velocity.scale(1.0 / tau);
-  }
-}
-
 void Simulation::heat_rhs(int b) {
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   s.rhs_theta.copy_from(s.rhs_theta_base);
   if (s.heating) {  // −K_θu u̇ = θ₀ K_uθᵀ u̇ (docs/choices.md)
-    velocity_iterate(b);
+    iterate_velocity(problem_, sys, states_[b], s);
     s.work_theta.zero();
     sys.matrices().coupling_u_theta.mult_transpose(s.velocity, s.work_theta);
     s.rhs_theta.axpy(problem_.physics.reference_temperature, s.work_theta);
@@ -488,152 +185,42 @@ void Simulation::heat_step(int b, int iteration) {
                                        settings.newton_tolerance, settings.max_newton_iterations);
     total_newton_ += o.iterations;
     total_newton_inner_ += o.inner_iterations;
-    if (!o.converged)
-      throw NumericalError(
-          fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
-                      "body '{}' did not converge to {:.1e} in {} iterations (staggered "
-                      "iteration {})",
-                      sys.body().name, settings.newton_tolerance, o.iterations, iteration),
-          step_ + 1, o.iterations, o.residual);
+    require_converged(o, fmt::format("body '{}'", sys.body().name), settings.newton_tolerance,
+                      step_ + 1, iteration);
   }
   require_finite(s.theta_new, "temperature", step_ + 1, iteration);
 }
 
 void Simulation::contact_heat_step(int iteration) {
   // (4.3) for the two bodies of the contact pair, backward Euler:
-  //   (M_θ/τ + K_θ) θ + L_θγ θ = rhs + d_θγ(u̇),
-  // γ = λ_n of the current multiplier iterate (nodal pressures, ≥ 0), u̇ of the current
-  // displacement iterate. L on the left through the interface (InterfaceHeatSolver), or lagged.
+  //   (M_θ/τ + K_θ) θ + L_θγ θ = rhs + d_θγ(u̇)   (ContactHeatCoupling::heat_step),
+  // rhs with the thermoelastic term of each body.
   auto scope = timers_.scope("heat_solve");
   const auto& c = *problem_.contact;
-  const int sb = c.slave_body, mb = c.master_body;
-  auto& ss = *solvers_[sb];
-  auto& sm = *solvers_[mb];
-  heat_rhs(sb);
-  heat_rhs(mb);
-  frictional_heat_ = {};
-  conductance_.reset();
-  std::vector<double> gamma;
-  if (mortar_) {
-    const auto& rows = dual_->rows();
-    const auto lv = lambda_.read();
-    gamma.resize(static_cast<size_t>(rows.n_nodes()));
-    const double unit = traction_per_multiplier();
-    for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = unit * std::max(lv[rows.dim * k], 0.0);
-    if (static_cast<size_t>(rows.n_nodes()) != mortar_->contact_nodes().size())
-      throw Error("thermal contact: the multipliers do not match the mortar pair's nodes");
-  }
-  if (mortar_ && c.frictional_heating && c.friction > 0) {
-    // d_θγ from the multipliers: the friction work of the step λ_τ,k·(B_τ(u − u^k))_k per
-    // contact node over τ, δ_C of it to the slave through D, 1 − δ_C to the master through M;
-    // contact_bookkeeping sums the same work at u^{k+1}: heat = dissipation by construction.
-    const double tau = problem_.time.step;
-    for (auto [s, st] : {std::pair{&ss, &states_[sb]}, {&sm, &states_[mb]}}) {
-      s->velocity.copy_from(s->u_new);  // (the thermoelastic term of heat_rhs used it above)
-      s->velocity.axpy(-1.0, st->u);
-    }
-    std::vector<double> power = nonnegative_heat(
-        friction_work(dual_->rows(), lambda_.to_std(),
-                      iterate_slip_.empty() ? step_slip(dual_->rows(), ss.velocity, sm.velocity)
-                                            : iterate_slip_));
-    for (double& p : power) p *= traction_per_multiplier() / tau;
-    for (const double p : power) frictional_heat_.total += p;
-    frictional_heat_.slave = distribute(power, delta_c_, mortar_->d_matrix());
-    frictional_heat_.master = distribute(power, 1.0 - delta_c_, mortar_->m_matrix());
-    for (auto [s, d] : {std::pair{&ss, &frictional_heat_.slave}, {&sm, &frictional_heat_.master}}) {
-      auto rv = s->rhs_theta.view();
-      for (size_t a = 0; a < d->size(); ++a) rv[static_cast<PetscInt>(a)] += (*d)[a];
-    }
-  }
-  const double t = (step_ + 1) * problem_.time.step;
-  const bool conduct = mortar_ && c.heat_conduction && beta_c_ > 0;
-  if (conduct) conductance_ = mortar_->thermal_conductance(gamma, beta_c_);
-  if (conduct && conductance_treatment_ == ConductanceTreatment::Lagged) {
-    // (6.2): L θ^p of the previous iterate to the right-hand side.
-    const auto& l = *conductance_;
-    l.ss.mult(ss.theta_new, ss.work_theta);
-    l.sm.mult_add(sm.theta_new, ss.work_theta);
-    l.ms.mult(ss.theta_new, sm.work_theta);
-    l.mm.mult_add(sm.theta_new, sm.work_theta);
-    ss.rhs_theta.axpy(-1.0, ss.work_theta);
-    sm.rhs_theta.axpy(-1.0, sm.work_theta);
-  }
-  systems_[sb]->prescribe_theta(t, ss.theta_new);
-  systems_[mb]->prescribe_theta(t, sm.theta_new);
-  const bool implicit = conduct && conductance_treatment_ == ConductanceTreatment::Implicit;
-  if (implicit) {
-    if (!interface_heat_) {
-      const auto& p = problem_;
-      interface_heat_ = std::make_unique<InterfaceHeatSolver>(
-          *ss.heat, systems_[sb]->n_theta(), p.bodies[sb].mesh.boundary_nodes(c.slave_where),
-          *sm.heat, systems_[mb]->n_theta(), p.bodies[mb].mesh.boundary_nodes(c.master_where));
-    }
-    interface_heat_->set_conductance(*conductance_);
-  }
-  if (systems_[sb]->has_boundary_term() || systems_[mb]->has_boundary_term()) {
-    pair_boundary_heat(implicit, t, iteration);
-  } else if (implicit) {
-    interface_heat_->solve(ss.rhs_theta, sm.rhs_theta, ss.theta_new, sm.theta_new);
-  } else {
-    ss.heat->solve(ss.rhs_theta, ss.theta_new);
-    sm.heat->solve(sm.rhs_theta, sm.theta_new);
-  }
-  require_finite(ss.theta_new, "temperature", step_ + 1, iteration);
-  require_finite(sm.theta_new, "temperature", step_ + 1, iteration);
+  heat_rhs(c.slave_body);
+  heat_rhs(c.master_body);
+  const auto pair = heat_pair();
+  heat_coupling_.heat_step(
+      problem_, pair,
+      {mortar_.get(), dual_->rows(), lambda_, traction_per_multiplier(), iterate_slip_},
+      (step_ + 1) * problem_.time.step, step_ + 1, iteration);
+  require_finite(pair.slave.theta_new, "temperature", step_ + 1, iteration);
+  require_finite(pair.master.theta_new, "temperature", step_ + 1, iteration);
 }
 
-void Simulation::pair_boundary_heat(bool implicit, double t, int iteration) {
-  // The contact pair's heat step with radiation or an h(t) film on either body: Newton over
-  // both bodies (boundary_heat.hpp) on A = diag(A_s, A_m) (+ L_θγ when implicit), each
-  // correction preconditioned by the pair's exact linear solve.
+HeatPair Simulation::heat_pair() {
   const auto& c = *problem_.contact;
   const int sb = c.slave_body, mb = c.master_body;
-  auto& ss = *solvers_[sb];
-  auto& sm = *solvers_[mb];
-  HeatOperator op;
-  op.systems = {systems_[sb].get(), systems_[mb].get()};
-  op.apply = [&](const auto& x, const auto& y) {
-    ss.a_theta.mult(*x[0], *y[0]);
-    sm.a_theta.mult(*x[1], *y[1]);
-    if (implicit) {
-      const auto& l = *conductance_;
-      l.ss.mult_add(*x[0], *y[0]);
-      l.sm.mult_add(*x[1], *y[0]);
-      l.ms.mult_add(*x[0], *y[1]);
-      l.mm.mult_add(*x[1], *y[1]);
-    }
-  };
-  op.solve = [&](const auto& r, const auto& z) {
-    if (implicit) {
-      interface_heat_->solve(*r[0], *r[1], *z[0], *z[1]);
-    } else {
-      ss.heat->solve(*r[0], *z[0]);
-      sm.heat->solve(*r[1], *z[1]);
-    }
-  };
-  const auto& settings = problem_.solver;
-  const auto o =
-      solve_boundary_heat(op, t, {&ss.rhs_theta, &sm.rhs_theta}, {&ss.theta_new, &sm.theta_new},
-                          settings.newton_tolerance, settings.max_newton_iterations);
-  total_newton_ += o.iterations;
-  total_newton_inner_ += o.inner_iterations;
-  if (!o.converged)
-    throw NumericalError(
-        fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
-                    "the contact pair '{}'–'{}' did not converge to {:.1e} in {} iterations "
-                    "(staggered iteration {})",
-                    problem_.bodies[sb].name, problem_.bodies[mb].name, settings.newton_tolerance,
-                    o.iterations, iteration),
-        step_ + 1, o.iterations, o.residual);
+  return {*solvers_[sb], *solvers_[mb], *systems_[sb], *systems_[mb], states_[sb], states_[mb]};
 }
 
 void Simulation::mech_load(int b) {
   // The loads of (5.3) at θ^{k+1,p+1} in rhs_u, the prescribed values in u_new: what the
-  // body's solver (mech_step) or the combined contact dual (coulomb_fixed_point) solves with.
+  // body's solver (mech_step) or the combined contact dual (contact_mech_step) solves with.
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
   s.rhs_u.copy_from(s.rhs_u_base);
-  if (s.expansion) subtract_thermal_force(b, s.theta_new, s.rhs_u);
+  if (s.expansion) subtract_thermal_force(problem_, sys, s, s.theta_new, s.rhs_u);
   sys.prescribe_u((step_ + 1) * problem_.time.step, s.u_new);
 }
 
@@ -646,51 +233,10 @@ void Simulation::mech_step(int b, int iteration) {
   require_finite(s.u_new, "displacement", step_ + 1, iteration);
 }
 
-void Simulation::massless_rates(int b) {
-  // Dofs without inertia (modified mass) follow the equilibrium of each t^k: Newmark's
-  // u̇^{k+1} = 2/τ Δu − u̇^k would carry the step-to-step oscillation of a quasistatic
-  // variable (2v, 0, 2v, … after a sudden start) into the slip and the thermoelastic heat.
-  // Their rate is the step's mean Δu/τ, their acceleration zero (M ü has no entry there).
-  const auto& dofs = systems_[b]->massless_dofs();
-  auto& st = states_[b];
-  step_mean_rate(dofs, solvers_[b]->u_new, st.u, problem_.time.step, st.v);
-  auto a = st.a.view();
-  for (const PetscInt d : dofs) a[d] = 0.0;
-}
-
-void Simulation::update_state(int b) {
-  // Newmark / backward-difference updates of u̇ and ü.
-  const double tau = problem_.time.step;
-  auto& st = states_[b];
-  auto& s = *solvers_[b];
-  if (problem_.time.scheme == Scheme::Dynamic) {
-    s.work_u.copy_from(s.u_new);
-    s.work_u.axpy(-1.0, s.u_pred);  // u^{k+1} − u_pred = τ²/4 (ü^k + ü^{k+1})
-    st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
-    st.a.axpy(4.0 / (tau * tau), s.work_u);
-    st.v.axpy(2.0 / tau, s.work_u);  // u̇^{k+1} = u̇^k + 2/τ(u^{k+1} − u_pred)
-    massless_rates(b);
-  } else {
-    s.work_u.copy_from(s.u_new);
-    s.work_u.axpy(-1.0, st.u);
-    st.v.copy_from(s.work_u);
-    st.v.scale(1.0 / tau);
-  }
-  st.u.copy_from(s.u_new);
-  st.theta.copy_from(s.theta_new);
-  if (s.mass) {  // g^{k+1} = f^{k+1} − K u^{k+1} − K_uθ(θ^{k+1} − θ₀) (f_u still holds f^{k+1})
-    const auto& m = systems_[b]->matrices();
-    s.g_free.copy_from(s.f_u);
-    m.stiffness_u.mult(st.u, s.work_u);
-    s.g_free.axpy(-1.0, s.work_u);
-    if (problem_.physics.thermal_expansion) subtract_thermal_force(b, st.theta, s.g_free);
-  }
-}
-
 int Simulation::couple_body(int b) {
   const auto& sys = *systems_[b];
   auto& s = *solvers_[b];
-  prepare_step(b);
+  begin_step(problem_, sys, states_[b], s, (step_ + 1) * problem_.time.step);
   int iteration = 1;
   if (!(s.expansion && s.heating)) {
     // One-way coupling: one pass in the right order is the exact solution of the step.
@@ -722,7 +268,7 @@ int Simulation::couple_body(int b) {
                       sys.body().name, tol),
           step_ + 1, iteration - 1, change);
   }
-  update_state(b);
+  end_step(problem_, sys, states_[b], s);
   return iteration;
 }
 
@@ -731,10 +277,8 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   const auto& c = *problem_.contact;
   settings.qp.rtol = problem_.solver.qp_tolerance;
   settings.qp.max_iterations = problem_.solver.max_qp_iterations;
-  contact_rows_ = finite_rows(std::move(builder));
-  const double gs = c.conductance_slave, gm = c.conductance_master;
-  beta_c_ = gs + gm > 0 ? gs * gm / (gs + gm) : 0.0;  // (2.13)
-  delta_c_ = gs + gm > 0 ? gs / (gs + gm) : 0.5;
+  contact_rows_ = finite_rows(std::move(builder), step_);
+  heat_coupling_.set_conductances(c.conductance_slave, c.conductance_master);
   const int sb = c.slave_body, mb = c.master_body;
   const auto mode = problem_.solver.contact_dual;
   const auto why = combined_contact_dual_unavailable(problem_);
@@ -755,7 +299,7 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
       auto& sv = *solvers_[b];
       sv.mass = sv.initial_mass ? std::move(sv.initial_mass)
                                 : body_solver(problem_, *systems_[b],
-                                              systems_[b]->matrices().mass_u, Operator::mass);
+                                              systems_[b]->matrices().mass_u, BodyOperator::mass);
     }
     stabiliser_ =
         std::make_unique<DualContactSolver>(*solvers_[sb]->mass, *solvers_[mb]->mass,
@@ -812,63 +356,9 @@ void Simulation::stabilise_predictor(std::span<const double> normal_targets) {
     s.rhs_u_base.copy_from(s.f_u);
     s.rhs_u_base.axpy(1.0, s.g_free);
     systems_[b]->matrices().mass_u.mult(s.u_pred, s.work_u);
-    s.rhs_u_base.axpy(4.0 / (tau * tau), s.work_u);
+    s.rhs_u_base.axpy(newmark_mass_factor(tau), s.work_u);
     s.u_new.copy_from(s.u_pred);
   }
-}
-
-void Simulation::warm_start(const ContactRows& rows) {
-  // λ of the last step, node by node: by slave mesh node when the rows name them (the contact
-  // nodes of a mortar pair change as bodies slide), else by position while the count holds.
-  const int dim = rows.dim;
-  const std::vector<double> previous = lambda_.get() ? lambda_.to_std() : std::vector<double>{};
-  lambda_ = core::Vector(rows.n_rows());
-  auto lv = lambda_.view();
-  // The mortar pair's tangents of a node may turn from one step to the next (measured on
-  // example 06: 0.19 rad per step on average, up to π/2, the basis of the tangent plane being
-  // arbitrary): λ_τ is carried over as the traction vector Σ_l λ_τ,l t_l, in the new basis.
-  const bool turn = mortar_ && dim == 3 && !lambda_tangents_[0].empty();
-  if (!rows.nodes.empty() && !lambda_nodes_.empty()) {
-    std::map<int, size_t> where;
-    for (size_t k = 0; k < lambda_nodes_.size(); ++k) where[lambda_nodes_[k]] = k;
-    for (size_t k = 0; k < rows.nodes.size(); ++k)
-      if (const auto it = where.find(rows.nodes[k]); it != where.end()) {
-        const size_t j = it->second;
-        for (int i = 0; i < dim; ++i) lv[dim * k + i] = previous[dim * j + i];
-        if (!turn || k >= mortar_->tangents(0).size()) continue;
-        std::array<double, 3> traction{0, 0, 0};
-        for (int l = 0; l < 2; ++l)
-          for (int x = 0; x < 3; ++x)
-            traction[x] += previous[dim * j + 1 + l] * lambda_tangents_[l][j][x];
-        for (int l = 0; l < 2; ++l) {
-          const auto& t = mortar_->tangents(l)[k];
-          lv[dim * k + 1 + l] = traction[0] * t[0] + traction[1] * t[1] + traction[2] * t[2];
-        }
-      }
-  } else if (static_cast<PetscInt>(previous.size()) == rows.n_rows()) {
-    for (PetscInt i = 0; i < rows.n_rows(); ++i) lv[i] = previous[i];
-  }
-  lambda_nodes_ = rows.nodes;
-  if (mortar_ && dim == 3)
-    for (int l = 0; l < 2; ++l) lambda_tangents_[l] = mortar_->tangents(l);
-}
-
-std::vector<double> Simulation::release_floor(const core::Vector& lambda_k, int dim) {
-  // With the modified mass the contact faces carry no inertia, so their rows are in
-  // equilibrium at every t^k and the trapezoidal rule's energy changes by the work of the
-  // mean contact force, ½(λ^k + λ^{k+1})·(g^{k+1} − g^k) with g the gap. Complementarity at
-  // t^{k+1} alone (λ ≥ 0, g ≥ 0, λg = 0) leaves ½λ^k g^{k+1} > 0 where a node releases: the
-  // energy grew by O(τ) at each release (+4.1 % through one impact at τ = 1e-5). Allowing
-  // λ_n^{k+1} ≥ −λ_n^k at a node that carried force at t^k (Laursen–Chawla's persistency,
-  // only at release) makes that term vanish: the node either stays closed (g^{k+1} = 0, no
-  // work) or opens with zero mean force. Where λ_n^k ≤ 0 the bound is λ_n ≥ 0, so a node
-  // opens with a negative force for at most one step, and an impact still dissipates
-  // −½λ^{k+1}g^k ≤ 0. The bound tends to 0 with the force at release: consistent in τ.
-  const auto lv = lambda_k.read();
-  std::vector<double> floor(static_cast<size_t>(lambda_k.size() / dim));
-  for (size_t k = 0; k < floor.size(); ++k)
-    floor[k] = -std::max(lv[dim * static_cast<PetscInt>(k)], 0.0);
-  return floor;
 }
 
 double Simulation::traction_per_multiplier() const {
@@ -879,66 +369,8 @@ std::vector<double> Simulation::contact_multipliers() const {
   return lambda_.get() ? lambda_.to_std() : std::vector<double>{};
 }
 
-// The Tresca → Coulomb fixed point γ = λ_n(γ) of (6.3) with Aitken's Δ² (Irons–Tuck, vector
-// form as in Küttler & Wall 2008): γ ← max(γ + ω r, 0), r = λ_n(γ) − γ, ω from the last two
-// residuals (ω = 1 at the first update: the plain update of 6.3).
-struct Simulation::TrescaIteration {
-  std::vector<double> gamma, bound, residual, residual_prev;
-  double omega = 1.0;
-  double last = 1.0;  // ‖λ_n(γ) − γ‖/‖λ‖ of the last update (1 before the first of a step)
-  bool converged = false;      // the last update met the tolerance, its QP solved to qp_tolerance
-  bool exact_qps = false;      // the QPs of the rest of the step to qp_tolerance
-  bool cut_short = false;      // stop after a 100-fold fall (θ, hence u_free, moves next)
-  bool relax = false;          // Aitken on (friction > 0 and acceleration on)
-  bool defer = false;          // u formed after convergence (only B u inside, see couple_contact)
-  std::vector<double> bu_old;  // B u^k, when deferred
-
-  // γ = λ_n of the current multipliers, the relaxation forgotten.
-  void restart(const core::Vector& lambda, int dim, double friction) {
-    const auto lv = lambda.read();
-    const auto nc = static_cast<size_t>(lambda.size() / dim);
-    gamma.resize(nc);
-    bound.resize(nc);
-    residual.resize(nc);
-    residual_prev.clear();
-    omega = 1.0;
-    for (size_t k = 0; k < nc; ++k) {
-      gamma[k] = std::max(lv[dim * static_cast<PetscInt>(k)], 0.0);
-      bound[k] = friction * gamma[k];
-    }
-  }
-
-  // One update from λ(γ); returns ‖r‖.
-  double update(const core::Vector& lambda, int dim, double friction) {
-    const auto lv = lambda.read();
-    const size_t nc = gamma.size();
-    for (size_t k = 0; k < nc; ++k)
-      residual[k] = std::max(lv[dim * static_cast<PetscInt>(k)], 0.0) - gamma[k];
-    if (relax && !residual_prev.empty()) {
-      double num = 0, den = 0;
-      for (size_t k = 0; k < nc; ++k) {
-        const double dr = residual[k] - residual_prev[k];
-        num += residual_prev[k] * dr;
-        den += dr * dr;
-      }
-      // kept near the plain step: once λ is at the QP's accuracy the residuals are noise and
-      // so would be ω
-      if (den > 0) omega = std::clamp(-omega * num / den, 0.5, 1.5);
-    }
-    const double w = relax ? omega : 1.0;
-    double norm = 0;
-    for (size_t k = 0; k < nc; ++k) {
-      norm += residual[k] * residual[k];
-      gamma[k] = std::max(gamma[k] + w * residual[k], 0.0);
-      bound[k] = friction * gamma[k];
-    }
-    residual_prev = residual;
-    return std::sqrt(norm);
-  }
-};
-
-double Simulation::coulomb_fixed_point(TrescaIteration& t, std::span<const double> targets,
-                                       int outer, int max_updates) {
+double Simulation::contact_mech_step(TrescaIteration& t, std::span<const double> targets, int outer,
+                                     int max_updates) {
   // The mechanical half of (6.3) at the θ of this iteration: u_free is fixed, so each update
   // of γ costs one QP with the same F and no solve. Nested, the heat–mechanics iterations
   // are left with the thermal coupling alone (docs/choices.md, "friction loop").
@@ -946,29 +378,18 @@ double Simulation::coulomb_fixed_point(TrescaIteration& t, std::span<const doubl
   const auto& c = *problem_.contact;
   auto& ss = *solvers_[c.slave_body];
   auto& sm = *solvers_[c.master_body];
-  const int dim = dual_->rows().dim;
-  const double tol = problem_.solver.coupling_tolerance;
   const int step = step_ + 1;
   ss.u_prev.copy_from(ss.u_new);  // u_free, the QP's data
   sm.u_prev.copy_from(sm.u_new);
-  double residual = 0;
-  const double qp_tol = problem_.solver.qp_tolerance;
-  // Inexact where it cannot matter (forcing terms as in inexact Newton methods):
-  // - a QP to 1e-2 of the last fixed-point residual (clamped to [qp_tolerance, 1e-3]); a
-  //   residual that rises shows a loose QP's λ passed for converged (seen on bench/contact's
-  //   long quasistatic slides: the loop cycled), and the step's QPs are exact from then on;
-  // - with thermal expansion, while the residual is above the tolerance, the loop at this θ
-  //   stops once its residual fell 100-fold: θ moves in the next heat step, and with it
-  //   u_free and λ (measured on example 06: λ_n(γ) − γ jumps back to ~2e-3 of ‖λ‖ at the next
-  //   iteration whatever the accuracy reached before).
-  // The outer loop stops only on an update that met the tolerance with a QP to the QP
-  // tolerance, so the fixed point it returns is that of the exact scheme.
-  constexpr double qp_forcing = 1e-2, loop_forcing = 1e-2;
-  const bool friction = c.friction > 0;
-  double first = -1;
-  for (int update = 1; update <= max_updates; ++update) {
-    const double rtol =
-        friction && !t.exact_qps ? std::clamp(qp_forcing * t.last, qp_tol, 1e-3) : qp_tol;
+  const CoulombFixedPoint p{.dim = dual_->rows().dim,
+                            .friction = c.friction,
+                            .tolerance = problem_.solver.coupling_tolerance,
+                            .qp_tolerance = problem_.solver.qp_tolerance,
+                            .max_updates = max_updates,
+                            .step = step,
+                            .outer = outer};
+  // The QP at the Tresca bound t.bound: the contact enforcement.
+  const double residual = coulomb_fixed_point(t, lambda_, p, [&](double rtol) {
     if (combined_) {
       // The whole mechanical step at this Tresca bound: one TFETI QP over the gluing, Dirichlet
       // and contact multipliers (6.4), SMALBE warm-started from the last one's λ and μ; u
@@ -999,25 +420,7 @@ double Simulation::coulomb_fixed_point(TrescaIteration& t, std::span<const doubl
                              step, outer, r.projected_gradient);
     }
     require_finite(lambda_, "contact multiplier", step, outer);
-    t.converged = rtol <= qp_tol;
-    if (!friction) break;  // γ plays no part
-    residual = t.update(lambda_, dim, c.friction);
-    const double ln = lambda_.norm();
-    const double before = t.last;
-    t.last = ln > 0 ? residual / ln : residual;
-    // A residual that rises shows a loose QP's λ had passed for converged: exact QPs from here.
-    if (update > 1 && t.last > before) t.exact_qps = true;
-    if (first < 0) first = t.last;
-    t.converged = t.last <= tol && rtol <= qp_tol;
-    if (t.converged) break;
-    if (t.cut_short && t.last > tol && t.last <= loop_forcing * first) break;
-    if (update == max_updates && max_updates > 1)
-      throw NumericalError(
-          fmt::format("the Tresca → Coulomb fixed point γ = λ_n (6.3) did not converge to {:.1e} "
-                      "in {} updates",
-                      tol, max_updates),
-          step, outer, residual);
-  }
+  });
   if (combined_) {  // u came with λ
     require_finite(ss.u_new, "displacement", step, outer);
     require_finite(sm.u_new, "displacement", step, outer);
@@ -1063,8 +466,8 @@ int Simulation::couple_contact() {
   auto& sm = *solvers_[mb];
   const auto& sts = states_[sb];
   const auto& stm = states_[mb];
-  prepare_step(sb);
-  prepare_step(mb);
+  for (const int b : {sb, mb})
+    begin_step(problem_, *systems_[b], states_[b], *solvers_[b], (step_ + 1) * problem_.time.step);
   contact_stats_.qp_iterations = 0;
   contact_stats_.operator_applications = 0;
   contact_stats_.friction_iterations = 0;
@@ -1084,7 +487,7 @@ int Simulation::couple_contact() {
   }
   const auto& rows = dual_->rows();
   const int dim = rows.dim;
-  warm_start(rows);
+  transfer_.warm_start(rows, mortar_.get(), lambda_);  // λ of the last step on these rows
   if (dynamic && problem_.time.contact_scheme == ContactScheme::ModifiedMass)
     dual_->set_normal_floor(release_floor(lambda_, dim));
   if (stabiliser_) {
@@ -1135,7 +538,7 @@ int Simulation::couple_contact() {
     // Coulomb solution to the tolerance) stays exact, and so is this heat step with it, unless
     // the conductance is lagged (then θ itself iterates).
     if (one_way && tresca.converged &&
-        (conductance_treatment_ != ConductanceTreatment::Lagged || dth <= tol * thn)) {
+        (heat_coupling_.treatment() != ConductanceTreatment::Lagged || dth <= tol * thn)) {
       change = thn > 0 ? dth / thn : dth;
       break;
     }
@@ -1150,7 +553,7 @@ int Simulation::couple_contact() {
     // Nested: γ = λ_n(γ) to convergence at this θ, Aitken restarted (the map changed with θ);
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.
     if (nested || tresca.gamma.empty()) tresca.restart(lambda_, dim, c.friction);
-    const double fixed_residual = coulomb_fixed_point(
+    const double fixed_residual = contact_mech_step(
         tresca, targets, iteration, nested ? problem_.solver.max_coupling_iterations : 1);
     lambda_prev.axpy(-1.0, lambda_);
     const double dl = lambda_prev.norm(), ln = lambda_.norm();
@@ -1183,16 +586,8 @@ int Simulation::couple_contact() {
   slip_ = step_slip(rows, ss.work_u, sm.work_u);
   // Heat through the interface in this step, with the L and d of the last heat step (those
   // that produced θ^{k+1}): then the thermal energy balance of the pair closes to round-off.
-  heat_.generated += tau * frictional_heat_.total;
-  for (const double q : frictional_heat_.slave) heat_.to_slave += tau * q;
-  for (const double q : frictional_heat_.master) heat_.to_master += tau * q;
-  if (conductance_) {  // 1ᵀ(L_ss θ_s + L_sm θ_m) = β_C ∫ γ (θ_s − θ_m) dS, slave → master
-    conductance_->ss.mult(ss.theta_new, ss.work_theta);
-    conductance_->sm.mult_add(sm.theta_new, ss.work_theta);
-    heat_.conducted += tau * ss.work_theta.sum();
-  }
-  update_state(sb);
-  update_state(mb);
+  heat_coupling_.account_step(heat_pair(), tau);
+  for (const int b : {sb, mb}) end_step(problem_, *systems_[b], states_[b], *solvers_[b]);
   for (int b = 0; b < n_bodies(); ++b)
     if (b != sb && b != mb) couple_body(b);
   return iteration;
@@ -1200,56 +595,16 @@ int Simulation::couple_contact() {
 
 void Simulation::contact_bookkeeping() {
   const auto& rows = dual_->rows();
-  const int dim = rows.dim;
-  const double friction = problem_.contact->friction;
   const auto l = lambda_.to_std();
-  auto& cs = contact_stats_;
-  cs.normal_force = cs.tangential_force = cs.tangential_force_sum = 0;
-  cs.active_nodes = cs.slip_nodes = 0;
   const double unit = traction_per_multiplier();
-  for (const double w : friction_work(rows, l, slip_)) cs.dissipation += unit * w;
-  // The resultant Σ_k w_k Σ_l λ_τl,k t_l,k in space (the mortar pair's tangents; rows without
-  // them have one tangent frame for all nodes, as the node-to-node rows of flat faces).
-  const bool frames = mortar_ && mortar_->tangents(0).size() == static_cast<size_t>(rows.n_nodes());
-  std::array<double, 3> resultant{0, 0, 0};
-  for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
-    const double w = rows.weights[k];
-    const double ln = l[dim * k];
-    double lt2 = 0;
-    for (int i = 1; i < dim; ++i) {
-      const double li = l[dim * k + i];
-      lt2 += li * li;
-      for (int x = 0; x < 3; ++x)
-        resultant[x] += w * li * (frames ? mortar_->tangents(i - 1)[k][x] : (x == i - 1 ? 1 : 0));
-    }
-    const double lt = std::sqrt(lt2);
-    cs.normal_force += unit * w * ln;
-    cs.tangential_force_sum += unit * w * lt;
-    if (ln > 0) {
-      ++cs.active_nodes;
-      if (friction > 0 && lt >= friction * ln * (1 - 1e-6)) ++cs.slip_nodes;
-    }
-  }
-  cs.tangential_force = unit * std::hypot(resultant[0], resultant[1], resultant[2]);
-  if (mortar_) {  // q = β_C λ_n [θ] per contact node, θ_m at the node: (Mθ_m)_k / (D1)_k
+  contact_stats_.record_step(rows, l, slip_, unit, problem_.contact->friction, mortar_.get());
+  if (mortar_) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
     const auto& c = *problem_.contact;
     heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
-    if (c.heat_conduction && beta_c_ > 0 &&
-        mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {
-      const auto& st_s = states_[c.slave_body];
-      const auto& st_m = states_[c.master_body];
-      core::Vector ones(systems_[c.slave_body]->n_theta()), dsum(rows.n_nodes()),
-          mth(rows.n_nodes());
-      ones.fill(1.0);
-      mortar_->d_matrix().mult(ones, dsum);
-      mortar_->m_matrix().mult(st_m.theta, mth);
-      const auto ds = dsum.to_std(), mt = mth.to_std(), ts = st_s.theta.to_std();
-      for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
-        if (ds[k] <= 0) continue;
-        const double jump = ts[mortar_->contact_nodes()[k]] - mt[k] / ds[k];
-        heat_flux_[k] = beta_c_ * unit * std::max(l[dim * k], 0.0) * jump;
-      }
-    }
+    if (c.heat_conduction && heat_coupling_.beta_c() > 0 &&
+        mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes()))
+      heat_flux_ = conduction_flux(*mortar_, rows, l, heat_coupling_.beta_c() * unit,
+                                   states_[c.slave_body].theta, states_[c.master_body].theta);
   }
 }
 
@@ -1294,7 +649,8 @@ void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u,
   }
   total_coupling_ += coupling;
   last_coupling_ = coupling;
-  fill_row(coupling, wall);
+  last_wall_ = wall;
+  history_.record();
 }
 
 double Simulation::kinetic_energy() const {
@@ -1337,218 +693,48 @@ double Simulation::thermal_free_energy() const {
   return e;
 }
 
-void Simulation::fill_row(int coupling, double wall) {
-  double tmax = -INFINITY, tmin = INFINITY;
-  for (const auto& st : states_) {
-    PetscReal v = 0;
-    TC_PETSC(VecMax(st.theta.get(), nullptr, &v));
-    tmax = std::max(tmax, static_cast<double>(v));
-    TC_PETSC(VecMin(st.theta.get(), nullptr, &v));
-    tmin = std::min(tmin, static_cast<double>(v));
-  }
-  row_ = {static_cast<double>(step_),
-          time(),
-          static_cast<double>(coupling),
-          static_cast<double>(contact_stats_.qp_iterations),
-          static_cast<double>(contact_stats_.operator_applications),
-          kinetic_energy(),
-          strain_energy(),
-          thermal_energy(),
-          external_work_,
-          contact_stats_.normal_force,
-          contact_stats_.tangential_force,
-          contact_stats_.dissipation,
-          heat_.generated,
-          heat_.to_slave,
-          heat_.to_master,
-          heat_.conducted,
-          tmax,
-          tmin,
-          static_cast<double>(contact_stats_.active_nodes),
-          static_cast<double>(contact_stats_.slip_nodes),
-          wall,
-          static_cast<double>(contact_stats_.friction_iterations),
-          contact_stats_.tangential_force_sum,
-          boundary_heat_.film,
-          boundary_heat_.radiation};
-  for (int b = 0; b < n_bodies(); ++b) {
-    const auto f = forces_[b].to_std();
+void Simulation::register_history() {
+  // The columns of history.csv in their order (docs/case-format.md), each with its quantity.
+  auto& h = history_;
+  const auto& cs = contact_stats_;
+  const auto count = [](const int& n) { return [&n] { return static_cast<double>(n); }; };
+  const auto value = [](const double& x) { return [&x] { return x; }; };
+  h.add("step", count(step_));
+  h.add("time", [this] { return time(); });
+  h.add("coupling_iterations", count(last_coupling_));
+  h.add("qp_iterations", count(cs.qp_iterations));
+  h.add("operator_applications", count(cs.operator_applications));
+  h.add("kinetic_energy", [this] { return kinetic_energy(); });
+  h.add("strain_energy", [this] { return strain_energy(); });
+  h.add("thermal_energy", [this] { return thermal_energy(); });
+  h.add("external_work", value(external_work_));
+  h.add("contact_normal_force", value(cs.normal_force));
+  h.add("contact_tangential_force", value(cs.tangential_force));
+  h.add("frictional_dissipation", value(cs.dissipation));
+  h.add("heat_generated", value(heat_coupling_.heat().generated));
+  h.add("heat_to_slave", value(heat_coupling_.heat().to_slave));
+  h.add("heat_to_master", value(heat_coupling_.heat().to_master));
+  h.add("heat_conducted", value(heat_coupling_.heat().conducted));
+  h.add("max_temperature", [this] { return extreme_temperature(states_, true); });
+  h.add("min_temperature", [this] { return extreme_temperature(states_, false); });
+  h.add("active_nodes", count(cs.active_nodes));
+  h.add("slip_nodes", count(cs.slip_nodes));
+  h.add("wall_seconds", value(last_wall_));
+  h.add("friction_iterations", count(cs.friction_iterations));
+  h.add("contact_tangential_force_sum", value(cs.tangential_force_sum));
+  h.add("heat_film", value(boundary_heat_.film));
+  h.add("heat_radiation", value(boundary_heat_.radiation));
+  // The force on each reaction group per axis, Σ F_d over its dofs (F: support_forces).
+  const char* axes = "xyz";
+  for (int b = 0; b < n_bodies(); ++b)
     for (const auto& g : systems_[b]->reaction_groups())
-      for (int k = 0; k < problem_.dimension; ++k) {
-        double sum = 0;
-        for (const PetscInt d : g.dofs[k]) sum += f[d];
-        row_.push_back(sum);
-      }
-  }
-}
-
-double Simulation::history(const std::string& column) const {
-  const auto it = std::find(columns_.begin(), columns_.end(), column);
-  if (it == columns_.end()) throw Error("no history column named '" + column + "'");
-  return row_[it - columns_.begin()];
-}
-
-void Simulation::check_setup_finite() const {
-  // NaN/Inf out of the assembly (material values at the ends of double's range) or the initial
-  // state: refused before the first step, where they would otherwise surface as a failed solve.
-  auto finite = [](const core::SparseMatrix& m) {
-    PetscReal norm = 0;
-    TC_PETSC(MatNorm(m.get(), NORM_FROBENIUS, &norm));
-    return std::isfinite(norm);
-  };
-  for (int b = 0; b < n_bodies(); ++b) {
-    const auto& m = systems_[b]->matrices();
-    const auto& name = systems_[b]->body().name;
-    for (const auto& [matrix, what] : {std::pair{&m.mass_u, "M_u"},
-                                       {&m.stiffness_u, "K_u"},
-                                       {&m.coupling_u_theta, "K_uθ"},
-                                       {&m.mass_theta, "M_θ"},
-                                       {&m.stiffness_theta, "K_θ"}})
-      if (!finite(*matrix))
-        throw NumericalError(
-            fmt::format("assembly: {} of body '{}' is not finite (NaN or Inf)", what, name), 0, 0,
-            std::nan(""));
-    const auto& st = states_[b];
-    for (const auto& [v, what] :
-         {std::pair{&st.u, "u"}, {&st.v, "u̇"}, {&st.a, "ü"}, {&st.theta, "θ"}})
-      if (!v->all_finite())
-        throw NumericalError(
-            fmt::format("initial state: {} of body '{}' is not finite (NaN or Inf)", what, name), 0,
-            0, std::nan(""));
-  }
-}
-
-ContactRowsBuilder Simulation::finite_rows(ContactRowsBuilder builder) const {
-  // The contact phase: the rows of the mortar pair (or of a test's builder) in the configuration
-  // of t^k. A NaN there would reach the QP as a NaN operator and be reported as a failure to
-  // converge; named here instead.
-  return [this, builder = std::move(builder)](const core::Vector& us, const core::Vector& um) {
-    // A NaN position makes the mortar search find no overlap, not a NaN: checked before.
-    if (!us.all_finite() || !um.all_finite())
-      throw NumericalError(
-          "contact: the configuration of t^k (u of the contact pair) is not finite (NaN or Inf)",
-          step_ + 1, 0, std::nan(""));
-    auto rows = builder(us, um);
-    PetscReal ns = 0, nm = 0;
-    if (rows.n_rows() > 0) {
-      TC_PETSC(MatNorm(rows.slave.get(), NORM_FROBENIUS, &ns));
-      TC_PETSC(MatNorm(rows.master.get(), NORM_FROBENIUS, &nm));
-    }
-    const auto finite = [](const std::vector<double>& x) {
-      return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
-    };
-    if (!finite(rows.gap) || !finite(rows.weights) || !std::isfinite(ns) || !std::isfinite(nm))
-      throw NumericalError(
-          "contact: the mortar rows (B, gap, weights) in the configuration of t^k are not finite "
-          "(NaN or Inf)",
-          step_ + 1, 0, std::nan(""));
-    return rows;
-  };
-}
-
-Checkpoint Simulation::checkpoint() const {
-  Checkpoint c;
-  c.step = step_;
-  for (int b = 0; b < n_bodies(); ++b) {
-    const auto& st = states_[b];
-    const auto& g = solvers_[b]->g_free;
-    c.bodies.push_back({st.u.to_std(), st.v.to_std(), st.a.to_std(), st.theta.to_std(),
-                        forces_[b].to_std(), g.get() ? g.to_std() : std::vector<double>{}});
-  }
-  c.lambda = contact_multipliers();
-  c.lambda_nodes = lambda_nodes_;
-  for (const auto& tl : lambda_tangents_)
-    for (const auto& t : tl) c.lambda_tangents.insert(c.lambda_tangents.end(), t.begin(), t.end());
-  const DualContactSolver* duals[2] = {dual_.get(), stabiliser_.get()};
-  for (int d = 0; d < 2; ++d)
-    for (int i = 0; d < 2 && duals[d] && i < 2; ++i) {
-      const auto& comp = duals[d]->compliance(i);
-      c.compliance[4 * d + 2 * i].assign(comp.dofs().begin(), comp.dofs().end());
-      c.compliance[4 * d + 2 * i + 1].assign(comp.chunks().begin(), comp.chunks().end());
-    }
-  c.slip = slip_;
-  c.heat_flux = heat_flux_;
-  c.row = row_;
-  c.external_work = external_work_;
-  c.total_coupling = total_coupling_;
-  c.total_qp = total_qp_;
-  c.total_applications = total_applications_;
-  c.last_coupling = last_coupling_;
-  c.feti_body_lambda.assign(feti_state_.body.data(),
-                            feti_state_.body.data() + feti_state_.body.size());
-  c.feti_mu.assign(feti_state_.mu.data(), feti_state_.mu.data() + feti_state_.mu.size());
-  c.total_smalbe_outer = total_smalbe_outer_;
-  c.contact = contact_stats_;
-  c.heat = heat_;
-  c.boundary_heat = boundary_heat_;
-  return c;
-}
-
-void Simulation::restore(const Checkpoint& c) {
-  // Copies into the existing vectors (their layout stays): the same bits as the run that wrote
-  // the checkpoint, so the steps after it repeat that run's arithmetic exactly.
-  auto fill = [](core::Vector& v, const std::vector<double>& x, const char* what) {
-    if (!v.get() && x.empty()) return;
-    if (!v.get() || static_cast<size_t>(v.size()) != x.size())
-      throw Error(fmt::format("checkpoint: {} has {} entries, this problem {}", what, x.size(),
-                              v.get() ? v.size() : 0));
-    auto view = v.view();
-    std::copy(x.begin(), x.end(), view.span().begin());
-  };
-  if (static_cast<int>(c.bodies.size()) != n_bodies())
-    throw Error(fmt::format("checkpoint: {} bodies, this problem {}", c.bodies.size(), n_bodies()));
-  if (c.step < 0 || c.step > problem_.time.n_steps())
-    throw Error(fmt::format("checkpoint: step {} outside 0…{}", c.step, problem_.time.n_steps()));
-  if (c.row.size() != columns_.size())
-    throw Error(fmt::format("checkpoint: {} history columns, this problem {}", c.row.size(),
-                            columns_.size()));
-  for (int b = 0; b < n_bodies(); ++b) {
-    auto& st = states_[b];
-    const auto& cb = c.bodies[b];
-    fill(st.u, cb.u, "u");
-    fill(st.v, cb.v, "u̇");
-    fill(st.a, cb.a, "ü");
-    fill(st.theta, cb.theta, "θ");
-    fill(forces_[b], cb.force, "the force");
-    fill(solvers_[b]->g_free, cb.g_free, "g");
-  }
-  if (c.lambda.size() != c.lambda_nodes.size() * static_cast<size_t>(problem_.dimension) &&
-      !c.lambda_nodes.empty())
-    throw Error("checkpoint: the multipliers do not match their contact nodes");
-  lambda_ = c.lambda.empty() ? core::Vector() : core::Vector::from(c.lambda);
-  lambda_nodes_ = c.lambda_nodes;
-  DualContactSolver* duals[2] = {dual_.get(), stabiliser_.get()};
-  for (int d = 0; d < 2; ++d)
-    for (int i = 0; duals[d] && i < 2; ++i) {
-      const auto& dofs = c.compliance[4 * d + 2 * i];
-      const auto& chunks = c.compliance[4 * d + 2 * i + 1];
-      duals[d]->compliance(i).replay(std::vector<PetscInt>(dofs.begin(), dofs.end()),
-                                     std::vector<PetscInt>(chunks.begin(), chunks.end()));
-    }
-  const size_t per_basis = c.lambda_tangents.size() / 6;  // nodes with two tangents of 3
-  for (int l = 0; l < 2; ++l) {
-    lambda_tangents_[l].resize(per_basis);
-    for (size_t k = 0; k < per_basis; ++k)
-      for (int x = 0; x < 3; ++x)
-        lambda_tangents_[l][k][x] = c.lambda_tangents[3 * (l * per_basis + k) + x];
-  }
-  slip_ = c.slip;
-  heat_flux_ = c.heat_flux;
-  row_ = c.row;
-  step_ = c.step;
-  external_work_ = c.external_work;
-  total_coupling_ = c.total_coupling;
-  total_qp_ = c.total_qp;
-  total_applications_ = c.total_applications;
-  last_coupling_ = c.last_coupling;
-  feti_state_.body = Eigen::Map<const Eigen::VectorXd>(
-      c.feti_body_lambda.data(), static_cast<Eigen::Index>(c.feti_body_lambda.size()));
-  feti_state_.mu = Eigen::Map<const Eigen::VectorXd>(c.feti_mu.data(),
-                                                     static_cast<Eigen::Index>(c.feti_mu.size()));
-  total_smalbe_outer_ = c.total_smalbe_outer;
-  contact_stats_ = c.contact;
-  heat_ = c.heat;
-  boundary_heat_ = c.boundary_heat;
+      for (int k = 0; k < problem_.dimension; ++k)
+        h.add(g.label + "_" + axes[k], [this, b, &dofs = g.dofs[k]] {
+          const auto f = forces_[b].read();
+          double sum = 0;
+          for (const PetscInt d : dofs) sum += f[d];
+          return sum;
+        });
 }
 
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {

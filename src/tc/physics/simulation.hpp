@@ -18,17 +18,20 @@
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/core/timer.hpp"
 #include "tc/feti/contact_feti.hpp"
+#include "tc/physics/body_field.hpp"
 #include "tc/physics/body_system.hpp"
+#include "tc/physics/checkpoint.hpp"
 #include "tc/physics/constrained_solver.hpp"
+#include "tc/physics/contact_heat_coupling.hpp"
 #include "tc/physics/dual_contact.hpp"
+#include "tc/physics/finite_checks.hpp"
+#include "tc/physics/friction_fixed_point.hpp"
+#include "tc/physics/history.hpp"
+#include "tc/physics/ledger.hpp"
+#include "tc/physics/multiplier_transfer.hpp"
 #include "tc/physics/thermal_contact.hpp"
 
 namespace tc::physics {
-
-/// Displacement, velocity, acceleration and temperature of one body at the current time.
-struct BodyState {
-  core::Vector u, v, a, theta;
-};
 
 struct RunStatus {
   bool completed = false;
@@ -38,79 +41,6 @@ struct RunStatus {
 };
 
 class Simulation;
-
-/// The contact rows of a step (B_s, B_m, gap, nodal weights) from the displacements of the
-/// slave and master at t^k: the configuration in which the constraints are linearised.
-using ContactRowsBuilder =
-    std::function<ContactRows(const core::Vector& u_slave, const core::Vector& u_master)>;
-
-/// What the contact did in the last step (history.csv columns).
-struct ContactStatistics {
-  int qp_iterations = 0;
-  int operator_applications = 0;
-  int friction_iterations = 0;      // QPs of the step: Tresca → Coulomb updates γ = λ_n (6.3)
-  double normal_force = 0;          // Σ_k w_k λ_n,k
-  double tangential_force = 0;      // ‖Σ_k w_k λ_τ,k‖: the resultant's magnitude
-  double tangential_force_sum = 0;  // Σ_k w_k ‖λ_τ,k‖
-  double dissipation = 0;           // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
-  int active_nodes = 0;             // λ_n,k > 0
-  int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − 1e-6))
-};
-
-/// How the contact conductance L_θγ of §4.4 enters the heat step of the fixed point (6.3).
-enum class ConductanceTreatment {
-  Implicit,  // L θ^{p+1} on the left, solved exactly through the interface (default)
-  Lagged     // the thesis' (6.2): L θ^p of the previous iterate on the right-hand side
-};
-
-/// Heat through the contact interface, cumulative from t = 0 [J] (history.csv):
-///  generated = Σ_steps λ_τᵀB_τΔu (the friction work of the step, the discrete τ∫𝔉λ_n‖[u̇]_τ‖dS;
-///  = frictional_dissipation), to_slave / to_master its δ_C / 1 − δ_C shares,
-///  conducted = Σ_steps τ β_C ∫ λ_n (θ_s − θ_m) dS: the heat that crossed by conductance from
-///  the slave to the master (negative when it went the other way), θ at t^{k+1}. With the
-///  contact-stabilised Newmark λ/2 is the traction (simulation.cpp, traction_per_multiplier):
-///  these sums, the conductance and the history's forces use it.
-struct ContactHeat {
-  double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
-};
-
-/// Heat lost through the film and the radiation boundaries of all bodies, cumulative from
-/// t = 0 [J] (history.csv heat_film, heat_radiation): Σ_steps τ Σ h∫(θ − θ∞)dS and
-/// Σ_steps τ Σ ∫εσ(θ⁴ − θ∞⁴)dS at t^{k+1} (negative when the body gained heat).
-struct BoundaryHeat {
-  double film = 0, radiation = 0;
-};
-
-/// Everything the steps after `step` depend on, for a restart (io/checkpoint.hpp writes it):
-/// the state of every body, the multipliers and their slave nodes (the next step's warm
-/// start), and the cumulative ledger behind the history.csv columns.
-struct Checkpoint {
-  struct Body {
-    std::vector<double> u, v, a, theta;
-    std::vector<double> force;  // f_ext + reactions at t^step (trapezoidal external work)
-    std::vector<double> g_free;  // f − K u − K_uθ(θ − θ₀) (dynamic runs; contact-stabilised)
-  };
-  int step = 0;
-  std::vector<Body> bodies;
-  std::vector<double> lambda;           // node-major multipliers of the last step
-  std::vector<int> lambda_nodes;        // slave mesh node of each contact node of lambda
-  std::vector<double> lambda_tangents;  // 3D mortar: t_1 then t_2 of each node, xyz (warm start)
-  // The compliance records (DofCompliance::dofs, chunks) of the contact solver's slave and
-  // master, then of the stabiliser's: replayed on restore, so F has the same bits.
-  std::array<std::vector<int>, 8> compliance;
-  std::vector<double> slip, heat_flux;
-  std::vector<double> row;  // the history row of `step`
-  double external_work = 0;
-  long total_coupling = 0, total_qp = 0, total_applications = 0;
-  int last_coupling = 0;
-  // The combined contact dual's warm start (gluing and Dirichlet λ, μ) and SMALBE's outer
-  // iterations so far (empty and 0 with the nested dual).
-  std::vector<double> feti_body_lambda, feti_mu;
-  long total_smalbe_outer = 0;
-  ContactStatistics contact;
-  ContactHeat heat;
-  BoundaryHeat boundary_heat;
-};
 
 /// Receives the run's progress: output writers, progress lines, tests.
 class Observer {
@@ -153,20 +83,24 @@ class Simulation {
   /// SMALBE's outer iterations so far (combined contact dual; 0 otherwise).
   [[nodiscard]] long total_smalbe_outer_iterations() const { return total_smalbe_outer_; }
   /// Implicit (default) or lagged conductance; for measurements (docs/choices.md).
-  void set_conductance_treatment(ConductanceTreatment t) { conductance_treatment_ = t; }
-  [[nodiscard]] const ContactHeat& contact_heat() const { return heat_; }
+  void set_conductance_treatment(ConductanceTreatment t) { heat_coupling_.set_treatment(t); }
+  [[nodiscard]] const ContactHeat& contact_heat() const { return heat_coupling_.heat(); }
   [[nodiscard]] const BoundaryHeat& boundary_heat() const { return boundary_heat_; }
   /// Newton corrections and their conjugate-gradient iterations so far (heat steps with
   /// radiation or a film with h(t); boundary_heat.hpp).
-  [[nodiscard]] long total_newton_iterations() const { return total_newton_; }
-  [[nodiscard]] long total_newton_inner_iterations() const { return total_newton_inner_; }
+  [[nodiscard]] long total_newton_iterations() const {
+    return total_newton_ + heat_coupling_.newton_iterations();
+  }
+  [[nodiscard]] long total_newton_inner_iterations() const {
+    return total_newton_inner_ + heat_coupling_.newton_inner_iterations();
+  }
   /// Aitken relaxation of the Tresca → Coulomb fixed point (default on; docs/choices.md).
   void set_coupling_acceleration(bool on) { accelerate_ = on; }
   /// Overrides problem().solver.friction_loop (comparisons).
   void set_friction_loop(FrictionLoop loop) { friction_loop_ = loop; }
   /// β_C and δ_C of (2.13) from the contact's γ_C^s, γ_C^m (δ_C = ½ when both are 0).
-  [[nodiscard]] double beta_c() const { return beta_c_; }
-  [[nodiscard]] double delta_c() const { return delta_c_; }
+  [[nodiscard]] double beta_c() const { return heat_coupling_.beta_c(); }
+  [[nodiscard]] double delta_c() const { return heat_coupling_.delta_c(); }
   /// Per contact node of the last step (order of the multipliers): q_C^s conduction part
   /// β_C λ_n [θ] (λ_n/2 with the contact-stabilised scheme), [θ] = θ_s − θ_m (θ_m of the master at
   /// the node, (Mθ_m)_k/(D1)_k), in W/m²: the heat flux out of the slave into the master (positive
@@ -174,7 +108,7 @@ class Simulation {
   [[nodiscard]] const std::vector<double>& contact_heat_flux() const { return heat_flux_; }
   /// The solver of the implicit heat step (null until conductance first appears).
   [[nodiscard]] const InterfaceHeatSolver* interface_heat_solver() const {
-    return interface_heat_.get();
+    return heat_coupling_.interface_heat_solver();
   }
 
   /// The state after the current step (restart: io/checkpoint.hpp).
@@ -200,9 +134,11 @@ class Simulation {
   [[nodiscard]] feti::FetiStatistics feti_statistics() const;
 
   /// history.csv: names of the columns and the row of the current step.
-  [[nodiscard]] const std::vector<std::string>& history_columns() const { return columns_; }
-  [[nodiscard]] const std::vector<double>& history_row() const { return row_; }
-  [[nodiscard]] double history(const std::string& column) const;
+  [[nodiscard]] const std::vector<std::string>& history_columns() const {
+    return history_.columns();
+  }
+  [[nodiscard]] const std::vector<double>& history_row() const { return history_.row(); }
+  [[nodiscard]] double history(const std::string& column) const { return history_[column]; }
   [[nodiscard]] long total_coupling_iterations() const { return total_coupling_; }
 
   /// Discrete energies of the current state (J, or J/m in 2D).
@@ -214,42 +150,29 @@ class Simulation {
   [[nodiscard]] double thermal_free_energy() const;
 
  private:
-  struct Solvers;
   void initialise();
-  int couple_body(int b);    // the staggered loop of 6.3 for one body; returns iterations
-  void prepare_step(int b);  // right-hand sides fixed within the step, predictor
+  int couple_body(int b);  // the staggered loop of 6.3 for one body; returns iterations
   void heat_step(int b, int iteration);   // (6.1)/(5.6) with the current u iterate
-  void velocity_iterate(int b);           // u̇ of the current displacement iterate → velocity
   void heat_rhs(int b);                   // right-hand side of (6.1) without contact terms
   void contact_heat_step(int iteration);  // (4.3) for the contact pair: + L_θγ θ = … + d_θγ
-  // Its solve by Newton when a body of the pair has radiation or an h(t) film.
-  void pair_boundary_heat(bool implicit, double t, int iteration);
+  [[nodiscard]] HeatPair heat_pair();     // the contact pair's fields, systems and states
   void mech_load(int b);  // right-hand side of (5.3) at the current θ iterate, Dirichlet values
   void mech_step(int b, int iteration);  // (5.3) with the current θ iterate, no contact
-  void subtract_thermal_force(int b, const core::Vector& theta, core::Vector& f);
   void static_initial_state(int b, BodyState& st);
-  void update_state(int b);
-  void massless_rates(int b);  // Newmark/backward-difference updates of u̇, ü
-  int couple_contact();        // the staggered loop of 6.3 for the contact pair (heat, dual QP)
-  void warm_start(const ContactRows& rows);  // λ of the last step on this step's rows
-  // −max(λ_n^k, 0) per node: the modified mass scheme's lower bound on λ_n^{k+1}
-  static std::vector<double> release_floor(const core::Vector& lambda_k, int dim);
-  struct TrescaIteration;
-  // QPs with u_free fixed, γ ← λ_n (Aitken), at most `max_updates` times or until
-  // ‖λ_n(γ) − γ‖ ≤ tol‖λ‖; returns ‖λ_n(γ) − γ‖ of the last update.
-  double coulomb_fixed_point(TrescaIteration& t, std::span<const double> targets, int outer,
-                             int max_updates);
+  int couple_contact();  // the staggered loop of 6.3 for the contact pair (heat, dual QP)
+  // The mechanical half of (6.3) with u_free fixed: coulomb_fixed_point over the contact QPs
+  // (nested dual or combined TFETI), then u; returns ‖λ_n(γ) − γ‖ of the last update.
+  double contact_mech_step(TrescaIteration& t, std::span<const double> targets, int outer,
+                           int max_updates);
   void stabilise_predictor(std::span<const double> normal_targets);
   void contact_bookkeeping();
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void support_forces(int b, core::Vector& r) const;  // reactions at constrained dofs
-  void fill_row(int coupling, double wall);
-  void check_setup_finite() const;  // NaN/Inf of the assembly and the initial state
-  [[nodiscard]] ContactRowsBuilder finite_rows(ContactRowsBuilder builder) const;
+  void register_history();  // the columns of history.csv, each with what fills it
 
   const Problem& problem_;
   std::vector<std::unique_ptr<BodySystem>> systems_;
-  std::vector<std::unique_ptr<Solvers>> solvers_;
+  std::vector<std::unique_ptr<BodyField>> solvers_;
   std::vector<BodyState> states_;
   std::vector<core::Vector> forces_;  // f_ext + reactions at the current step, per body
   int step_ = 0;
@@ -257,10 +180,10 @@ class Simulation {
   long total_coupling_ = 0;
   long total_qp_ = 0, total_applications_ = 0;
   int last_coupling_ = 0;
+  double last_wall_ = 0;  // seconds of the last step (history.csv wall_seconds)
   core::PhaseTimers timers_;
   std::string factorization_;
-  std::vector<std::string> columns_;
-  std::vector<double> row_;
+  History history_;
 
   ContactRowsBuilder contact_rows_;
   std::unique_ptr<contact::MortarPair> mortar_;
@@ -273,22 +196,16 @@ class Simulation {
   feti::ContactFetiState feti_state_;
   long total_smalbe_outer_ = 0;
   core::Vector lambda_;
-  std::vector<int> lambda_nodes_;  // slave mesh node of each contact node of lambda_
-  std::vector<std::array<double, 3>> lambda_tangents_[2];  // tangents lambda_'s λ_τ refer to
-  std::vector<double> slip_;  // B_τ Δu of the last step (node-major, normal rows unused)
+  MultiplierTransfer transfer_;  // what lambda_ refers to, for the next step's warm start
+  std::vector<double> slip_;     // B_τ Δu of the last step (node-major, normal rows unused)
   // B(u − u^k) of the current iterate while couple_contact defers forming u (empty: from u)
   std::vector<double> iterate_slip_;
   ContactStatistics contact_stats_;
 
   // Thermal contact (2.13, §4.4), with the mortar pair only.
-  double beta_c_ = 0, delta_c_ = 0.5;
   bool accelerate_ = true;
   FrictionLoop friction_loop_;
-  ConductanceTreatment conductance_treatment_ = ConductanceTreatment::Implicit;
-  std::unique_ptr<InterfaceHeatSolver> interface_heat_;
-  std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step
-  contact::FrictionalHeat frictional_heat_;             // d_θγ of the last heat step
-  ContactHeat heat_;
+  ContactHeatCoupling heat_coupling_;
   BoundaryHeat boundary_heat_;
   long total_newton_ = 0, total_newton_inner_ = 0;
   std::vector<double> heat_flux_;

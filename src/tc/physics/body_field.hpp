@@ -1,0 +1,59 @@
+#pragma once
+// The field of one body inside the time loop: its operators of (5.3) and (5.6), factorised once
+// (directly, or by Total FETI over the body's subdomains), the right-hand sides and the work
+// vectors of a step.
+#include <memory>
+
+#include "tc/core/petsc.hpp"
+#include "tc/physics/body_system.hpp"
+#include "tc/physics/constrained_solver.hpp"
+#include "tc/physics/problem.hpp"
+
+namespace tc::physics {
+
+/// Which of a body's operators a solver is for (FETI assembles it per subdomain).
+enum class BodyOperator { mechanics, heat, mass, statics };
+
+/// a·X + b·Y as a new matrix (same nonzero pattern: both come from the same node graph).
+[[nodiscard]] core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
+                                         const core::SparseMatrix& y);
+
+/// The solver of A x = b for one body: a direct factorisation of A, or Total FETI over the
+/// body's subdomains when it is decomposed (6.2), with a·M + b·K assembled per subdomain.
+[[nodiscard]] std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p,
+                                                             const BodySystem& sys,
+                                                             const core::SparseMatrix& a,
+                                                             BodyOperator op);
+
+/// Displacement, velocity, acceleration and temperature of one body at the current time.
+struct BodyState {
+  core::Vector u, v, a, theta;
+};
+
+/// Factorised operators and work vectors of one body.
+struct BodyField {
+  /// Forms and factorises A_u and A_θ of body `sys`, allocates the vectors.
+  BodyField(const Problem& p, const BodySystem& sys);
+
+  core::SparseMatrix a_u;      // 4/τ² M_u + K_u (5.3), or K_u (quasistatic)
+  core::SparseMatrix a_theta;  // M_θ/τ + K_θ (5.6)
+  std::unique_ptr<ConstrainedSolver> mech, heat;
+  core::Vector f_u, f_theta, rhs_u_base, rhs_theta_base, rhs_u, rhs_theta;
+  core::Vector u_new, theta_new, u_prev, theta_prev, velocity, dtheta, work_u, work_theta;
+  core::Vector u_pred;  // Newmark's u^k + τu̇^k, projected onto the admissible set if stabilised
+  // Contact-stabilised Newmark only: M_u factorised, and the force without inertia and contact
+  // g^k = f^k − K_u u^k − K_uθ(θ^k − θ₀) that replaces M_u ü^k (which holds the contact force).
+  std::unique_ptr<ConstrainedSolver> mass;
+  core::Vector g_free;
+  // M_u factorised for the initial acceleration, kept until the stabiliser takes it
+  // (enable_contact) or the first step drops it: one factorisation less per body.
+  std::unique_ptr<ConstrainedSolver> initial_mass;
+  bool expansion = false;  // θ drives u (thermal expansion on, α ≠ 0)
+  bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
+};
+
+/// f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with s's scratch vectors.
+void subtract_thermal_force(const Problem& p, const BodySystem& sys, BodyField& s,
+                            const core::Vector& theta, core::Vector& f);
+
+}  // namespace tc::physics

@@ -1,0 +1,42 @@
+#pragma once
+// What a restart needs (io/checkpoint.hpp writes and reads it; Simulation::checkpoint and
+// restore in checkpoint.cpp fill and replay it, each component its own part).
+#include <array>
+#include <vector>
+
+#include "tc/physics/ledger.hpp"
+
+namespace tc::physics {
+
+/// Everything the steps after `step` depend on, for a restart (io/checkpoint.hpp writes it):
+/// the state of every body, the multipliers and their slave nodes (the next step's warm
+/// start), and the cumulative ledger behind the history.csv columns.
+struct Checkpoint {
+  struct Body {
+    std::vector<double> u, v, a, theta;
+    std::vector<double> force;  // f_ext + reactions at t^step (trapezoidal external work)
+    std::vector<double> g_free;  // f − K u − K_uθ(θ − θ₀) (dynamic runs; contact-stabilised)
+  };
+  int step = 0;
+  std::vector<Body> bodies;
+  std::vector<double> lambda;           // node-major multipliers of the last step
+  std::vector<int> lambda_nodes;        // slave mesh node of each contact node of lambda
+  std::vector<double> lambda_tangents;  // 3D mortar: t_1 then t_2 of each node, xyz (warm start)
+  // The compliance records (DofCompliance::dofs, chunks) of the contact solver's slave and
+  // master, then of the stabiliser's: replayed on restore, so F has the same bits.
+  std::array<std::vector<int>, 8> compliance;
+  std::vector<double> slip, heat_flux;
+  std::vector<double> row;  // the history row of `step`
+  double external_work = 0;
+  long total_coupling = 0, total_qp = 0, total_applications = 0;
+  int last_coupling = 0;
+  // The combined contact dual's warm start (gluing and Dirichlet λ, μ) and SMALBE's outer
+  // iterations so far (empty and 0 with the nested dual).
+  std::vector<double> feti_body_lambda, feti_mu;
+  long total_smalbe_outer = 0;
+  ContactStatistics contact;
+  ContactHeat heat;
+  BoundaryHeat boundary_heat;
+};
+
+}  // namespace tc::physics

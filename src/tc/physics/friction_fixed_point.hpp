@@ -1,0 +1,51 @@
+#pragma once
+// The Tresca → Coulomb fixed point of (6.3): the Coulomb bound ‖λ_τ‖ ≤ 𝔉λ_n is met by a
+// sequence of Tresca problems ‖λ_τ‖ ≤ 𝔉γ, γ ← λ_n of the last one, accelerated by Aitken's Δ².
+// The QP of each Tresca bound is the caller's (the contact enforcement: nested dual or
+// combined TFETI), so this file knows the iteration and its stopping rules only.
+#include <functional>
+#include <vector>
+
+#include "tc/core/petsc.hpp"
+
+namespace tc::physics {
+
+// The Tresca → Coulomb fixed point γ = λ_n(γ) of (6.3) with Aitken's Δ² (Irons–Tuck, vector
+// form as in Küttler & Wall 2008): γ ← max(γ + ω r, 0), r = λ_n(γ) − γ, ω from the last two
+// residuals (ω = 1 at the first update: the plain update of 6.3).
+struct TrescaIteration {
+  std::vector<double> gamma, bound, residual, residual_prev;
+  double omega = 1.0;
+  double last = 1.0;  // ‖λ_n(γ) − γ‖/‖λ‖ of the last update (1 before the first of a step)
+  bool converged = false;      // the last update met the tolerance, its QP solved to qp_tolerance
+  bool exact_qps = false;      // the QPs of the rest of the step to qp_tolerance
+  bool cut_short = false;      // stop after a 100-fold fall (θ, hence u_free, moves next)
+  bool relax = false;          // Aitken on (friction > 0 and acceleration on)
+  bool defer = false;          // u formed after convergence (only B u inside, see couple_contact)
+  std::vector<double> bu_old;  // B u^k, when deferred
+
+  // γ = λ_n of the current multipliers, the relaxation forgotten.
+  void restart(const core::Vector& lambda, int dim, double friction);
+  // One update from λ(γ); returns ‖r‖.
+  double update(const core::Vector& lambda, int dim, double friction);
+};
+
+/// The data of one run of the fixed point.
+struct CoulombFixedPoint {
+  int dim = 2;           // rows per contact node (λ_n, λ_τ…)
+  double friction = 0;   // 𝔉
+  double tolerance = 0;  // on ‖λ_n(γ) − γ‖/‖λ‖ ([solver] coupling_tolerance)
+  double qp_tolerance = 0;
+  int max_updates = 1;
+  int step = 0, outer = 0;  // for the messages: the step and the staggered iteration
+};
+
+/// QPs at the Tresca bounds t.bound, γ ← λ_n (Aitken), at most `p.max_updates` times or until
+/// ‖λ_n(γ) − γ‖ ≤ tol‖λ‖; `solve_qp(rtol)` solves the contact QP at t.bound to the relative
+/// tolerance rtol into `lambda` (throwing NumericalError when it fails). Returns
+/// ‖λ_n(γ) − γ‖ of the last update (0 without friction: one QP, γ plays no part).
+double coulomb_fixed_point(TrescaIteration& t, const core::Vector& lambda,
+                           const CoulombFixedPoint& p,
+                           const std::function<void(double rtol)>& solve_qp);
+
+}  // namespace tc::physics

@@ -1,0 +1,45 @@
+#include "tc/physics/ledger.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "tc/physics/contact_heat.hpp"
+
+namespace tc::physics {
+
+void ContactStatistics::record_step(const contact::ContactRows& rows,
+                                    std::span<const double> lambda, std::span<const double> slip,
+                                    double unit, double friction,
+                                    const contact::MortarPair* mortar) {
+  const int dim = rows.dim;
+  const auto& l = lambda;
+  auto& cs = *this;
+  cs.normal_force = cs.tangential_force = cs.tangential_force_sum = 0;
+  cs.active_nodes = cs.slip_nodes = 0;
+  for (const double w : friction_work(rows, l, slip)) cs.dissipation += unit * w;
+  // The resultant Σ_k w_k Σ_l λ_τl,k t_l,k in space (the mortar pair's tangents; rows without
+  // them have one tangent frame for all nodes, as the node-to-node rows of flat faces).
+  const bool frames = mortar && mortar->tangents(0).size() == static_cast<size_t>(rows.n_nodes());
+  std::array<double, 3> resultant{0, 0, 0};
+  for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
+    const double w = rows.weights[k];
+    const double ln = l[dim * k];
+    double lt2 = 0;
+    for (int i = 1; i < dim; ++i) {
+      const double li = l[dim * k + i];
+      lt2 += li * li;
+      for (int x = 0; x < 3; ++x)
+        resultant[x] += w * li * (frames ? mortar->tangents(i - 1)[k][x] : (x == i - 1 ? 1 : 0));
+    }
+    const double lt = std::sqrt(lt2);
+    cs.normal_force += unit * w * ln;
+    cs.tangential_force_sum += unit * w * lt;
+    if (ln > 0) {
+      ++cs.active_nodes;
+      if (friction > 0 && lt >= friction * ln * (1 - slip_tolerance)) ++cs.slip_nodes;
+    }
+  }
+  cs.tangential_force = unit * std::hypot(resultant[0], resultant[1], resultant[2]);
+}
+
+}  // namespace tc::physics
