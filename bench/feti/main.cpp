@@ -87,7 +87,7 @@ struct Run {
 };
 
 Run feti_solve(const physics::BodySystem& sys, physics::Scheme scheme, feti::Preconditioner pc) {
-  const bool dynamic = scheme == physics::Scheme::Dynamic;
+  const bool dynamic = scheme == physics::Scheme::dynamic;
   feti::FetiOptions o;
   o.preconditioner = pc;
   o.tolerance = 1e-8;
@@ -141,13 +141,13 @@ void scalability() {
         "solve / direct solve |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int s = 2; s <= 5; ++s) {
     const int n = 8 * s;
-    const auto p = cube(n, s * s * s, physics::Scheme::Quasistatic);
+    const auto p = cube(n, s * s * s, physics::Scheme::quasistatic);
     const physics::BodySystem sys(p, 0);
     const double direct = direct_solve_seconds(sys);
     for (const auto pc : {feti::Preconditioner::dirichlet, feti::Preconditioner::lumped,
                           feti::Preconditioner::none}) {
-      const auto q = feti_solve(sys, physics::Scheme::Quasistatic, pc);
-      const auto d = feti_solve(sys, physics::Scheme::Dynamic, pc);
+      const auto q = feti_solve(sys, physics::Scheme::quasistatic, pc);
+      const auto d = feti_solve(sys, physics::Scheme::dynamic, pc);
       if (root)
         fmt::print(
             "| {} | {}³ | {} | {} | {} | {} | {} | {} | {:.2f} | {:.3f} | {:.3f} | {:.1f} |\n",
@@ -160,10 +160,10 @@ void scalability() {
 
 void size(int n, int subdomains) {
   const auto t0 = Clock::now();
-  const auto p = cube(n, subdomains, physics::Scheme::Quasistatic);
+  const auto p = cube(n, subdomains, physics::Scheme::quasistatic);
   const physics::BodySystem sys(p, 0);
   const double assembly = since(t0);
-  const auto r = feti_solve(sys, physics::Scheme::Quasistatic, feti::Preconditioner::dirichlet);
+  const auto r = feti_solve(sys, physics::Scheme::quasistatic, feti::Preconditioner::dirichlet);
   if (core::PetscSession::rank() == 0)
     fmt::print(
         "| {}³ cells | {} dofs | {} subdomains | {} multipliers ({} on rank 0) | "
@@ -175,7 +175,7 @@ void size(int n, int subdomains) {
 }
 
 void block(int n, int subdomains, int k) {
-  const auto p = cube(n, subdomains, physics::Scheme::Quasistatic);
+  const auto p = cube(n, subdomains, physics::Scheme::quasistatic);
   const physics::BodySystem sys(p, 0);
   feti::FetiOptions o;
   o.tolerance = 1e-8;
@@ -241,7 +241,7 @@ physics::Problem contact_blocks(int h, int s, int steps) {
   auto p =
       bench::two_steel_blocks(mesh::make_box(3, {0, 0, -1}, {1, 1, 0}, {n, n, n}),
                               mesh::make_box(3, {0, 0, 0}, {1, 1, 1}, {n, n, n}), steps, s * s * s);
-  if (std::getenv("TC_BENCH_DYNAMIC")) p.time.scheme = physics::Scheme::Dynamic;
+  if (std::getenv("TC_BENCH_DYNAMIC")) p.time.scheme = physics::Scheme::dynamic;
   const double end = 0.1 * steps;
   bench::clamp_and_drag(p, 0.1, 1e-3, end, 2e-4 * (steps - 1));
   p.contact = test::contact_pair(1, "zmin", 0, "zmax", 0.3);

@@ -17,7 +17,7 @@ inline physics::Problem two_steel_blocks(mesh::Mesh master, mesh::Mesh slave, in
                                          int subdomains = 1) {
   physics::Problem p;
   p.dimension = 3;
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.time.step = 0.1;
   p.time.end = 0.1 * steps;
   p.physics.thermal_expansion = false;

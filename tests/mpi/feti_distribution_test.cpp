@@ -20,7 +20,7 @@ using physics::Scheme;
 
 /// A clamped 3D block pulled on its far end, cut into 8 subdomains.
 physics::Problem pulled_block() {
-  auto p = box_problem(3, {0.2, 0.1, 0.1}, {8, 4, 4}, steel(), Scheme::Quasistatic, 1e-3, 1);
+  auto p = box_problem(3, {0.2, 0.1, 0.1}, {8, 4, 4}, steel(), Scheme::quasistatic, 1e-3, 1);
   p.bodies[0].subdomains = 8;
   p.boundaries.push_back(hold("xmin", {0, 1, 2}));
   physics::BoundaryCondition pull;

@@ -80,14 +80,14 @@ TEST_P(Decomposed, GivesTheUndecomposedDisplacementAndTemperature) {
 
 INSTANTIATE_TEST_SUITE_P(
     Feti, Decomposed,
-    ::testing::Values(Case{2, Scheme::Dynamic, 2}, Case{2, Scheme::Quasistatic, 2},
-                      Case{2, Scheme::Quasistatic, 8}, Case{3, Scheme::Dynamic, 2},
-                      Case{3, Scheme::Dynamic, 8}, Case{3, Scheme::Dynamic, 27},
-                      Case{3, Scheme::Quasistatic, 2}, Case{3, Scheme::Quasistatic, 8},
-                      Case{3, Scheme::Quasistatic, 27}),
+    ::testing::Values(Case{2, Scheme::dynamic, 2}, Case{2, Scheme::quasistatic, 2},
+                      Case{2, Scheme::quasistatic, 8}, Case{3, Scheme::dynamic, 2},
+                      Case{3, Scheme::dynamic, 8}, Case{3, Scheme::dynamic, 27},
+                      Case{3, Scheme::quasistatic, 2}, Case{3, Scheme::quasistatic, 8},
+                      Case{3, Scheme::quasistatic, 27}),
     [](const auto& info) {
       return fmt::format("d{}_{}_{}", info.param.dim,
-                         info.param.scheme == Scheme::Dynamic ? "dynamic" : "quasistatic",
+                         info.param.scheme == Scheme::dynamic ? "dynamic" : "quasistatic",
                          info.param.subdomains);
     });
 
@@ -98,7 +98,7 @@ struct RankRun {
 };
 
 RankRun solve_on(MPI_Comm comm, feti::Preconditioner pc) {
-  const auto p = heated_block(3, Scheme::Quasistatic, 27);
+  const auto p = heated_block(3, Scheme::quasistatic, 27);
   const physics::BodySystem sys(p, 0);
   feti::FetiOptions o;
   o.comm = comm;

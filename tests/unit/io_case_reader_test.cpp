@@ -25,7 +25,7 @@ TEST(CaseReader, TwoBlocks3dFillsEverySection) {
   EXPECT_EQ(p.case_file, file);
   EXPECT_EQ(p.title, "two blocks: frictional heating");
   EXPECT_EQ(p.dimension, 3);
-  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::Dynamic);
+  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::dynamic);
   EXPECT_DOUBLE_EQ(p.time.step, 0.01);
   EXPECT_DOUBLE_EQ(p.time.end, 1.0);
   EXPECT_EQ(p.time.n_steps(), 100);
@@ -113,7 +113,7 @@ TEST(CaseReader, PlaneStrainKeepsTwoComponentsAndDefaults) {
   const Problem p = read_case(file);
   EXPECT_EQ(p.dimension, 2);
   EXPECT_EQ(p.title, "");
-  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::Dynamic);
+  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::dynamic);
   EXPECT_EQ(p.time.n_steps(), 10);
   EXPECT_DOUBLE_EQ(p.physics.reference_temperature, 293.15);
   ASSERT_EQ(p.bodies.size(), 1u);
@@ -153,7 +153,7 @@ TEST(CaseReader, PlaneStrainKeepsTwoComponentsAndDefaults) {
 TEST(CaseReader, QuasistaticWithSolverAndOutputOptions) {
   const Problem p = read_case(valid_case("quasistatic.toml"));
   EXPECT_EQ(p.title, "quasistatic strip");
-  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::Quasistatic);
+  EXPECT_EQ(p.time.scheme, tc::physics::Scheme::quasistatic);
   EXPECT_EQ(p.time.n_steps(), 3);
   EXPECT_DOUBLE_EQ(p.physics.reference_temperature, 300.0);
   EXPECT_FALSE(p.physics.thermal_expansion);

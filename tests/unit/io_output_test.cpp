@@ -15,7 +15,7 @@ namespace {
 
 physics::Problem small_case() {
   auto p =
-      test::box_problem(3, {1, 1, 1}, {2, 2, 2}, test::steel(), physics::Scheme::Dynamic, 1e-4, 5);
+      test::box_problem(3, {1, 1, 1}, {2, 2, 2}, test::steel(), physics::Scheme::dynamic, 1e-4, 5);
   p.boundaries.push_back(test::hold("zmin", {0, 1, 2}));
   physics::BoundaryCondition top;
   top.where = "zmax";
@@ -86,7 +86,7 @@ TEST(Output, LeavesPvdVtuHistoryAndSummary) {
 TEST(Output, SupportHoldsTheLoadInStatics) {
   // Quasistatic: the reaction of the clamped base balances the traction on top exactly.
   auto p = small_case();
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.physics.thermal_expansion = false;
   ASSERT_EQ(physics::free_rigid_modes(p, 0), 0);
   physics::Simulation sim(p);

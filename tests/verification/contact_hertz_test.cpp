@@ -120,7 +120,7 @@ physics::BoundaryCondition prescribe(int body, const std::string& where, core::T
 physics::Problem cylinder_on_block(double h, double delta, double shift, double friction) {
   physics::Problem p;
   p.dimension = 2;
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.time.step = 1.0;
   p.time.end = shift != 0 ? 2.0 : 1.0;
   p.physics.thermal_expansion = false;

@@ -33,11 +33,11 @@ struct Recorder : physics::Observer {
 
 const char* scheme_name(physics::ContactScheme s) {
   switch (s) {
-    case physics::ContactScheme::Plain:
+    case physics::ContactScheme::plain:
       return "plain";
-    case physics::ContactScheme::Stabilised:
+    case physics::ContactScheme::stabilised:
       return "stabilised";
-    case physics::ContactScheme::ModifiedMass:
+    case physics::ContactScheme::modified_mass:
       return "modified_mass";
   }
   return "";
@@ -55,7 +55,7 @@ Impact fall(physics::ContactScheme scheme, double tau) {
   const double gap0 = 1e-5, v0 = 1.0;
   physics::Problem p;
   p.dimension = 3;
-  p.time.scheme = physics::Scheme::Dynamic;
+  p.time.scheme = physics::Scheme::dynamic;
   p.time.contact_scheme = scheme;
   p.time.step = tau;
   p.time.end = 6e-4;
@@ -123,7 +123,7 @@ TEST_P(ContactImpact, NoPenetrationForceThenRelease) {
   EXPECT_NEAR(e0, 0.5 * 7850 * 0.1 * 0.1 * 0.05 * 1.0, 1e-9 * e0);
   EXPECT_LE(rec.max_coupling, 10);  // the staggered fixed point within the bound
   switch (scheme) {
-    case physics::ContactScheme::Stabilised:
+    case physics::ContactScheme::stabilised:
       // Deuflhard–Krause–Ertel: the energy never grows (up to the QP tolerance, relative
       // 1e-10, and round-off: 1e-8 relative is far above both). It loses what the mass
       // projection takes out of the normal approach; it must not lose the bulk of it.
@@ -132,14 +132,14 @@ TEST_P(ContactImpact, NoPenetrationForceThenRelease) {
         EXPECT_LE(rec.energy[i], rec.energy[i - 1] * (1 + 1e-8)) << "the energy grew at step " << i;
       EXPECT_GT(e_end, 0.5 * e0);
       break;
-    case physics::ContactScheme::Plain:
+    case physics::ContactScheme::plain:
       // Plain Newmark with the gap enforced at t^{k+1} does not conserve energy through an
       // impact (Laursen & Chawla 1997): here it GAINS 27.7 % (1.9625 → 2.5059 J), and more
       // at smaller τ (196 % at τ/2, docs/choices.md). A band on the measured behaviour.
       EXPECT_LT(e_end, 1.35 * e0);
       EXPECT_GT(e_end, 1.1 * e0);
       break;
-    case physics::ContactScheme::ModifiedMass: {
+    case physics::ContactScheme::modified_mass: {
       // Without inertia on the contact faces the semi-discrete problem conserves energy (the
       // contact force does no work: λ_n > 0 only while the gap rate is zero). Discretely, the
       // trapezoidal rule changes E by the work of the mean contact force ½(λ^k + λ^{k+1}) on
@@ -170,9 +170,9 @@ TEST_P(ContactImpact, NoPenetrationForceThenRelease) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Schemes, ContactImpact,
-                         ::testing::Values(physics::ContactScheme::Plain,
-                                           physics::ContactScheme::Stabilised,
-                                           physics::ContactScheme::ModifiedMass),
+                         ::testing::Values(physics::ContactScheme::plain,
+                                           physics::ContactScheme::stabilised,
+                                           physics::ContactScheme::modified_mass),
                          [](const auto& info) { return scheme_name(info.param); });
 
 }  // namespace

@@ -44,7 +44,7 @@ physics::Problem pressed_blocks(int dim, std::array<int, 3> upper_cells,
                                 double friction = 0, int steps = 1) {
   physics::Problem p;
   p.dimension = dim;
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.time.step = 1.0;
   p.time.end = steps;
   p.physics.thermal_expansion = false;

@@ -26,7 +26,7 @@ struct Dense {
 // the compliance's block size). FETI stops at 1e-10 of the dual residual; the primal error is
 // that times the dual condition number (≲ 1e2 at H/h = 2), so 1e-7 of the largest entry.
 TEST(Feti, PointLoadsGiveTheDirectSolution) {
-  auto p = box_problem(3, {1, 1, 1}, {4, 4, 4}, steel(), physics::Scheme::Quasistatic, 1.0, 1);
+  auto p = box_problem(3, {1, 1, 1}, {4, 4, 4}, steel(), physics::Scheme::quasistatic, 1.0, 1);
   p.bodies[0].subdomains = 8;
   p.boundaries.push_back(hold("xmin", {0, 1, 2}));
   const physics::BodySystem sys(p, 0);

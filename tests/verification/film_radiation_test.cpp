@@ -40,7 +40,7 @@ struct EnergyTrace : physics::Observer {
 /// A body whose mechanics plays no part: no expansion, no thermoelastic heating.
 physics::Problem heat_only(int dim, const mesh::Point& size, const std::array<int, 3>& cells,
                            double step, int n_steps) {
-  auto p = box_problem(dim, size, cells, steel(), physics::Scheme::Quasistatic, step, n_steps);
+  auto p = box_problem(dim, size, cells, steel(), physics::Scheme::quasistatic, step, n_steps);
   p.physics.thermal_expansion = false;
   p.physics.thermoelastic_heating = false;
   // Quasistatic bodies must be held: fix xmin (it carries no heat condition by itself).
@@ -320,7 +320,7 @@ double contact_pair_error(Exchange kind) {
   mat.thermal_conductivity = kappa;
   physics::Problem p;
   p.dimension = 3;
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.time.step = 1e4;  // ρc_pL²/κ = 0.02 s: three steps reach the steady state to round-off
   p.time.end = 4 * p.time.step;
   p.physics.reference_temperature = theta0;

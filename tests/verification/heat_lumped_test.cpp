@@ -15,7 +15,7 @@ namespace {
 struct Last : physics::Observer {};
 
 double min_temperature(bool lumped) {
-  auto p = box_problem(2, {1, 1, 0}, {10, 10, 1}, steel(), physics::Scheme::Quasistatic, 1e-2, 1);
+  auto p = box_problem(2, {1, 1, 0}, {10, 10, 1}, steel(), physics::Scheme::quasistatic, 1e-2, 1);
   p.physics.thermal_expansion = false;
   p.physics.thermoelastic_heating = false;
   p.physics.lumped_heat_capacity = lumped;

@@ -15,7 +15,7 @@ physics::Problem cooling_bar(double step, int n_steps) {
   auto mat = test::steel();
   mat.thermal_expansion = 0;  // heat only
   auto p =
-      test::box_problem(2, {0.1, 0.02, 0}, {8, 2, 1}, mat, physics::Scheme::Dynamic, step, n_steps);
+      test::box_problem(2, {0.1, 0.02, 0}, {8, 2, 1}, mat, physics::Scheme::dynamic, step, n_steps);
   p.bodies[0].initial_temperature = 400.0;
   physics::BoundaryCondition cold;
   cold.where = "xmin";

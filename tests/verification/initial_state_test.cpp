@@ -19,7 +19,7 @@ namespace {
 constexpr double kHot = 80.0;
 
 physics::Problem hot_block(bool equilibrium) {
-  auto p = box_problem(3, {0.2, 0.1, 0.1}, {4, 2, 2}, steel(), physics::Scheme::Dynamic, 1e-3, 20);
+  auto p = box_problem(3, {0.2, 0.1, 0.1}, {4, 2, 2}, steel(), physics::Scheme::dynamic, 1e-3, 20);
   p.physics.thermoelastic_heating = true;
   p.bodies[0].initial_temperature = p.physics.reference_temperature + kHot;
   p.bodies[0].start_in_equilibrium = equilibrium;

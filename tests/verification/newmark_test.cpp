@@ -23,7 +23,7 @@ physics::Problem cantilever(double step, int n_steps) {
   auto mat = test::steel();
   mat.thermal_expansion = 0;  // purely mechanical
   auto p =
-      test::box_problem(2, {1.0, 0.25, 0}, {6, 2, 1}, mat, physics::Scheme::Dynamic, step, n_steps);
+      test::box_problem(2, {1.0, 0.25, 0}, {6, 2, 1}, mat, physics::Scheme::dynamic, step, n_steps);
   p.boundaries.push_back(test::hold("xmin", {0, 1}));
   physics::BoundaryCondition tip;
   tip.where = "xmax";

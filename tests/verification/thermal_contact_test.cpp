@@ -160,7 +160,7 @@ physics::Problem conduction_blocks(double gamma, int steps = 3) {
   mat.thermal_conductivity = kKappa;
   physics::Problem p;
   p.dimension = 3;
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.time.step = 1e4;
   p.time.end = steps * p.time.step;
   p.physics.reference_temperature = kTheta0;
@@ -282,7 +282,7 @@ physics::Problem sliding_blocks(bool conduction, bool frictional_heating, double
   mat.thermal_expansion = 0;
   physics::Problem p;
   p.dimension = 3;
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.time.step = kTau;
   p.time.end = kTau * (kSlideSteps + 1);
   p.physics.reference_temperature = kTheta0;
@@ -372,7 +372,7 @@ TEST(ThermalContact, DynamicSlidingHeatEqualsTheDissipationEveryStep) {
   // λ_τ,k·(B_τΔu)_k, at the last heat iterate and at the converged step: equal to the
   // coupling tolerance (1e-8), and each step's is 𝔉Nvτ up to the oscillation of λ_n.
   auto p = sliding_blocks(false, true, kFriction);
-  p.time.scheme = physics::Scheme::Dynamic;
+  p.time.scheme = physics::Scheme::dynamic;
   physics::Simulation sim(p);
   sim.enable_mortar_contact();
   sim.advance();  // the press
@@ -493,7 +493,7 @@ TEST(ThermalContact, TwoHalfSpacesUnderConstantFrictionalPower) {
   mat.thermal_conductivity = 1;
   physics::Problem p;
   p.dimension = 3;
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.time.step = kStep;
   p.time.end = kT;
   p.physics.reference_temperature = kTheta0;
@@ -566,7 +566,7 @@ TEST(ThermalContact, HeatedSlaveBetweenMasterAndWallPressesHarder) {
   const auto mat = steel();
   physics::Problem p;
   p.dimension = 3;
-  p.time.scheme = physics::Scheme::Quasistatic;
+  p.time.scheme = physics::Scheme::quasistatic;
   p.time.step = 0.1;
   p.time.end = 1.0;
   p.physics.reference_temperature = kTheta0;

@@ -17,7 +17,7 @@ constexpr double kDeltaT = 40.0;
 
 physics::Problem heated_block(int dim, bool walls) {
   auto p = test::box_problem(dim, {2.0, 1.0, 0.5}, {4, 3, 2}, test::steel(),
-                             physics::Scheme::Quasistatic, 1.0, 1);
+                             physics::Scheme::quasistatic, 1.0, 1);
   p.physics.thermoelastic_heating = false;  // keeps θ uniform (no Gough–Joule cooling)
   p.bodies[0].initial_temperature = p.physics.reference_temperature + kDeltaT;
   p.boundaries.push_back(test::hold("xmin", {0}));

@@ -16,7 +16,7 @@ physics::Problem hot_block(double step, int n_steps, double conductivity) {
   // A strongly coupled material (δ = θ₀β²/(ρc_p(λ+2μ)) ≈ 0.8) so the coupling terms matter.
   mat.thermal_expansion = 1e-4;
   mat.thermal_conductivity = conductivity;
-  auto p = test::box_problem(3, {0.02, 0.01, 0.01}, {4, 2, 2}, mat, physics::Scheme::Dynamic, step,
+  auto p = test::box_problem(3, {0.02, 0.01, 0.01}, {4, 2, 2}, mat, physics::Scheme::dynamic, step,
                              n_steps);
   p.solver.coupling_tolerance = 1e-13;  // iterate the staggered scheme to its fixed point
   p.solver.max_coupling_iterations = 100;

@@ -170,7 +170,7 @@ Problem CaseReader::read() {
   const TableReader root(root_, "", issues_,
                          {"title", "dimension", "time", "physics", "materials", "bodies",
                           "boundary", "contact", "solver", "output"});
-  if (const auto t = root.string("title", Need::Optional)) p_.title = *t;
+  if (const auto t = root.string("title", Need::optional)) p_.title = *t;
   read_dimension(root);
   read_time(root);
   read_physics(root);
@@ -187,7 +187,7 @@ Problem CaseReader::read() {
 }
 
 void CaseReader::read_dimension(const TableReader& root) {
-  const auto* n = root.get("dimension", Need::Required, "2 (plane strain) or 3");
+  const auto* n = root.get("dimension", Need::required, "2 (plane strain) or 3");
   if (!n) return;
   const auto* i = n->as_integer();
   if (!i || (i->get() != 2 && i->get() != 3)) {
@@ -201,17 +201,17 @@ void CaseReader::read_dimension(const TableReader& root) {
 
 void CaseReader::read_time(const TableReader& root) {
   const auto t =
-      root.sub_table("time", Need::Required, {"scheme", "step", "end", "contact_scheme"});
+      root.sub_table("time", Need::required, {"scheme", "step", "end", "contact_scheme"});
   if (!t) return;
-  if (const auto s = t->choice("scheme", Need::Optional, {"dynamic", "quasistatic"}))
-    p_.time.scheme = *s == "dynamic" ? physics::Scheme::Dynamic : physics::Scheme::Quasistatic;
+  if (const auto s = t->choice("scheme", Need::optional, {"dynamic", "quasistatic"}))
+    p_.time.scheme = *s == "dynamic" ? physics::Scheme::dynamic : physics::Scheme::quasistatic;
   if (const auto s =
-          t->choice("contact_scheme", Need::Optional, {"stabilised", "plain", "modified_mass"}))
-    p_.time.contact_scheme = *s == "plain"           ? physics::ContactScheme::Plain
-                             : *s == "modified_mass" ? physics::ContactScheme::ModifiedMass
-                                                     : physics::ContactScheme::Stabilised;
-  const auto step = t->number("step", Need::Required, positive("a time step"));
-  const auto end = t->number("end", Need::Required, positive("an end time"));
+          t->choice("contact_scheme", Need::optional, {"stabilised", "plain", "modified_mass"}))
+    p_.time.contact_scheme = *s == "plain"           ? physics::ContactScheme::plain
+                             : *s == "modified_mass" ? physics::ContactScheme::modified_mass
+                                                     : physics::ContactScheme::stabilised;
+  const auto step = t->number("step", Need::required, positive("a time step"));
+  const auto end = t->number("end", Need::required, positive("an end time"));
   if (!step || !end) return;
   p_.time.step = *step;
   p_.time.end = *end;
@@ -233,19 +233,19 @@ void CaseReader::read_time(const TableReader& root) {
 
 void CaseReader::read_physics(const TableReader& root) {
   const auto t = root.sub_table(
-      "physics", Need::Optional,
+      "physics", Need::optional,
       {"reference_temperature", "thermal_expansion", "thermoelastic_heating", "heat_capacity"});
   if (!t) return;
-  if (const auto s = t->choice("heat_capacity", Need::Optional, {"consistent", "lumped"}))
+  if (const auto s = t->choice("heat_capacity", Need::optional, {"consistent", "lumped"}))
     p_.physics.lumped_heat_capacity = *s == "lumped";
-  if (const auto v = t->number("reference_temperature", Need::Optional, kTemperature))
+  if (const auto v = t->number("reference_temperature", Need::optional, kTemperature))
     p_.physics.reference_temperature = *v;
   if (const auto v = t->boolean("thermal_expansion")) p_.physics.thermal_expansion = *v;
   if (const auto v = t->boolean("thermoelastic_heating")) p_.physics.thermoelastic_heating = *v;
 }
 
 void CaseReader::read_materials(const TableReader& root) {
-  const auto* n = root.get("materials", Need::Required, "[materials.NAME] tables");
+  const auto* n = root.get("materials", Need::required, "[materials.NAME] tables");
   if (!n) return;
   const auto* all = n->as_table();
   if (!all || all->empty()) {
@@ -266,13 +266,13 @@ void CaseReader::read_materials(const TableReader& root) {
     const TableReader m(*t, path, issues_,
                         {"density", "young_modulus", "poisson_ratio", "thermal_expansion",
                          "specific_heat", "thermal_conductivity"});
-    const auto rho = m.number("density", Need::Required, positive("a density"));
-    const auto e = m.number("young_modulus", Need::Required, positive("a modulus"));
-    const auto nu = m.number("poisson_ratio", Need::Required,
+    const auto rho = m.number("density", Need::required, positive("a density"));
+    const auto e = m.number("young_modulus", Need::required, positive("a modulus"));
+    const auto nu = m.number("poisson_ratio", Need::required,
                              {[](double x) { return x >= 0 && x < 0.5; }, "a number in [0, 0.5)"});
-    const auto alpha = m.number("thermal_expansion", Need::Required, non_negative("a number"));
-    const auto cp = m.number("specific_heat", Need::Required, positive("a number"));
-    const auto kappa = m.number("thermal_conductivity", Need::Required, positive("a number"));
+    const auto alpha = m.number("thermal_expansion", Need::required, non_negative("a number"));
+    const auto cp = m.number("specific_heat", Need::required, positive("a number"));
+    const auto kappa = m.number("thermal_conductivity", Need::required, positive("a number"));
     if (rho && e && nu && alpha && cp && kappa)
       materials_[name] = fem::Material{*rho, *e, *nu, *alpha, *cp, *kappa};
     else
@@ -284,7 +284,7 @@ const toml::array* CaseReader::tables(const TableReader& root, std::string_view 
   const auto* n = root.get(key, need, fmt::format("one or more [[{}]] tables", key));
   if (!n) return nullptr;
   const auto* a = n->as_array();
-  if (!a || (need == Need::Required && a->empty()) || !a->is_array_of_tables()) {
+  if (!a || (need == Need::required && a->empty()) || !a->is_array_of_tables()) {
     root.issue(key, fmt::format("found {}, expected one or more [[{}]] tables",
                                 detail::describe(*n), key));
     return nullptr;
@@ -293,7 +293,7 @@ const toml::array* CaseReader::tables(const TableReader& root, std::string_view 
 }
 
 void CaseReader::read_bodies(const TableReader& root) {
-  const auto* a = tables(root, "bodies", Need::Required);
+  const auto* a = tables(root, "bodies", Need::required);
   if (!a) return;
   std::set<std::string> names;
   for (size_t i = 0; i < a->size(); ++i) {
@@ -339,11 +339,11 @@ void CaseReader::read_body(const toml::table& t, size_t index) {
                        "initial_state", "body_force", "heat_source", "subdomains"});
   physics::Body body;
   mesh_built_.push_back(false);
-  if (const auto name = b.string("name", Need::Required)) {
+  if (const auto name = b.string("name", Need::required)) {
     check_name(b, "name", *name, "output file names and history.csv columns");
     body.name = *name;
   }
-  if (const auto mat = b.string("material", Need::Required)) {
+  if (const auto mat = b.string("material", Need::required)) {
     body.material_name = *mat;
     if (const auto it = materials_.find(*mat); it != materials_.end()) {
       if (it->second) body.material = *it->second;
@@ -358,13 +358,13 @@ void CaseReader::read_body(const toml::table& t, size_t index) {
   read_mesh(b, body);
   read_body_loads(b, body);
   body.subdomains = 0;  // "auto", resolved by read_bodies once every body is known
-  if (const auto* n = b.get("subdomains", Need::Optional, "");
+  if (const auto* n = b.get("subdomains", Need::optional, "");
       n && !(n->is_string() && n->as_string()->get() == "auto")) {
     if (n->is_string())
       b.issue("subdomains", fmt::format("found \"{}\", expected \"auto\" or a whole number "
                                         "of subdomains",
                                         printable(n->as_string()->get())));
-    else if (const auto s = b.integer("subdomains", Need::Optional, 1)) {
+    else if (const auto s = b.integer("subdomains", Need::optional, 1)) {
       body.subdomains = *s;
       check_subdomains(b, body);
     }
@@ -393,24 +393,24 @@ void CaseReader::check_subdomains(const TableReader& b, const physics::Body& bod
 
 void CaseReader::read_body_loads(const TableReader& b, physics::Body& body) {
   body.initial_temperature = p_.physics.reference_temperature;
-  if (const auto v = b.number("initial_temperature", Need::Optional, kTemperature))
+  if (const auto v = b.number("initial_temperature", Need::optional, kTemperature))
     body.initial_temperature = *v;
-  if (const auto* n = b.get("initial_velocity", Need::Optional, ""))
+  if (const auto* n = b.get("initial_velocity", Need::optional, ""))
     if (const auto v = detail::read_vector(*n, b.key("initial_velocity"), issues_, dim_))
       body.initial_velocity = *v;
-  if (const auto s = b.choice("initial_state", Need::Optional, {"rest", "equilibrium"}))
+  if (const auto s = b.choice("initial_state", Need::optional, {"rest", "equilibrium"}))
     body.start_in_equilibrium = *s == "equilibrium";
-  if (const auto* n = b.get("body_force", Need::Optional, ""))
+  if (const auto* n = b.get("body_force", Need::optional, ""))
     if (const auto f = detail::read_components(*n, b.key("body_force"), issues_, dim_, false))
       for (int k = 0; k < 3; ++k)
         if ((*f)[k]) body.body_force[k] = *(*f)[k];
-  if (const auto* n = b.get("heat_source", Need::Optional, ""))
+  if (const auto* n = b.get("heat_source", Need::optional, ""))
     if (const auto r = detail::read_time_table(*n, b.key("heat_source"), issues_))
       body.heat_source = *r;
 }
 
 void CaseReader::read_mesh(const TableReader& b, physics::Body& body) {
-  const auto mesh = b.sub_table("mesh", Need::Required, {"box", "file"});
+  const auto mesh = b.sub_table("mesh", Need::required, {"box", "file"});
   if (!mesh) return;
   if (mesh->has("box") == mesh->has("file")) {
     issues_.add(mesh->line(), mesh->path(),
@@ -420,14 +420,14 @@ void CaseReader::read_mesh(const TableReader& b, physics::Body& body) {
     return;
   }
   if (mesh->has("file")) return read_mesh_file(*mesh, body);
-  if (const auto box = mesh->sub_table("box", Need::Required, {"min", "max", "cells"}))
+  if (const auto box = mesh->sub_table("box", Need::required, {"min", "max", "cells"}))
     read_box(*box, body);
 }
 
 void CaseReader::read_box(const TableReader& box, physics::Body& body) {
-  const auto* lo_node = box.get("min", Need::Required, "an array of numbers");
-  const auto* hi_node = box.get("max", Need::Required, "an array of numbers");
-  const auto* cells_node = box.get("cells", Need::Required, "an array of integers ≥ 1");
+  const auto* lo_node = box.get("min", Need::required, "an array of numbers");
+  const auto* hi_node = box.get("max", Need::required, "an array of numbers");
+  const auto* cells_node = box.get("cells", Need::required, "an array of integers ≥ 1");
   const auto lo =
       lo_node ? detail::read_vector(*lo_node, box.key("min"), issues_, dim_) : std::nullopt;
   const auto hi =
@@ -477,7 +477,7 @@ bool CaseReader::box_size_ok(const TableReader& box, const std::array<int, 3>& c
 }
 
 void CaseReader::read_mesh_file(const TableReader& mesh, physics::Body& body) {
-  const auto name = mesh.string("file", Need::Required);
+  const auto name = mesh.string("file", Need::required);
   if (!name || dim_ == 0) return;
   const auto path = resolve(*name);
   if (const auto why = not_a_file(path); !why.empty()) {
@@ -496,7 +496,7 @@ void CaseReader::read_mesh_file(const TableReader& mesh, physics::Body& body) {
 }
 
 std::optional<int> CaseReader::body_index(const TableReader& t, std::string_view k) {
-  const auto name = t.string(k, Need::Required);
+  const auto name = t.string(k, Need::required);
   if (!name) return std::nullopt;
   std::vector<std::string> known;
   for (size_t i = 0; i < p_.bodies.size(); ++i) {
@@ -517,7 +517,7 @@ void CaseReader::check_boundary_name(const TableReader& t, std::string_view k, i
 }
 
 void CaseReader::read_boundaries(const TableReader& root) {
-  const auto* a = tables(root, "boundary", Need::Optional);
+  const auto* a = tables(root, "boundary", Need::optional);
   if (!a) return;
   for (size_t i = 0; i < a->size(); ++i) read_boundary(*a->get(i)->as_table(), i);
 }
@@ -528,19 +528,19 @@ void CaseReader::read_boundary(const toml::table& t, size_t index) {
                        "film", "radiation"});
   physics::BoundaryCondition bc;
   const auto body = body_index(b, "body");
-  if (const auto where = b.string("where", Need::Required)) {
+  if (const auto where = b.string("where", Need::required)) {
     bc.where = *where;
     if (body) check_boundary_name(b, "where", *body, *where);
     if (b.has("displacement"))
       check_name(b, "where", *where, "the history.csv columns reaction_<body>_<where>_x|y|z");
   }
   bc.body = body.value_or(0);
-  if (const auto* n = b.get("displacement", Need::Optional, ""))
+  if (const auto* n = b.get("displacement", Need::optional, ""))
     if (const auto d = detail::read_components(*n, b.key("displacement"), issues_, dim_, true))
       bc.displacement = *d;
   // "free" is accepted in a traction too (no traction on that component), so one entry can
   // mix displaced and loaded components: displacement = [0.0, "free"], traction = ["free", p].
-  if (const auto* n = b.get("traction", Need::Optional, ""))
+  if (const auto* n = b.get("traction", Need::optional, ""))
     if (const auto p = detail::read_components(*n, b.key("traction"), issues_, dim_, true))
       bc.traction = *p;
   for (int k = 0; k < 3; ++k)
@@ -549,9 +549,9 @@ void CaseReader::read_boundary(const toml::table& t, size_t index) {
                   fmt::format("found both a displacement and a traction on component {}, "
                               "expected one of them (\"free\" displacement with a traction)",
                               k));
-  if (const auto* n = b.get("temperature", Need::Optional, ""))
+  if (const auto* n = b.get("temperature", Need::optional, ""))
     bc.temperature = detail::read_time_table(*n, b.key("temperature"), issues_, kTemperature);
-  if (const auto* n = b.get("heat_flux", Need::Optional, ""))
+  if (const auto* n = b.get("heat_flux", Need::optional, ""))
     bc.heat_flux = detail::read_time_table(*n, b.key("heat_flux"), issues_);
   if (b.has("temperature") && b.has("heat_flux"))
     b.issue("heat_flux",
@@ -576,19 +576,19 @@ namespace {
 /// Member k of a film or radiation table: a number or a time table within `range`.
 std::optional<core::TimeTable> table_member(const TableReader& t, std::string_view k,
                                             const Range& range) {
-  const auto* n = t.get(k, Need::Required, range.expected + " (a number or a time table)");
+  const auto* n = t.get(k, Need::required, range.expected + " (a number or a time table)");
   return n ? detail::read_time_table(*n, t.key(k), t.issues(), range) : std::nullopt;
 }
 
 }  // namespace
 
 void CaseReader::read_boundary_heat(const TableReader& b, physics::BoundaryCondition& bc) {
-  if (const auto f = b.sub_table("film", Need::Optional, {"coefficient", "ambient"})) {
+  if (const auto f = b.sub_table("film", Need::optional, {"coefficient", "ambient"})) {
     const auto h = table_member(*f, "coefficient", positive("a film coefficient h [W/(m²K)]"));
     const auto ambient = table_member(*f, "ambient", kTemperature);
     if (h && ambient) bc.film = physics::Film{*h, *ambient};
   }
-  if (const auto r = b.sub_table("radiation", Need::Optional, {"emissivity", "ambient"})) {
+  if (const auto r = b.sub_table("radiation", Need::optional, {"emissivity", "ambient"})) {
     const auto e = table_member(
         *r, "emissivity", {[](double x) { return x > 0 && x <= 1; }, "an emissivity in (0, 1]"});
     const auto ambient = table_member(*r, "ambient", kTemperature);
@@ -598,15 +598,15 @@ void CaseReader::read_boundary_heat(const TableReader& b, physics::BoundaryCondi
 
 void CaseReader::read_contact(const TableReader& root) {
   const auto t = root.sub_table(
-      "contact", Need::Optional,
+      "contact", Need::optional,
       {"slave", "master", "friction", "conductance", "heat_conduction", "frictional_heating"});
   if (!t) return;
   physics::ContactSettings c;
   auto side = [&](std::string_view key, int& body, std::string& where) -> bool {
-    const auto s = t->sub_table(key, Need::Required, {"body", "where"});
+    const auto s = t->sub_table(key, Need::required, {"body", "where"});
     if (!s) return false;
     const auto b = body_index(*s, "body");
-    const auto w = s->string("where", Need::Required);
+    const auto w = s->string("where", Need::required);
     if (b && w) check_boundary_name(*s, "where", *b, *w);
     body = b.value_or(-1);
     where = w.value_or("");
@@ -618,7 +618,7 @@ void CaseReader::read_contact(const TableReader& root) {
     issues_.add(t->line("master"), "contact.master.body",
                 fmt::format("found the slave's body \"{}\", expected a different body",
                             p_.bodies[c.master_body].name));
-  if (const auto f = t->number("friction", Need::Optional, non_negative("a coefficient")))
+  if (const auto f = t->number("friction", Need::optional, non_negative("a coefficient")))
     c.friction = *f;
   if (const auto v = t->boolean("heat_conduction")) c.heat_conduction = *v;
   if (const auto v = t->boolean("frictional_heating")) c.frictional_heating = *v;
@@ -627,9 +627,9 @@ void CaseReader::read_contact(const TableReader& root) {
 }
 
 void CaseReader::read_conductance(const TableReader& contact, physics::ContactSettings& c) {
-  if (const auto g = contact.sub_table("conductance", Need::Optional, {"slave", "master"})) {
-    const auto gs = g->number("slave", Need::Required, non_negative("a conductance"));
-    const auto gm = g->number("master", Need::Required, non_negative("a conductance"));
+  if (const auto g = contact.sub_table("conductance", Need::optional, {"slave", "master"})) {
+    const auto gs = g->number("slave", Need::required, non_negative("a conductance"));
+    const auto gm = g->number("master", Need::required, non_negative("a conductance"));
     if (!gs || !gm) return;
     c.conductance_slave = *gs;
     c.conductance_master = *gm;
@@ -648,40 +648,40 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
 
 void CaseReader::read_solver(const TableReader& root) {
   const auto s = root.sub_table(
-      "solver", Need::Optional,
+      "solver", Need::optional,
       {"coupling_tolerance", "max_coupling_iterations", "friction_loop", "qp_tolerance",
        "max_qp_iterations", "factorization", "feti_tolerance", "max_feti_iterations",
        "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
-  if (const auto v = s->number("coupling_tolerance", Need::Optional, unit))
+  if (const auto v = s->number("coupling_tolerance", Need::optional, unit))
     settings.coupling_tolerance = *v;
-  if (const auto v = s->integer("max_coupling_iterations", Need::Optional, 1))
+  if (const auto v = s->integer("max_coupling_iterations", Need::optional, 1))
     settings.max_coupling_iterations = *v;
-  if (const auto v = s->choice("friction_loop", Need::Optional, {"nested", "staggered"}))
+  if (const auto v = s->choice("friction_loop", Need::optional, {"nested", "staggered"}))
     settings.friction_loop =
         *v == "nested" ? physics::FrictionLoop::nested : physics::FrictionLoop::staggered;
-  if (const auto v = s->number("qp_tolerance", Need::Optional, unit)) settings.qp_tolerance = *v;
-  if (const auto v = s->integer("max_qp_iterations", Need::Optional, 1))
+  if (const auto v = s->number("qp_tolerance", Need::optional, unit)) settings.qp_tolerance = *v;
+  if (const auto v = s->integer("max_qp_iterations", Need::optional, 1))
     settings.max_qp_iterations = *v;
   if (const auto v =
-          s->choice("factorization", Need::Optional, {"auto", "mumps", "cholmod", "petsc"}))
+          s->choice("factorization", Need::optional, {"auto", "mumps", "cholmod", "petsc"}))
     settings.factorization = *v == "auto" ? "" : *v;
-  if (const auto v = s->number("feti_tolerance", Need::Optional, unit))
+  if (const auto v = s->number("feti_tolerance", Need::optional, unit))
     settings.feti_tolerance = *v;
-  if (const auto v = s->integer("max_feti_iterations", Need::Optional, 1))
+  if (const auto v = s->integer("max_feti_iterations", Need::optional, 1))
     settings.max_feti_iterations = *v;
-  if (const auto v = s->number("newton_tolerance", Need::Optional, unit))
+  if (const auto v = s->number("newton_tolerance", Need::optional, unit))
     settings.newton_tolerance = *v;
-  if (const auto v = s->integer("max_newton_iterations", Need::Optional, 1))
+  if (const auto v = s->integer("max_newton_iterations", Need::optional, 1))
     settings.max_newton_iterations = *v;
   if (const auto v =
-          s->choice("feti_preconditioner", Need::Optional, {"dirichlet", "lumped", "none"}))
+          s->choice("feti_preconditioner", Need::optional, {"dirichlet", "lumped", "none"}))
     settings.feti_preconditioner = *v == "dirichlet" ? feti::Preconditioner::dirichlet
                                    : *v == "lumped"  ? feti::Preconditioner::lumped
                                                      : feti::Preconditioner::none;
-  if (const auto v = s->choice("contact_dual", Need::Optional, {"auto", "nested", "combined"})) {
+  if (const auto v = s->choice("contact_dual", Need::optional, {"auto", "nested", "combined"})) {
     settings.contact_dual = *v == "auto"     ? physics::ContactDual::automatic
                             : *v == "nested" ? physics::ContactDual::nested
                                              : physics::ContactDual::combined;
@@ -698,15 +698,15 @@ void CaseReader::read_solver(const TableReader& root) {
 
 void CaseReader::read_output(const TableReader& root) {
   p_.output.directory = resolve("out");
-  const auto o = root.sub_table("output", Need::Optional, {"directory", "every"});
+  const auto o = root.sub_table("output", Need::optional, {"directory", "every"});
   if (!o) return;
-  if (const auto d = o->string("directory", Need::Optional)) {
+  if (const auto d = o->string("directory", Need::optional)) {
     if (d->empty())
       o->issue("directory", "found \"\", expected a folder name");
     else
       p_.output.directory = resolve(*d);
   }
-  if (const auto e = o->integer("every", Need::Optional, 1)) p_.output.every = *e;
+  if (const auto e = o->integer("every", Need::optional, 1)) p_.output.every = *e;
 }
 
 namespace {
@@ -795,7 +795,7 @@ void CaseReader::check_boundary_conflicts() {
 /// A quasistatic body, and one that starts in static equilibrium, must be held against every
 /// rigid motion: K_u is singular otherwise.
 void CaseReader::check_quasistatic_bodies_held() {
-  const bool quasistatic = p_.time.scheme == physics::Scheme::Quasistatic;
+  const bool quasistatic = p_.time.scheme == physics::Scheme::quasistatic;
   const auto& bodies = *root_.get("bodies")->as_array();
   for (size_t b = 0; b < p_.bodies.size(); ++b) {
     if (!quasistatic && !p_.bodies[b].start_in_equilibrium) continue;

@@ -119,7 +119,7 @@ void TableReader::issue(std::string_view k, std::string message) const {
 
 const toml::node* TableReader::get(std::string_view k, Need need, std::string_view expected) const {
   const auto* n = t_->get(k);
-  if (!n && need == Need::Required) issue(k, fmt::format("missing; expected {}", expected));
+  if (!n && need == Need::required) issue(k, fmt::format("missing; expected {}", expected));
   return n;
 }
 
@@ -148,7 +148,7 @@ std::optional<std::string> TableReader::string(std::string_view k, Need need) co
 }
 
 std::optional<bool> TableReader::boolean(std::string_view k) const {
-  const auto* n = get(k, Need::Optional, "true or false");
+  const auto* n = get(k, Need::optional, "true or false");
   if (!n) return std::nullopt;
   if (const auto* b = n->as_boolean()) return b->get();
   issue(k, fmt::format("found {}, expected true or false", describe(*n)));
@@ -200,7 +200,7 @@ namespace {
 /// The non-empty array of numbers at member k of a time table.
 std::optional<std::vector<double>> read_list(const TableReader& t, std::string_view k,
                                              const Range& range) {
-  const auto* n = t.get(k, Need::Required, "a non-empty array of numbers");
+  const auto* n = t.get(k, Need::required, "a non-empty array of numbers");
   if (!n) return std::nullopt;
   const auto* a = n->as_array();
   if (!a || a->empty()) {

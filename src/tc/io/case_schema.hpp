@@ -54,7 +54,7 @@ struct Range {
 [[nodiscard]] Range positive(const std::string& what);      // "<what> > 0"
 [[nodiscard]] Range non_negative(const std::string& what);  // "<what> ≥ 0"
 
-enum class Need { Optional, Required };
+enum class Need { optional, required };
 
 /// Joins a dotted key path: join("", "a") = "a", join("a", "b") = "a.b".
 [[nodiscard]] std::string join(const std::string& path, std::string_view key);

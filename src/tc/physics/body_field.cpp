@@ -20,7 +20,7 @@ namespace {
 /// A_u of (5.3): 4/τ² M_u + K_u with Newmark, K_u with the quasistatic scheme.
 core::SparseMatrix mechanics_operator(const Problem& p, const core::SparseMatrix& mass_u,
                                       const core::SparseMatrix& stiffness_u) {
-  return p.time.scheme == Scheme::Dynamic
+  return p.time.scheme == Scheme::dynamic
              ? combine(newmark_mass_factor(p.time.step), mass_u, 1.0, stiffness_u)
              : stiffness_u.copy();
 }
@@ -71,7 +71,7 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
   }
   if (sys.subdomains().empty())
     return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization);
-  const bool dynamic = p.time.scheme == Scheme::Dynamic;
+  const bool dynamic = p.time.scheme == Scheme::dynamic;
   auto local = [&](int s) {
     const auto m = sys.subdomain_matrices(s);
     switch (op) {

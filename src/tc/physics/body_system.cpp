@@ -41,8 +41,8 @@ BodySystem::BodySystem(const Problem& problem, int index)
   lumped_ = problem.physics.lumped_heat_capacity;
   if (lumped_) lump(m_.mass_theta);
   const auto& c = problem.contact;
-  if (c && problem.time.scheme == Scheme::Dynamic &&
-      problem.time.contact_scheme == ContactScheme::ModifiedMass &&
+  if (c && problem.time.scheme == Scheme::dynamic &&
+      problem.time.contact_scheme == ContactScheme::modified_mass &&
       (index == c->slave_body || index == c->master_body)) {
     massless_.assign(static_cast<size_t>(body_->mesh.n_nodes()), 0);
     for (const int a :

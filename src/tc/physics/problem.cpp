@@ -11,7 +11,7 @@ namespace tc::physics {
 
 std::string combined_contact_dual_unavailable(const Problem& p) {
   if (!p.contact) return "the case has no [contact]";
-  if (p.time.scheme != Scheme::Quasistatic)
+  if (p.time.scheme != Scheme::quasistatic)
     return "[time] scheme is \"dynamic\" (the combined dual is quasistatic only: the "
            "subdomains' rigid motions enter through Gλ = e)";
   for (const int b : {p.contact->slave_body, p.contact->master_body})

@@ -16,7 +16,7 @@ namespace tc::physics {
 
 using core::TimeTable;
 
-enum class Scheme { Dynamic, Quasistatic };
+enum class Scheme { dynamic, quasistatic };
 
 /// How Newmark meets contact (dynamic runs with [contact] only): the thesis' plain scheme
 /// (5.1–5.4), or the contact-stabilised Newmark of Deuflhard, Krause & Ertel (IJNME 73, 2008),
@@ -24,13 +24,13 @@ enum class Scheme { Dynamic, Quasistatic };
 /// update drops the last step's contact force: energy then never grows at an impact; or
 /// plain Newmark with the modified mass matrix of Hager, Hüeber & Wohlmuth (IJNME 73, 2008):
 /// no inertia on the contact boundaries, whose nodes are then in equilibrium at every t^k.
-enum class ContactScheme { Plain, Stabilised, ModifiedMass };
+enum class ContactScheme { plain, stabilised, modified_mass };
 
 struct TimeSettings {
-  Scheme scheme = Scheme::Dynamic;
+  Scheme scheme = Scheme::dynamic;
   double step = 0;  // τ [s]
   double end = 0;   // T [s]
-  ContactScheme contact_scheme = ContactScheme::ModifiedMass;
+  ContactScheme contact_scheme = ContactScheme::modified_mass;
   [[nodiscard]] int n_steps() const;  // round(end / step)
 };
 

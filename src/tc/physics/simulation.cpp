@@ -91,9 +91,9 @@ void Simulation::initialise() {
     st.theta.fill(sys.body().initial_temperature);
     sys.prescribe_theta(0.0, st.theta);
 
-    if (problem_.time.scheme == Scheme::Dynamic && sys.body().start_in_equilibrium)
+    if (problem_.time.scheme == Scheme::dynamic && sys.body().start_in_equilibrium)
       static_initial_state(b, st);
-    if (problem_.time.scheme == Scheme::Dynamic) {
+    if (problem_.time.scheme == Scheme::dynamic) {
       // Consistent initial acceleration (2.1 at t = 0): M ü⁰ = f(0) − K u⁰ − K_uθ(θ⁰ − θ₀),
       // with ü = 0 on the supports. M is factorised for this one solve and dropped.
       auto t = timers_.scope("factorization");
@@ -143,7 +143,7 @@ void Simulation::support_forces(int b, core::Vector& r) const {
   core::Vector& f = s.f_u;
   sys.mechanical_load(time(), f);
   m.stiffness_u.mult(st.u, r);
-  if (problem_.time.scheme == Scheme::Dynamic) m.mass_u.mult_add(st.a, r);
+  if (problem_.time.scheme == Scheme::dynamic) m.mass_u.mult_add(st.a, r);
   if (problem_.physics.thermal_expansion) {
     s.dtheta.copy_from(st.theta);
     s.dtheta.shift(-problem_.physics.reference_temperature);
@@ -292,8 +292,8 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   }
   dual_ = std::make_unique<DualContactSolver>(*solvers_[sb]->mech, *solvers_[mb]->mech,
                                               systems_[sb]->n_u(), systems_[mb]->n_u(), settings);
-  if (problem_.time.scheme == Scheme::Dynamic &&
-      problem_.time.contact_scheme == ContactScheme::Stabilised) {
+  if (problem_.time.scheme == Scheme::dynamic &&
+      problem_.time.contact_scheme == ContactScheme::stabilised) {
     auto t = timers_.scope("factorization");
     for (const int b : {sb, mb}) {
       auto& sv = *solvers_[b];
@@ -461,7 +461,7 @@ int Simulation::couple_contact() {
   const auto& c = *problem_.contact;
   const int sb = c.slave_body, mb = c.master_body;
   const double tau = problem_.time.step;
-  const bool dynamic = problem_.time.scheme == Scheme::Dynamic;
+  const bool dynamic = problem_.time.scheme == Scheme::dynamic;
   auto& ss = *solvers_[sb];
   auto& sm = *solvers_[mb];
   const auto& sts = states_[sb];
@@ -488,7 +488,7 @@ int Simulation::couple_contact() {
   const auto& rows = dual_->rows();
   const int dim = rows.dim;
   transfer_.warm_start(rows, mortar_.get(), lambda_);  // λ of the last step on these rows
-  if (dynamic && problem_.time.contact_scheme == ContactScheme::ModifiedMass)
+  if (dynamic && problem_.time.contact_scheme == ContactScheme::modified_mass)
     dual_->set_normal_floor(release_floor(lambda_, dim));
   if (stabiliser_) {
     auto scope = timers_.scope("qp");
@@ -497,7 +497,7 @@ int Simulation::couple_contact() {
   // The slip is measured from u_pred − τ/2 u̇^k (= u^k + τ/2 u̇^k with plain Newmark), so that
   // B_τu − c_τ = τ/2 B_τu̇^{k+1} (5.4); quasistatic, and with the modified mass (whose contact
   // nodes have no inertia, massless_rates): from u^k, B_τu − c_τ = τ B_τu̇^{k+1}.
-  const bool massless = problem_.time.contact_scheme == ContactScheme::ModifiedMass;
+  const bool massless = problem_.time.contact_scheme == ContactScheme::modified_mass;
   ss.work_u.copy_from(massless ? sts.u : ss.u_pred);
   sm.work_u.copy_from(massless ? stm.u : sm.u_pred);
   if (dynamic && !massless) {
@@ -654,7 +654,7 @@ void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u,
 }
 
 double Simulation::kinetic_energy() const {
-  if (problem_.time.scheme != Scheme::Dynamic) return 0.0;
+  if (problem_.time.scheme != Scheme::dynamic) return 0.0;
   double e = 0;
   for (int b = 0; b < n_bodies(); ++b)
     e += 0.5 * systems_[b]->matrices().mass_u.quadratic_form(states_[b].v, solvers_[b]->work_u);

@@ -30,7 +30,7 @@ void massless_rates(const Problem& p, const BodySystem& sys, BodyState& st, cons
 void begin_step(const Problem& p, const BodySystem& sys, const BodyState& st, BodyField& s,
                 double t) {
   const double tau = p.time.step;
-  const bool dynamic = p.time.scheme == Scheme::Dynamic;
+  const bool dynamic = p.time.scheme == Scheme::dynamic;
   const auto& m = sys.matrices();
 
   // Right-hand sides that do not change within the fixed point.
@@ -64,7 +64,7 @@ void iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& 
   const double tau = p.time.step;
   s.velocity.copy_from(s.u_new);
   s.velocity.axpy(-1.0, s.u_pred);
-  if (p.time.scheme == Scheme::Dynamic) {
+  if (p.time.scheme == Scheme::dynamic) {
     s.velocity.scale(2.0 / tau);
     s.velocity.axpy(1.0, st.v);
     step_mean_rate(sys.massless_dofs(), s.u_new, st.u, tau, s.velocity);
@@ -76,7 +76,7 @@ void iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& 
 void end_step(const Problem& p, const BodySystem& sys, BodyState& st, BodyField& s) {
   // Newmark / backward-difference updates of u̇ and ü.
   const double tau = p.time.step;
-  if (p.time.scheme == Scheme::Dynamic) {
+  if (p.time.scheme == Scheme::dynamic) {
     s.work_u.copy_from(s.u_new);
     s.work_u.axpy(-1.0, s.u_pred);  // u^{k+1} − u_pred = τ²/4 (ü^k + ü^{k+1})
     st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
