@@ -94,9 +94,10 @@ core::SparseMatrix BodySystem::subdomain_constant_film(int s) const {
 void BodySystem::add_varying_films(double t, const core::Vector& x, core::Vector& y) const {
   for (const auto& f : films_)
     if (!f.constant) {
-      core::Vector hx(y.size());
-      f.unit.mult(x, hx);
-      y.axpy(f.film.coefficient(t), hx);
+      // applied in every inner iteration of the heat step's Newton: one work vector, reused
+      if (!film_work_.get() || film_work_.size() != y.size()) film_work_ = core::Vector(y.size());
+      f.unit.mult(x, film_work_);
+      y.axpy(f.film.coefficient(t), film_work_);
     }
 }
 

@@ -128,6 +128,7 @@ class BodySystem {
   std::vector<char> massless_;  // per node
   std::vector<PetscInt> massless_dofs_;
   std::vector<FilmBoundary> films_;
+  mutable core::Vector film_work_;  // add_varying_films
   std::vector<RadiationBoundary> radiation_;
   std::vector<fem::WeightedFacet> constant_film_facets_;  // body numbering, weight h
   core::SparseMatrix constant_film_;

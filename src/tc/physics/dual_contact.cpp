@@ -49,12 +49,20 @@ void DualContactSolver::set_rows(ContactRows rows) {
   normal_floor_.clear();
   assert(rows_.slave.rows() == rows_.n_rows() && rows_.master.rows() == rows_.n_rows());
   const PetscInt m = rows_.n_rows();
-  const bool small = m <= settings_.explicit_limit;
-  const bool covered = settings_.explicit_limit > 0 && m <= settings_.covered_limit &&
-                       settings_.compliance_limit > 0 && compliance_covers();
-  kind_ = m > 0 && (small || covered) ? DualOperator::explicit_schur : DualOperator::matrix_free;
   setup_solves_ = 0;
-  if (kind_ == DualOperator::explicit_schur) form_explicit();
+  kind_ = DualOperator::matrix_free;
+  // Explicit up to explicit_limit rows (from the compliance, else by solves), and up to
+  // covered_limit while the compliance covers the rows.
+  const bool small = m > 0 && m <= settings_.explicit_limit;
+  if (small || (m > 0 && settings_.explicit_limit > 0 && m <= settings_.covered_limit)) {
+    if (settings_.compliance_limit > 0 && form_from_compliance())
+      kind_ = DualOperator::explicit_schur;
+    else if (small) {
+      form_by_solves();
+      kind_ = DualOperator::explicit_schur;
+    }
+    if (kind_ == DualOperator::explicit_schur && settings_.scale) form_scaled();
+  }
   if (kind_ == DualOperator::explicit_schur || m != lambda_max_rows_) lambda_max_ = 0;
 }
 
@@ -171,12 +179,6 @@ void DofCompliance::replay(std::span<const PetscInt> dofs, std::span<const Petsc
   }
 }
 
-void DualContactSolver::form_explicit() {
-  setup_solves_ = 0;
-  if (settings_.compliance_limit <= 0 || !form_from_compliance()) form_by_solves();
-  if (settings_.scale) form_scaled();
-}
-
 void DualContactSolver::form_scaled() {
   // Σ from the diagonal of F, node by node: σ_n = F_nn^{-1/2}, σ_τ = (mean of the tangent
   // diagonals)^{-1/2}. The diagonal of F spreads over the nodal weights squared (a corner node
@@ -211,17 +213,6 @@ void DualContactSolver::form_scaled() {
   assemble(f_scaled_.get());
 }
 
-bool DualContactSolver::compliance_covers() const {
-  const core::SparseMatrix* b[2] = {&rows_.slave, &rows_.master};
-  for (int i = 0; i < 2; ++i) {
-    std::vector<PetscInt> cols;
-    for (const auto& e : nonzeros(*b[i])) cols.push_back(e.col());
-    if (compliance_[i].size() + compliance_[i].missing(cols) > settings_.compliance_limit)
-      return false;
-  }
-  return true;
-}
-
 void DualContactSolver::save_compliance(std::span<std::vector<int>, 4> record) const {
   for (int i = 0; i < 2; ++i) {
     const auto& comp = compliance_[i];
@@ -245,15 +236,15 @@ bool DualContactSolver::form_from_compliance() {
   const PetscInt m = rows_.n_rows();
   const core::SparseMatrix* b[2] = {&rows_.slave, &rows_.master};
   std::vector<Eigen::Triplet<double, PetscInt>> entries[2];
-  for (int i = 0; i < 2; ++i) {
+  std::vector<PetscInt> cols[2];
+  for (int i = 0; i < 2; ++i) {  // both bodies checked before either spends a solve
     entries[i] = nonzeros(*b[i]);
-    std::vector<PetscInt> cols;
-    cols.reserve(entries[i].size());
-    for (const auto& e : entries[i]) cols.push_back(e.col());
-    if (compliance_[i].size() + compliance_[i].missing(cols) > settings_.compliance_limit)
+    cols[i].reserve(entries[i].size());
+    for (const auto& e : entries[i]) cols[i].push_back(e.col());
+    if (compliance_[i].size() + compliance_[i].missing(cols[i]) > settings_.compliance_limit)
       return false;
-    setup_solves_ += static_cast<int>(compliance_[i].cover(cols));
   }
+  for (int i = 0; i < 2; ++i) setup_solves_ += static_cast<int>(compliance_[i].cover(cols[i]));
   // F_i = W_iᵀ B_i,Tᵀ with W_iᵀ formed: the product then adds contiguous columns of W_iᵀ
   // (vectorised) instead of gathering a sparse dot product per entry, 3× faster; it gives
   // F_i transposed to round-off, which the symmetrisation below cancels.

@@ -131,11 +131,9 @@ class DualContactSolver {
  private:
   void solve_homogeneous(const ConstrainedSolver& s, const core::Vector& rhs,
                          core::Vector& x) const;
-  void form_explicit();
   void form_scaled();           // Σ and Σ F Σ from f_dense_
   void form_by_solves();        // F column blocks by multi-right-hand-side solves
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
-  [[nodiscard]] bool compliance_covers() const;  // T ∪ the rows' dofs within the limit
 
  public:
   /// The checkpoint's part of the compliance: the slave's dofs and chunks, then the master's
