@@ -2,7 +2,7 @@
 // (z = 0) is the contact face ("face"), its top ("top") is held by the holder, its side
 // ("side") is in air. Tetrahedra, size hc on the face growing to 4 hc at 4 mm above it.
 // Regenerate (default) : gmsh -3 -format msh41 pin.geo -o pin.msh
-// Refined (hc = 0.2 mm): gmsh -3 -format msh41 -setnumber hc 0.2e-3 pin.geo -o pin-refined.msh
+// Refined (hc = 0.22 mm, case-refined.toml): gmsh -3 -format msh41 -setnumber hc 0.22e-3 pin.geo -o pin-refined.msh
 SetFactory("OpenCASCADE");
 DefineConstant[ hc = {0.5e-3, Name "mesh size on the contact face [m]"} ];
 R = 3e-3;

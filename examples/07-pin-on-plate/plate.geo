@@ -3,7 +3,7 @@
 // air). Tetrahedra of size hc in the track region |x| < 4.5 mm, |y| < 3.5 mm, -1 mm < z
 // (the pin's footprint over its ±1 mm stroke, with a margin), growing to 5 hc over 5 mm.
 // Regenerate (default) : gmsh -3 -format msh41 plate.geo -o plate.msh
-// Refined (hc = 0.16 mm): gmsh -3 -format msh41 -setnumber hc 0.16e-3 plate.geo -o plate-refined.msh
+// Refined (hc = 0.17 mm, case-refined.toml): gmsh -3 -format msh41 -setnumber hc 0.17e-3 plate.geo -o plate-refined.msh
 SetFactory("OpenCASCADE");
 DefineConstant[ hc = {0.4e-3, Name "mesh size in the track region [m]"} ];
 Lx = 40e-3;
