@@ -140,7 +140,7 @@ def main():
     vmin = args.vmin if args.vmin is not None else vals.min()
     vmax = args.vmax if args.vmax is not None else vals.max()
     n = 2 if args.face else 1
-    fig, axes = plt.subplots(n, 1, figsize=(9, 3.6 * n), squeeze=False)
+    fig, axes = plt.subplots(1, n, figsize=(6.5 * n, 5), squeeze=False)
     names = [a for a in "xyz" if AXES[a] != axis]
     ax = axes[0, 0]
     for b in args.bodies:
@@ -159,7 +159,7 @@ def main():
     fig.colorbar(tc, ax=ax, label=f"{args.field} [K]" if args.field == "temperature"
                  else args.field, shrink=0.9)
     if args.face:
-        ax = axes[1, 0]
+        ax = axes[0, 1]
         body, faxis, fvalue = plane(args.face)
         pts, u, tets, v = data[body]
         faces = flat_face(pts, tets, faxis, fvalue)
