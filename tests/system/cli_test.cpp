@@ -76,6 +76,14 @@ TEST(Cli, EveryExampleRunsAndLeavesItsOutput) {
   const auto cases = files_in(fs::path(TC_SOURCE_DIR) / "examples", "case.toml");
   ASSERT_FALSE(cases.empty());
   for (const auto& c : cases) {
+    // An example whose case file has a line `# test: slow` (a run of many seconds) is only
+    // validated here; a test labelled slow runs it whole (example 07:
+    // tests/system/example_pin_on_plate_slow.cpp).
+    if (("\n" + tc::test::read_file(c)).find("\n# test: slow") != std::string::npos) {
+      const auto check = thermocontact("check " + c.string());
+      EXPECT_EQ(check.exit_code, 0) << c << "\n" << check.output;
+      continue;
+    }
     const auto out = tc::test::fresh_dir(c.parent_path().filename().string());
     const auto r = thermocontact("run " + c.string() + " --output " + out.string());
     ASSERT_EQ(r.exit_code, 0) << c << "\n" << r.output;
