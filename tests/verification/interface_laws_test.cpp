@@ -106,10 +106,15 @@ physics::Problem sliding_on_a_gradient(core::TemperatureTable friction, bool hea
   return p;
 }
 
-TEST(InterfaceLaws, SteadySlidingFollowsTheFrictionTableAtTheInterfaceTemperature) {
+// Nested (default) and staggered friction loops: with the staggered one 𝔉_k changes between
+// the single Tresca updates of successive heat–mechanics iterations, never inside one.
+class SteadySliding : public ::testing::TestWithParam<physics::FrictionLoop> {};
+
+TEST_P(SteadySliding, FollowsTheFrictionTableAtTheInterfaceTemperature) {
   const auto p = sliding_on_a_gradient(friction_law(), false);
   physics::Simulation sim(p);
   sim.enable_mortar_contact();
+  sim.set_friction_loop(GetParam());
   for (int s = 0; s <= kSlideSteps; ++s) sim.advance();
   const auto lambda = sim.contact_multipliers();
   const auto& rows = sim.dual_solver()->rows();
@@ -143,6 +148,14 @@ TEST(InterfaceLaws, SteadySlidingFollowsTheFrictionTableAtTheInterfaceTemperatur
   EXPECT_EQ(cs.slip_nodes, 25);
   EXPECT_NEAR(sim.history("contact_tangential_force_sum"), force_sum, 1e-6 * force_sum);
 }
+
+INSTANTIATE_TEST_SUITE_P(InterfaceLaws, SteadySliding,
+                         ::testing::Values(physics::FrictionLoop::nested,
+                                           physics::FrictionLoop::staggered),
+                         [](const auto& info) {
+                           return info.param == physics::FrictionLoop::nested ? "Nested"
+                                                                              : "Staggered";
+                         });
 
 // A constant 𝔉 and γ_C written as a number, a one-point table and a flat table: the same run,
 // history bit for bit (wall_seconds aside), with frictional heating and conduction on.
