@@ -78,6 +78,23 @@ TEST(Restart, FilmAndRadiationLedgerContinues) {
                             "restart-film-radiation");
 }
 
+TEST(Restart, InterfaceLawsInTheTemperatureAddNoState) {
+  // 𝔉(θ) and γ_C^s(θ) as tables: evaluated from θ at every coupling iterate, nothing of
+  // them is in the checkpoint (format unchanged), and the restart still gives the same bits.
+  const auto dir = tc::test::fresh_dir("restart-laws");
+  auto text = tc::test::read_file(sliding);
+  const std::string friction = "friction = 0.3", conductance = "conductance = { slave = 1.0e-3";
+  ASSERT_NE(text.find(friction), std::string::npos);
+  ASSERT_NE(text.find(conductance), std::string::npos);
+  text.replace(text.find(friction), friction.size(),
+               "friction = { temperature = [293.15, 330.0, 400.0], value = [0.4, 0.3, 0.15] }");
+  text.replace(text.find(conductance), conductance.size(),
+               "conductance = { slave = { temperature = [293.15, 400.0], value = [1.0e-3, "
+               "3.0e-3] }");
+  std::ofstream(dir / "laws.toml") << text;
+  expect_restart_reproduces(dir / "laws.toml", 17, "restart-laws-run");
+}
+
 TEST(Restart, ACheckpointOfAnotherCaseIsRefusedWithExitTwo) {
   const auto dir = tc::test::fresh_dir("restart-refused");
   const auto out = dir / "out";

@@ -93,9 +93,10 @@ TEST(CaseReader, TwoBlocks3dFillsEverySection) {
   EXPECT_EQ(p.contact->master_body, 0);
   EXPECT_EQ(p.contact->slave_where, "zmin");
   EXPECT_EQ(p.contact->master_where, "zmax");
-  EXPECT_DOUBLE_EQ(p.contact->friction, 0.9);
-  EXPECT_DOUBLE_EQ(p.contact->conductance_slave, 2.5e-3);
-  EXPECT_DOUBLE_EQ(p.contact->conductance_master, 2.5e-3);
+  EXPECT_DOUBLE_EQ(p.contact->friction(300.0), 0.9);  // numbers: constants in θ
+  EXPECT_TRUE(p.contact->friction.is_constant());
+  EXPECT_DOUBLE_EQ(p.contact->conductance_slave(300.0), 2.5e-3);
+  EXPECT_DOUBLE_EQ(p.contact->conductance_master(300.0), 2.5e-3);
   EXPECT_TRUE(p.contact->heat_conduction);
   EXPECT_TRUE(p.contact->frictional_heating);
 
@@ -261,6 +262,33 @@ TEST(CaseReader, SubdomainsAutoIsTheDefaultAndAnyOtherStringIsAnError) {
     EXPECT_NE(std::string(e.what()).find("bodies[0].subdomains"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("expected \"auto\""), std::string::npos) << e.what();
   }
+  fs::remove_all(dir);
+}
+
+TEST(CaseReader, InterfaceLawsTakeNumbersAndTablesInTheInterfaceTemperature) {
+  const auto dir = fs::temp_directory_path() / ("tc-laws-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "laws.toml")
+      << "dimension = 2\n[time]\nstep = 0.1\nend = 0.1\n[materials.m]\ndensity = 1.0\n"
+         "young_modulus = 1.0\npoisson_ratio = 0.3\nthermal_expansion = 0.0\n"
+         "specific_heat = 1.0\nthermal_conductivity = 1.0\n"
+         "[[bodies]]\nname = \"b\"\nmaterial = \"m\"\n"
+         "mesh = { box = { min = [0.0, 0.0], max = [1.0, 1.0], cells = [2, 2] } }\n"
+         "[[bodies]]\nname = \"c\"\nmaterial = \"m\"\n"
+         "mesh = { box = { min = [0.0, 1.0], max = [1.0, 2.0], cells = [2, 2] } }\n"
+         "[contact]\nslave = { body = \"c\", where = \"ymin\" }\n"
+         "master = { body = \"b\", where = \"ymax\" }\n"
+         "friction = { temperature = [300.0, 400.0], value = [0.5, 0.3] }\n"
+         "conductance = { slave = { temperature = [350.0], value = [2e-3] }, master = 1e-3 }\n";
+  const Problem p = read_case(dir / "laws.toml");
+  ASSERT_TRUE(p.contact);
+  EXPECT_FALSE(p.contact->friction.is_constant());
+  EXPECT_DOUBLE_EQ(p.contact->friction(350.0), 0.4);
+  EXPECT_DOUBLE_EQ(p.contact->friction(200.0), 0.5);  // constant beyond the ends
+  EXPECT_DOUBLE_EQ(p.contact->friction(900.0), 0.3);
+  EXPECT_TRUE(p.contact->conductance_slave.is_constant());  // a one-point table
+  EXPECT_EQ(p.contact->conductance_slave(1.0), 2e-3);
+  EXPECT_EQ(p.contact->conductance_master(1.0), 1e-3);
   fs::remove_all(dir);
 }
 

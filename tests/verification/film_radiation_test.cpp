@@ -26,6 +26,8 @@ namespace {
 
 struct Quiet : physics::Observer {};
 
+constexpr double kAnyTheta = 293.15;  // the contact conductances here are constants
+
 /// Records thermal_energy after every step.
 struct EnergyTrace : physics::Observer {
   std::vector<double> time, energy, film, radiation;
@@ -374,7 +376,8 @@ double contact_pair_error(Exchange kind) {
   Quiet quiet;
   const auto status = sim.run(quiet);
   EXPECT_TRUE(status.completed) << status.message;
-  const double h_c = sim.beta_c() * 4000 * push / 2.0;  // β_C λ_n, λ_n = E δ/(2L) = 30
+  const double h_c =
+      sim.interface_laws().beta_c(kAnyTheta) * 4000 * push / 2.0;  // β_C λ_n, λ_n = E δ/(2L) = 30
   EXPECT_NEAR(h_c, 150.0, 1e-12);
   const double r_bodies = 2 / kappa + 1 / h_c;  // lower, interface, upper
   // q: the heat flux from the surroundings down to the lower block's bottom [W/m²].

@@ -27,6 +27,7 @@ namespace tc::test {
 namespace {
 
 constexpr double kTheta0 = 293.15;
+constexpr double kAnyTheta = kTheta0;  // the conductances and 𝔉 here are constants
 
 physics::BoundaryCondition fix(int body, const std::string& where,
                                std::initializer_list<std::pair<int, core::TimeTable>> comps) {
@@ -196,8 +197,8 @@ TEST(ThermalContact, SteadyConductionThroughPressedBlocksIsTheSeriesResistance) 
     conducted_before = sim.history("heat_conducted");
     sim.advance();
   }
-  const double pressure = 4000 * kPush / 2.0;  // 30
-  const double h = sim.beta_c() * pressure;    // 150
+  const double pressure = 4000 * kPush / 2.0;                          // 30
+  const double h = sim.interface_laws().beta_c(kAnyTheta) * pressure;  // 150
   ASSERT_NEAR(h, 150.0, 1e-12);
   const double q = (kHigh - kLow) / (1.0 / kKappa + 1.0 / h + 1.0 / kKappa);  // 443.1818…
   ASSERT_NEAR(q, 443.1818, 1e-4);
@@ -259,7 +260,7 @@ TEST(ThermalContact, LaggedConductanceDivergesWhenStrongAndConvergesWhenWeak) {
     sim.set_conductance_treatment(treatment);
     const auto status = sim.run(none);
     ASSERT_TRUE(status.completed) << status.message;
-    const double h = sim.beta_c() * 30;
+    const double h = sim.interface_laws().beta_c(kAnyTheta) * 30;
     const double q = (kHigh - kLow) / (2.0 / kKappa + 1.0 / h);
     for (const double f : sim.contact_heat_flux()) EXPECT_NEAR(f, -q, 1e-8 * q);
     iterations[treatment == physics::ConductanceTreatment::Lagged] =
@@ -316,7 +317,8 @@ SlideResult slide(physics::Simulation& sim) {
   sim.advance();  // the press
   for (int s = 0; s < kSlideSteps; ++s) {
     sim.advance();
-    r.expected += kTau * sim.problem().contact->friction * sim.history("contact_normal_force") * kV;
+    r.expected += kTau * sim.problem().contact->friction(kAnyTheta) *
+                  sim.history("contact_normal_force") * kV;
   }
   r.slave_energy = body_energy(sim, 0) - e_s0;
   r.master_energy = body_energy(sim, 1) - e_m0;
@@ -341,8 +343,9 @@ TEST_P(FrictionalHeating, IsFrictionTimesLoadTimesSlidingDistanceSplitByDeltaC) 
   // at the iterate of the last heat step, so they agree to the coupling tolerance (1e-8).
   EXPECT_NEAR(generated, sim.history("frictional_dissipation"), 1e-7 * generated);
   // δ_C = γ_s/(γ_s + γ_m) = 0.2 of it to the slave: by construction, to round-off.
-  EXPECT_NEAR(sim.history("heat_to_slave") / generated, sim.delta_c(), 1e-12);
-  EXPECT_NEAR(sim.delta_c(), 0.2, 1e-15);
+  EXPECT_NEAR(sim.history("heat_to_slave") / generated, sim.interface_laws().delta_c(kAnyTheta),
+              1e-12);
+  EXPECT_NEAR(sim.interface_laws().delta_c(kAnyTheta), 0.2, 1e-15);
   EXPECT_NEAR(sim.history("heat_to_slave") + sim.history("heat_to_master"), generated,
               1e-12 * generated);
   // Insulated pair: backward Euler conserves 1ᵀM_θθ exactly up to the inputs, and 1ᵀK_θ = 0,
@@ -512,8 +515,8 @@ TEST(ThermalContact, TwoHalfSpacesUnderConstantFrictionalPower) {
   p.solver.max_coupling_iterations = 50;
   physics::Simulation sim(p);
   sim.enable_mortar_contact();
-  ASSERT_NEAR(sim.beta_c(), 1.0, 1e-14);
-  ASSERT_NEAR(sim.delta_c(), 0.8, 1e-14);
+  ASSERT_NEAR(sim.interface_laws().beta_c(kAnyTheta), 1.0, 1e-14);
+  ASSERT_NEAR(sim.interface_laws().delta_c(kAnyTheta), 0.8, 1e-14);
   double generated_before = 0;
   while (sim.step() < p.time.n_steps()) {
     generated_before = sim.history("heat_generated");
@@ -540,7 +543,7 @@ TEST(ThermalContact, TwoHalfSpacesUnderConstantFrictionalPower) {
     return sum / n;
   };
   const double ds = surface(0), dm = surface(1);
-  const double h = sim.beta_c() * pressure, H = 2 * h, t = kT;
+  const double h = sim.interface_laws().beta_c(kAnyTheta) * pressure, H = 2 * h, t = kT;
   const double sum_expected = 2 * power * std::sqrt(t / M_PI);
   const double jump_expected =
       power * (0.8 - 0.2) * (1 - std::exp(H * H * t) * std::erfc(H * std::sqrt(t))) / H;

@@ -5,6 +5,16 @@
 
 namespace tc::core {
 
+double piecewise_linear(const std::vector<double>& x, const std::vector<double>& v, double at) {
+  if (x.empty()) return v.front();
+  if (at <= x.front()) return v.front();
+  if (at >= x.back()) return v.back();
+  const auto hi = std::upper_bound(x.begin(), x.end(), at) - x.begin();
+  const auto lo = hi - 1;
+  const double s = (at - x[lo]) / (x[hi] - x[lo]);
+  return (1.0 - s) * v[lo] + s * v[hi];
+}
+
 TimeTable::TimeTable(std::vector<double> t, std::vector<double> v)
     : t_(std::move(t)), v_(std::move(v)) {
   assert(!v_.empty() && t_.size() == v_.size());
@@ -12,14 +22,24 @@ TimeTable::TimeTable(std::vector<double> t, std::vector<double> v)
   if (t_.size() == 1) t_.clear();
 }
 
-double TimeTable::operator()(double time) const {
-  if (t_.empty()) return v_.front();
-  if (time <= t_.front()) return v_.front();
-  if (time >= t_.back()) return v_.back();
-  const auto hi = std::upper_bound(t_.begin(), t_.end(), time) - t_.begin();
-  const auto lo = hi - 1;
-  const double s = (time - t_[lo]) / (t_[hi] - t_[lo]);
-  return (1.0 - s) * v_[lo] + s * v_[hi];
+TemperatureTable::TemperatureTable(std::vector<double> theta, std::vector<double> v)
+    : theta_(std::move(theta)), v_(std::move(v)) {
+  assert(!v_.empty() && theta_.size() == v_.size());
+  assert(std::is_sorted(theta_.begin(), theta_.end()));
+  // Flat: the constant itself, bit for bit (interpolating between equal values need not give
+  // that value back in floating point).
+  if (std::all_of(v_.begin(), v_.end(), [&](double x) { return x == v_.front(); })) {
+    theta_.clear();
+    v_.resize(1);
+  }
+}
+
+double TemperatureTable::max_value() const {
+  return *std::max_element(v_.begin(), v_.end());
+}
+
+double TemperatureTable::min_value() const {
+  return *std::min_element(v_.begin(), v_.end());
 }
 
 }  // namespace tc::core

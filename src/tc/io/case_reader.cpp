@@ -618,32 +618,63 @@ void CaseReader::read_contact(const TableReader& root) {
     issues_.add(t->line("master"), "contact.master.body",
                 fmt::format("found the slave's body \"{}\", expected a different body",
                             p_.bodies[c.master_body].name));
-  if (const auto f = t->number("friction", Need::optional, non_negative("a coefficient")))
-    c.friction = *f;
+  if (const auto* n = t->get("friction", Need::optional, ""))
+    if (const auto f = detail::read_temperature_table(*n, t->key("friction"), issues_,
+                                                      non_negative("a coefficient")))
+      c.friction = *f;
   if (const auto v = t->boolean("heat_conduction")) c.heat_conduction = *v;
   if (const auto v = t->boolean("frictional_heating")) c.frictional_heating = *v;
   read_conductance(*t, c);
   p_.contact = c;
 }
 
+namespace {
+
+/// A temperature at which both conductances vanish, if any. Both are ≥ 0, linear between the
+/// union of their table points and constant beyond: their sum vanishes somewhere iff it does
+/// at one of those points (or anywhere, when both are constants).
+std::optional<double> both_conductances_zero(const core::TemperatureTable& gs,
+                                             const core::TemperatureTable& gm) {
+  std::vector<double> at(gs.temperatures());
+  at.insert(at.end(), gm.temperatures().begin(), gm.temperatures().end());
+  if (at.empty()) at.push_back(0.0);
+  std::sort(at.begin(), at.end());
+  for (const double t : at)
+    if (gs(t) + gm(t) == 0) return t;
+  return std::nullopt;
+}
+
+}  // namespace
+
 void CaseReader::read_conductance(const TableReader& contact, physics::ContactSettings& c) {
   if (const auto g = contact.sub_table("conductance", Need::optional, {"slave", "master"})) {
-    const auto gs = g->number("slave", Need::required, non_negative("a conductance"));
-    const auto gm = g->number("master", Need::required, non_negative("a conductance"));
+    const auto law = [&](std::string_view k) -> std::optional<core::TemperatureTable> {
+      const auto* n = g->get(k, Need::required, "a conductance ≥ 0 (a number or a table in θ)");
+      return n ? detail::read_temperature_table(*n, g->key(k), issues_,
+                                                non_negative("a conductance"))
+               : std::nullopt;
+    };
+    const auto gs = law("slave");
+    const auto gm = law("master");
     if (!gs || !gm) return;
     c.conductance_slave = *gs;
     c.conductance_master = *gm;
   } else if (contact.has("conductance")) {
     return;  // not a table: reported
   }
-  const bool needed = c.heat_conduction || (c.frictional_heating && c.friction > 0);
-  if (needed && c.conductance_slave + c.conductance_master == 0)
-    contact.issue("conductance",
-                  fmt::format("found {}, expected {{ slave = γ_C^s, master = γ_C^m }} with at "
-                              "least one > 0: with both zero β_C and δ_C of (2.13) are "
-                              "undefined (or set heat_conduction = false{})",
-                              contact.has("conductance") ? "both conductances 0" : "none",
-                              c.friction > 0 ? " and frictional_heating = false" : ""));
+  const bool needed = c.heat_conduction || (c.frictional_heating && c.friction.max_value() > 0);
+  const auto zero = both_conductances_zero(c.conductance_slave, c.conductance_master);
+  if (!needed || !zero) return;
+  const bool constant = c.conductance_slave.is_constant() && c.conductance_master.is_constant();
+  contact.issue("conductance",
+                fmt::format("found {}, expected {{ slave = γ_C^s, master = γ_C^m }} with at "
+                            "least one > 0{}: with both zero β_C and δ_C of (2.13) are "
+                            "undefined (or set heat_conduction = false{})",
+                            !contact.has("conductance") ? "none"
+                            : constant                  ? "both conductances 0"
+                                       : fmt::format("both conductances 0 at θ = {} K", *zero),
+                            constant ? "" : " at every temperature",
+                            c.friction.max_value() > 0 ? " and frictional_heating = false" : ""));
 }
 
 void CaseReader::read_solver(const TableReader& root) {

@@ -217,15 +217,41 @@ std::optional<std::vector<double>> read_list(const TableReader& t, std::string_v
   return good ? std::optional(std::move(out)) : std::nullopt;
 }
 
-bool strictly_increasing(const TableReader& t, const std::vector<double>& times) {
-  for (size_t i = 1; i < times.size(); ++i)
-    if (!(times[i] > times[i - 1])) {
-      t.issue("t", fmt::format("found t[{}] = {} after t[{}] = {}, expected strictly increasing "
-                               "times",
-                               i, times[i], i - 1, times[i - 1]));
+/// The abscissa of a table: its key and the word for its entries in the messages.
+struct Abscissa {
+  std::string_view key, plural;
+};
+constexpr Abscissa kTime{"t", "times"};
+constexpr Abscissa kInterfaceTemperature{"temperature", "temperatures"};
+
+bool strictly_increasing(const TableReader& t, const std::vector<double>& x, Abscissa a) {
+  for (size_t i = 1; i < x.size(); ++i)
+    if (!(x[i] > x[i - 1])) {
+      t.issue(a.key, fmt::format("found {}[{}] = {} after {}[{}] = {}, expected strictly "
+                                 "increasing {}",
+                                 a.key, i, x[i], a.key, i - 1, x[i - 1], a.plural));
       return false;
     }
   return true;
+}
+
+/// The points and values of a table { <a.key> = [...], value = [...] }: the points strictly
+/// increasing and within `x_range`, as many values as points (≥ 1), each within `range`.
+std::optional<std::pair<std::vector<double>, std::vector<double>>> read_points(const TableReader& t,
+                                                                               Abscissa a,
+                                                                               const Range& x_range,
+                                                                               const Range& range) {
+  const auto x = read_list(t, a.key, x_range);
+  const auto values = read_list(t, "value", range);
+  if (!x || !values) return std::nullopt;
+  bool good = strictly_increasing(t, *x, a);
+  if (x->size() != values->size()) {
+    t.issue("value", fmt::format("found {} values for {} {}, expected as many values as {}",
+                                 values->size(), x->size(), a.plural, a.plural));
+    good = false;
+  }
+  if (!good) return std::nullopt;
+  return std::pair{*x, *values};
 }
 
 /// The array at n with `size` entries (0: 2 or 3, the dimension being unknown), or an issue
@@ -258,17 +284,39 @@ std::optional<core::TimeTable> read_time_table(const toml::node& n, const std::s
     return std::nullopt;
   }
   const TableReader t(*table, key, issues, {"t", "value"});
-  const auto times = read_list(t, "t", {});
-  const auto values = read_list(t, "value", range);
-  if (!times || !values) return std::nullopt;
-  bool good = strictly_increasing(t, *times);
-  if (times->size() != values->size()) {
-    t.issue("value", fmt::format("found {} values for {} times, expected as many values as times",
-                                 values->size(), times->size()));
-    good = false;
+  const auto points = read_points(t, kTime, {}, range);
+  if (!points) return std::nullopt;
+  return core::TimeTable(points->first, points->second);
+}
+
+std::optional<core::TemperatureTable> read_temperature_table(const toml::node& n,
+                                                             const std::string& key, Issues& issues,
+                                                             const Range& range) {
+  if (n.is_number()) {
+    const auto v = read_number(n, key, issues, range);
+    return v ? std::optional<core::TemperatureTable>(*v) : std::nullopt;
   }
-  if (!good) return std::nullopt;
-  return core::TimeTable(*times, *values);
+  const auto* table = n.as_table();
+  if (!table) {
+    issues.add(line_of(n), key,
+               fmt::format("found {}, expected {} or a table in the interface temperature "
+                           "{{ temperature = [...], value = [...] }}",
+                           describe(n), range.expected));
+    return std::nullopt;
+  }
+  // `t` is accepted by the schema only to say what is wrong with it: a law of the interface
+  // is a function of its temperature, never of time.
+  const TableReader t(*table, key, issues, {"temperature", "value", "t"});
+  if (t.has("t")) {
+    t.issue("t",
+            "found a table in time, expected a table in the interface temperature "
+            "{ temperature = [...] (K), value = [...] }");
+    return std::nullopt;
+  }
+  const Range kelvin{[](double x) { return x > 0; }, "a temperature > 0 K"};
+  const auto points = read_points(t, kInterfaceTemperature, kelvin, range);
+  if (!points) return std::nullopt;
+  return core::TemperatureTable(points->first, points->second);
 }
 
 std::optional<std::array<double, 3>> read_vector(const toml::node& n, const std::string& key,

@@ -25,7 +25,7 @@ std::vector<double> step_slip(const contact::ContactRows& rows, const core::Vect
   return inc.to_std();
 }
 
-std::vector<double> distribute(std::span<const double> power, double share,
+std::vector<double> distribute(std::span<const double> power, std::span<const double> share,
                                const core::SparseMatrix& x) {
   std::vector<double> out(static_cast<size_t>(x.cols()), 0.0);
   for (PetscInt k = 0; k < x.rows(); ++k) {
@@ -37,7 +37,7 @@ std::vector<double> distribute(std::span<const double> power, double share,
     for (PetscInt q = 0; q < nz; ++q) sum += std::max(vals[q], 0.0);
     if (sum > 0)
       for (PetscInt q = 0; q < nz; ++q)
-        out[cols[q]] += share * power[k] * std::max(vals[q], 0.0) / sum;
+        out[cols[q]] += share[k] * power[k] * std::max(vals[q], 0.0) / sum;
     TC_PETSC(MatRestoreRow(x.get(), k, &nz, &cols, &vals));
   }
   return out;
@@ -54,22 +54,31 @@ std::vector<double> nonnegative_heat(std::vector<double> work) {
   return work;
 }
 
+MasterAtNodes master_at_nodes(const contact::MortarPair& mortar, const core::Vector& theta_master) {
+  const auto& d = mortar.d_matrix();
+  core::Vector ones(d.cols()), dsum(d.rows()), mth(d.rows());
+  ones.fill(1.0);
+  d.mult(ones, dsum);
+  mortar.m_matrix().mult(theta_master, mth);
+  MasterAtNodes out{mth.to_std(), dsum.to_std()};
+  for (size_t k = 0; k < out.theta.size(); ++k)
+    if (out.d_sum[k] > 0) out.theta[k] /= out.d_sum[k];
+  return out;
+}
+
 std::vector<double> conduction_flux(const contact::MortarPair& mortar,
                                     const contact::ContactRows& rows,
-                                    std::span<const double> lambda, double scale,
+                                    std::span<const double> lambda, std::span<const double> scale,
                                     const core::Vector& theta_slave,
                                     const core::Vector& theta_master) {
   const int dim = rows.dim;
   std::vector<double> flux(static_cast<size_t>(rows.n_nodes()), 0.0);
-  core::Vector ones(theta_slave.size()), dsum(rows.n_nodes()), mth(rows.n_nodes());
-  ones.fill(1.0);
-  mortar.d_matrix().mult(ones, dsum);
-  mortar.m_matrix().mult(theta_master, mth);
-  const auto ds = dsum.to_std(), mt = mth.to_std(), ts = theta_slave.to_std();
+  const auto master = master_at_nodes(mortar, theta_master);
+  const auto ts = theta_slave.to_std();
   for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
-    if (ds[k] <= 0) continue;
-    const double jump = ts[mortar.contact_nodes()[k]] - mt[k] / ds[k];
-    flux[k] = scale * std::max(lambda[dim * k], 0.0) * jump;
+    if (master.d_sum[k] <= 0) continue;
+    const double jump = ts[mortar.contact_nodes()[k]] - master.theta[k];
+    flux[k] = scale[k] * std::max(lambda[dim * k], 0.0) * jump;
   }
   return flux;
 }

@@ -44,7 +44,9 @@ namespace tc::physics {
 /// dual basis ψ_k is negative on part of its support, so M has negative entries (measured in
 /// example 06: 7 master nodes, −17 W of 4.9e5 W), which would cool them: X⁺ keeps every input
 /// ≥ 0, and the row sums make 1ᵀq = share·ΣP exactly, also where the master covers part of it.
-[[nodiscard]] std::vector<double> distribute(std::span<const double> power, double share,
+/// `share` is per contact node (δ_C,k of the slave, 1 − δ_C,k of the master).
+[[nodiscard]] std::vector<double> distribute(std::span<const double> power,
+                                             std::span<const double> share,
                                              const core::SparseMatrix& x);
 
 /// The heat of a step per contact node from the friction work W_k: where the slip of the step
@@ -54,12 +56,22 @@ namespace tc::physics {
 /// in proportion to the positive parts; a step with Σ W ≤ 0 keeps W as it is.
 [[nodiscard]] std::vector<double> nonnegative_heat(std::vector<double> work);
 
+/// The master's temperature at each contact node of the mortar pair, (Mθ_m)_k/(D1)_k, and
+/// (D1)_k: the mortar projection of θ_m onto the slave node (meaningful where (D1)_k > 0, the
+/// master covering the node's support).
+struct MasterAtNodes {
+  std::vector<double> theta, d_sum;
+};
+[[nodiscard]] MasterAtNodes master_at_nodes(const contact::MortarPair& mortar,
+                                            const core::Vector& theta_master);
+
 /// The conducted flux q_C^s = β_C λ_n [θ] per contact node of the mortar pair (W/m², out of
-/// the slave), [θ] = θ_s − θ_m with θ_m at the node (Mθ_m)_k/(D1)_k; `scale` = β_C times the
-/// traction per multiplier. Zero where (D1)_k ≤ 0.
+/// the slave), [θ] = θ_s − θ_m with θ_m at the node (Mθ_m)_k/(D1)_k (master_at_nodes);
+/// `scale` per contact node = β_C,k times the traction per multiplier. Zero where (D1)_k ≤ 0.
 [[nodiscard]] std::vector<double> conduction_flux(const contact::MortarPair& mortar,
                                                   const contact::ContactRows& rows,
-                                                  std::span<const double> lambda, double scale,
+                                                  std::span<const double> lambda,
+                                                  std::span<const double> scale,
                                                   const core::Vector& theta_slave,
                                                   const core::Vector& theta_master);
 

@@ -10,15 +10,12 @@
 
 namespace tc::physics {
 
-void ContactHeatCoupling::set_conductances(double gs, double gm) {
-  beta_c_ = gs + gm > 0 ? gs * gm / (gs + gm) : 0.0;  // (2.13)
-  delta_c_ = gs + gm > 0 ? gs / (gs + gm) : 0.5;
-}
-
 void ContactHeatCoupling::heat_step(const Problem& p, const HeatPair& pair,
                                     const ContactIterate& it, double t, int step, int iteration) {
   // γ = λ_n of the current multiplier iterate (nodal pressures, ≥ 0), u̇ of the current
-  // displacement iterate. L on the left through the interface (InterfaceHeatSolver), or lagged.
+  // displacement iterate; β_C and δ_C per contact node at the interface temperature of the last
+  // coupling iterate (it.laws). L on the left through the interface (InterfaceHeatSolver), or
+  // lagged.
   const auto& c = *p.contact;
   auto& ss = pair.slave;
   auto& sm = pair.master;
@@ -34,7 +31,7 @@ void ContactHeatCoupling::heat_step(const Problem& p, const HeatPair& pair,
     if (static_cast<size_t>(rows.n_nodes()) != it.mortar->contact_nodes().size())
       throw Error("thermal contact: the multipliers do not match the mortar pair's nodes");
   }
-  if (it.mortar && c.frictional_heating && c.friction > 0) {
+  if (it.mortar && c.frictional_heating && it.laws.frictional) {
     // d_θγ from the multipliers: the friction work of the step λ_τ,k·(B_τ(u − u^k))_k per
     // contact node over τ, δ_C of it to the slave through D, 1 − δ_C to the master through M;
     // contact_bookkeeping sums the same work at u^{k+1}: heat = dissipation by construction.
@@ -49,15 +46,22 @@ void ContactHeatCoupling::heat_step(const Problem& p, const HeatPair& pair,
                                       : std::vector<double>(it.slip.begin(), it.slip.end())));
     for (double& q : power) q *= it.unit / tau;
     for (const double q : power) frictional_heat_.total += q;
-    frictional_heat_.slave = distribute(power, delta_c_, it.mortar->d_matrix());
-    frictional_heat_.master = distribute(power, 1.0 - delta_c_, it.mortar->m_matrix());
+    std::vector<double> master_share(it.laws.delta_c.size());
+    for (size_t k = 0; k < master_share.size(); ++k) master_share[k] = 1.0 - it.laws.delta_c[k];
+    frictional_heat_.slave = distribute(power, it.laws.delta_c, it.mortar->d_matrix());
+    frictional_heat_.master = distribute(power, master_share, it.mortar->m_matrix());
     for (auto [s, d] : {std::pair{&ss, &frictional_heat_.slave}, {&sm, &frictional_heat_.master}}) {
       auto rv = s->rhs_theta.view();
       for (size_t a = 0; a < d->size(); ++a) rv[static_cast<PetscInt>(a)] += (*d)[a];
     }
   }
-  const bool conduct = it.mortar && c.heat_conduction && beta_c_ > 0;
-  if (conduct) conductance_ = it.mortar->thermal_conductance(gamma, beta_c_);
+  const bool conduct = it.mortar && c.heat_conduction && it.laws.conducting;
+  if (conduct) {
+    // L_θγ = ∫β_Cγ[θ][χ] with β_Cγ = Σ_k β_C,k γ_k φ_k (the nodal product interpolated, as γ
+    // is); β_C,kγ_k × 1 is the β_C × γ_k of a constant β_C to the bit.
+    for (size_t k = 0; k < gamma.size(); ++k) gamma[k] = it.laws.beta_c[k] * gamma[k];
+    conductance_ = it.mortar->thermal_conductance(gamma, 1.0);
+  }
   if (conduct && treatment_ == ConductanceTreatment::Lagged) {
     // (6.2): L θ^p of the previous iterate to the right-hand side.
     const auto& l = *conductance_;

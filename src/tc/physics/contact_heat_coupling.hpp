@@ -10,6 +10,7 @@
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/physics/body_field.hpp"
 #include "tc/physics/body_system.hpp"
+#include "tc/physics/interface_laws.hpp"
 #include "tc/physics/ledger.hpp"
 #include "tc/physics/problem.hpp"
 #include "tc/physics/thermal_contact.hpp"
@@ -39,14 +40,11 @@ struct ContactIterate {
   const core::Vector& lambda;
   double unit;                   // traction per multiplier (traction_per_multiplier)
   std::span<const double> slip;  // B(u − u^k) when the displacements are deferred, or empty
+  const NodalLaws& laws;         // β_C,k, δ_C,k of (2.13) at the last coupling iterate
 };
 
 class ContactHeatCoupling {
  public:
-  /// β_C and δ_C of (2.13) from the contact's γ_C^s, γ_C^m (δ_C = ½ when both are 0).
-  void set_conductances(double gamma_slave, double gamma_master);
-  [[nodiscard]] double beta_c() const { return beta_c_; }
-  [[nodiscard]] double delta_c() const { return delta_c_; }
   [[nodiscard]] ConductanceTreatment treatment() const { return treatment_; }
   void set_treatment(ConductanceTreatment t) { treatment_ = t; }
 
@@ -75,7 +73,6 @@ class ContactHeatCoupling {
   void pair_boundary_heat(const Problem& p, const HeatPair& pair, bool implicit, double t, int step,
                           int iteration);
 
-  double beta_c_ = 0, delta_c_ = 0.5;
   ConductanceTreatment treatment_ = ConductanceTreatment::Implicit;
   std::unique_ptr<InterfaceHeatSolver> interface_heat_;
   std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step

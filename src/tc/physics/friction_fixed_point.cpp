@@ -9,7 +9,8 @@
 
 namespace tc::physics {
 
-void TrescaIteration::restart(const core::Vector& lambda, int dim, double friction) {
+void TrescaIteration::restart(const core::Vector& lambda, int dim,
+                              std::span<const double> friction) {
   const auto lv = lambda.read();
   const auto nc = static_cast<size_t>(lambda.size() / dim);
   gamma.resize(nc);
@@ -19,11 +20,12 @@ void TrescaIteration::restart(const core::Vector& lambda, int dim, double fricti
   omega = 1.0;
   for (size_t k = 0; k < nc; ++k) {
     gamma[k] = std::max(lv[dim * static_cast<PetscInt>(k)], 0.0);
-    bound[k] = friction * gamma[k];
+    bound[k] = friction[k] * gamma[k];
   }
 }
 
-double TrescaIteration::update(const core::Vector& lambda, int dim, double friction) {
+double TrescaIteration::update(const core::Vector& lambda, int dim,
+                               std::span<const double> friction) {
   const auto lv = lambda.read();
   const size_t nc = gamma.size();
   for (size_t k = 0; k < nc; ++k)
@@ -44,7 +46,7 @@ double TrescaIteration::update(const core::Vector& lambda, int dim, double frict
   for (size_t k = 0; k < nc; ++k) {
     norm += residual[k] * residual[k];
     gamma[k] = std::max(gamma[k] + w * residual[k], 0.0);
-    bound[k] = friction * gamma[k];
+    bound[k] = friction[k] * gamma[k];
   }
   residual_prev = residual;
   return std::sqrt(norm);
@@ -67,7 +69,7 @@ double coulomb_fixed_point(TrescaIteration& t, const core::Vector& lambda,
   // The outer loop stops only on an update that met the tolerance with a QP to the QP
   // tolerance, so the fixed point it returns is that of the exact scheme.
   constexpr double qp_forcing = 1e-2, loop_forcing = 1e-2;
-  const bool friction = p.friction > 0;
+  const bool friction = p.frictional;
   double first = -1;
   for (int update = 1; update <= p.max_updates; ++update) {
     const double rtol =

@@ -1,9 +1,12 @@
 #pragma once
 // The Tresca → Coulomb fixed point of (6.3): the Coulomb bound ‖λ_τ‖ ≤ 𝔉λ_n is met by a
 // sequence of Tresca problems ‖λ_τ‖ ≤ 𝔉γ, γ ← λ_n of the last one, accelerated by Aitken's Δ².
+// 𝔉 is per contact node (𝔉_k of the interface temperature, interface_laws.hpp) and fixed
+// while the fixed point runs.
 // The QP of each Tresca bound is the caller's (the contact enforcement: nested dual or
 // combined TFETI), so this file knows the iteration and its stopping rules only.
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "tc/core/petsc.hpp"
@@ -24,16 +27,17 @@ struct TrescaIteration {
   bool defer = false;          // u formed after convergence (only B u inside, see couple_contact)
   std::vector<double> bu_old;  // B u^k, when deferred
 
-  // γ = λ_n of the current multipliers, the relaxation forgotten.
-  void restart(const core::Vector& lambda, int dim, double friction);
+  // γ = λ_n of the current multipliers, the relaxation forgotten; bound_k = 𝔉_k γ_k.
+  void restart(const core::Vector& lambda, int dim, std::span<const double> friction);
   // One update from λ(γ); returns ‖r‖.
-  double update(const core::Vector& lambda, int dim, double friction);
+  double update(const core::Vector& lambda, int dim, std::span<const double> friction);
 };
 
 /// The data of one run of the fixed point.
 struct CoulombFixedPoint {
-  int dim = 2;           // rows per contact node (λ_n, λ_τ…)
-  double friction = 0;   // 𝔉
+  int dim = 2;                       // rows per contact node (λ_n, λ_τ…)
+  std::span<const double> friction;  // 𝔉_k per contact node
+  bool frictional = false;           // the law has 𝔉 > 0 somewhere (else γ plays no part)
   double tolerance = 0;  // on ‖λ_n(γ) − γ‖/‖λ‖ ([solver] coupling_tolerance)
   double qp_tolerance = 0;
   int max_updates = 1;

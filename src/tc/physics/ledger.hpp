@@ -18,16 +18,18 @@ struct ContactStatistics {
   double tangential_force_sum = 0;  // Σ_k w_k ‖λ_τ,k‖
   double dissipation = 0;           // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
   int active_nodes = 0;             // λ_n,k > 0
-  int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − slip_tolerance))
+  int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉_kλ_n,k(1 − slip_tolerance))
 
-  /// A node slips when ‖λ_τ,k‖ ≥ 𝔉λ_n,k(1 − slip_tolerance).
+  /// A node slips when ‖λ_τ,k‖ ≥ 𝔉_kλ_n,k(1 − slip_tolerance), 𝔉_k > 0 (its own 𝔉 of the
+  /// interface temperature, interface_laws.hpp).
   static constexpr double slip_tolerance = 1e-6;
 
   /// The forces and node counts of the step from its multipliers (node-major, `unit` the
   /// traction per multiplier), and its friction work Σ_k λ_τ,k·slip_k added to the
-  /// dissipation. The resultant uses the mortar pair's tangents when there is one.
+  /// dissipation. The resultant uses the mortar pair's tangents when there is one. `friction`
+  /// holds 𝔉_k per contact node.
   void record_step(const contact::ContactRows& rows, std::span<const double> lambda,
-                   std::span<const double> slip, double unit, double friction,
+                   std::span<const double> slip, double unit, std::span<const double> friction,
                    const contact::MortarPair* mortar);
 };
 

@@ -14,6 +14,7 @@
 
 namespace tc::physics {
 
+using core::TemperatureTable;
 using core::TimeTable;
 
 enum class Scheme { dynamic, quasistatic };
@@ -91,8 +92,10 @@ struct BoundaryCondition {
 struct ContactSettings {
   int slave_body = 0, master_body = 1;
   std::string slave_where, master_where;
-  double friction = 0;
-  double conductance_slave = 0, conductance_master = 0;  // γ_C^s, γ_C^m
+  // The interface laws of (2.13), each a number or a table in the interface temperature
+  // (physics::InterfaceLaws evaluates them per contact node).
+  TemperatureTable friction = 0.0;                                     // 𝔉 ≥ 0
+  TemperatureTable conductance_slave = 0.0, conductance_master = 0.0;  // γ_C^s, γ_C^m ≥ 0
   bool heat_conduction = true;
   bool frictional_heating = true;
 };

@@ -197,13 +197,17 @@ void Simulation::contact_heat_step(int iteration) {
   // rhs with the thermoelastic term of each body.
   auto scope = timers_.scope("heat_solve");
   const auto& c = *problem_.contact;
+  const auto pair = heat_pair();
+  // 𝔉, β_C, δ_C at the interface temperature of the last iterate (θ^k at the first): fixed
+  // for this heat step and the Tresca QPs after it (interface_laws.hpp).
+  nodal_laws_ =
+      laws_.at_interface(mortar_.get(), dual_->rows(), pair.slave.theta_new, pair.master.theta_new);
   heat_rhs(c.slave_body);
   heat_rhs(c.master_body);
-  const auto pair = heat_pair();
-  heat_coupling_.heat_step(
-      problem_, pair,
-      {mortar_.get(), dual_->rows(), lambda_, traction_per_multiplier(), iterate_slip_},
-      (step_ + 1) * problem_.time.step, step_ + 1, iteration);
+  heat_coupling_.heat_step(problem_, pair,
+                           {mortar_.get(), dual_->rows(), lambda_, traction_per_multiplier(),
+                            iterate_slip_, nodal_laws_},
+                           (step_ + 1) * problem_.time.step, step_ + 1, iteration);
   require_finite(pair.slave.theta_new, "temperature", step_ + 1, iteration);
   require_finite(pair.master.theta_new, "temperature", step_ + 1, iteration);
 }
@@ -278,7 +282,7 @@ void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings 
   settings.qp.rtol = problem_.solver.qp_tolerance;
   settings.qp.max_iterations = problem_.solver.max_qp_iterations;
   contact_rows_ = finite_rows(std::move(builder), step_);
-  heat_coupling_.set_conductances(c.conductance_slave, c.conductance_master);
+  laws_ = InterfaceLaws(c);
   const int sb = c.slave_body, mb = c.master_body;
   const auto mode = problem_.solver.contact_dual;
   const auto why = combined_contact_dual_unavailable(problem_);
@@ -382,7 +386,8 @@ double Simulation::contact_mech_step(TrescaIteration& t, std::span<const double>
   ss.u_prev.copy_from(ss.u_new);  // u_free, the QP's data
   sm.u_prev.copy_from(sm.u_new);
   const CoulombFixedPoint p{.dim = dual_->rows().dim,
-                            .friction = c.friction,
+                            .friction = nodal_laws_.friction,
+                            .frictional = nodal_laws_.frictional,
                             .tolerance = problem_.solver.coupling_tolerance,
                             .qp_tolerance = problem_.solver.qp_tolerance,
                             .max_updates = max_updates,
@@ -507,7 +512,7 @@ int Simulation::couple_contact() {
   const auto targets = dual_->targets(sts.u, stm.u, ss.work_u, sm.work_u);
 
   TrescaIteration tresca;
-  tresca.relax = accelerate_ && c.friction > 0;
+  tresca.relax = accelerate_ && laws_.frictional();
   // u = u_free − A⁻¹Bᵀλ costs two solves; inside the fixed point only B u is needed (the
   // frictional heat's slip, = B u_free − Fλ) unless the thermoelastic term wants u̇ of the
   // whole body. Then u is formed once, after convergence.
@@ -536,9 +541,12 @@ int Simulation::couple_contact() {
     const double thn = std::hypot(ss.theta_new.norm(), sm.theta_new.norm());
     // Without thermal expansion u_free does not depend on θ: λ of the last iteration (the
     // Coulomb solution to the tolerance) stays exact, and so is this heat step with it, unless
-    // the conductance is lagged (then θ itself iterates).
-    if (one_way && tresca.converged &&
-        (heat_coupling_.treatment() != ConductanceTreatment::Lagged || dth <= tol * thn)) {
+    // the conductance is lagged or depends on θ (then θ itself iterates); not when 𝔉 depends
+    // on θ (then λ does).
+    const bool theta_iterates =
+        heat_coupling_.treatment() == ConductanceTreatment::Lagged || laws_.conductance_varies();
+    if (one_way && tresca.converged && !laws_.friction_varies() &&
+        (!theta_iterates || dth <= tol * thn)) {
       change = thn > 0 ? dth / thn : dth;
       break;
     }
@@ -552,7 +560,7 @@ int Simulation::couple_contact() {
     }
     // Nested: γ = λ_n(γ) to convergence at this θ, Aitken restarted (the map changed with θ);
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.
-    if (nested || tresca.gamma.empty()) tresca.restart(lambda_, dim, c.friction);
+    if (nested || tresca.gamma.empty()) tresca.restart(lambda_, dim, nodal_laws_.friction);
     const double fixed_residual = contact_mech_step(
         tresca, targets, iteration, nested ? problem_.solver.max_coupling_iterations : 1);
     lambda_prev.axpy(-1.0, lambda_);
@@ -597,14 +605,17 @@ void Simulation::contact_bookkeeping() {
   const auto& rows = dual_->rows();
   const auto l = lambda_.to_std();
   const double unit = traction_per_multiplier();
-  contact_stats_.record_step(rows, l, slip_, unit, problem_.contact->friction, mortar_.get());
+  contact_stats_.record_step(rows, l, slip_, unit, nodal_laws_.friction, mortar_.get());
   if (mortar_) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
     const auto& c = *problem_.contact;
     heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
-    if (c.heat_conduction && heat_coupling_.beta_c() > 0 &&
-        mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes()))
-      heat_flux_ = conduction_flux(*mortar_, rows, l, heat_coupling_.beta_c() * unit,
-                                   states_[c.slave_body].theta, states_[c.master_body].theta);
+    if (c.heat_conduction && nodal_laws_.conducting &&
+        mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {
+      std::vector<double> scale(nodal_laws_.beta_c);
+      for (double& s : scale) s *= unit;
+      heat_flux_ = conduction_flux(*mortar_, rows, l, scale, states_[c.slave_body].theta,
+                                   states_[c.master_body].theta);
+    }
   }
 }
 

@@ -98,9 +98,11 @@ class Simulation {
   void set_coupling_acceleration(bool on) { accelerate_ = on; }
   /// Overrides problem().solver.friction_loop (comparisons).
   void set_friction_loop(FrictionLoop loop) { friction_loop_ = loop; }
-  /// β_C and δ_C of (2.13) from the contact's γ_C^s, γ_C^m (δ_C = ½ when both are 0).
-  [[nodiscard]] double beta_c() const { return heat_coupling_.beta_c(); }
-  [[nodiscard]] double delta_c() const { return heat_coupling_.delta_c(); }
+  /// 𝔉(θ), β_C(θ), δ_C(θ) of (2.13) from the contact's friction and conductances.
+  [[nodiscard]] const InterfaceLaws& interface_laws() const { return laws_; }
+  /// 𝔉_k, β_C,k, δ_C,k per contact node of the last step, at the interface temperature of its
+  /// last coupling iterate (order of the multipliers).
+  [[nodiscard]] const NodalLaws& nodal_laws() const { return nodal_laws_; }
   /// Per contact node of the last step (order of the multipliers): q_C^s conduction part
   /// β_C λ_n [θ] (λ_n/2 with the contact-stabilised scheme), [θ] = θ_s − θ_m (θ_m of the master at
   /// the node, (Mθ_m)_k/(D1)_k), in W/m²: the heat flux out of the slave into the master (positive
@@ -206,6 +208,8 @@ class Simulation {
   bool accelerate_ = true;
   FrictionLoop friction_loop_;
   ContactHeatCoupling heat_coupling_;
+  InterfaceLaws laws_;    // the contact's 𝔉(θ), γ_C(θ)
+  NodalLaws nodal_laws_;  // …at the contact nodes of the last coupling iterate
   BoundaryHeat boundary_heat_;
   long total_newton_ = 0, total_newton_inner_ = 0;
   std::vector<double> heat_flux_;
