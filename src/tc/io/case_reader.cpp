@@ -647,13 +647,13 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
 }
 
 void CaseReader::read_solver(const TableReader& root) {
-  const auto s =
-      root.sub_table("solver", Need::optional,
-                     {"coupling_tolerance", "max_coupling_iterations", "friction_loop",
-                      "qp_tolerance", "max_qp_iterations", "factorization", "feti_tolerance",
-                      "max_feti_iterations", "feti_preconditioner", "contact_dual",
-                      "newton_tolerance", "max_newton_iterations", "coupling_acceleration",
-                      "conductance_treatment", "qp_forcing", "qp_forcing_cap", "loop_forcing"});
+  const auto s = root.sub_table(
+      "solver", Need::optional,
+      {"coupling_tolerance", "max_coupling_iterations", "friction_loop", "qp_tolerance",
+       "max_qp_iterations", "factorization", "feti_tolerance", "max_feti_iterations",
+       "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations",
+       "coupling_acceleration", "conductance_treatment", "qp_forcing", "qp_forcing_cap",
+       "loop_forcing", "explicit_dual_limit"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -683,6 +683,8 @@ void CaseReader::read_solver(const TableReader& root) {
     settings.friction.loop_forcing = *v;
   if (const auto v = s->integer("max_qp_iterations", Need::optional, 1))
     settings.max_qp_iterations = *v;
+  if (const auto v = s->integer("explicit_dual_limit", Need::optional, 0))
+    settings.explicit_dual_limit = *v;
   if (const auto v =
           s->choice("factorization", Need::optional, {"auto", "mumps", "cholmod", "petsc"}))
     settings.factorization = *v == "auto" ? "" : *v;

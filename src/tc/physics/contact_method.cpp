@@ -10,6 +10,7 @@ ContactMethod choose_contact_method(const Problem& p, Bodies& bodies, DualContac
   const int sb = c.slave_body, mb = c.master_body;
   settings.qp.rtol = p.solver.qp_tolerance;
   settings.qp.max_iterations = p.solver.max_qp_iterations;
+  if (p.solver.explicit_dual_limit) settings.explicit_limit = *p.solver.explicit_dual_limit;
   const auto mode = p.solver.contact_dual;
   const auto why = combined_contact_dual_unavailable(p);
   const bool combined =

@@ -18,7 +18,8 @@ struct ContactMethod {
 };
 
 /// The enforcement and the contact time scheme of p.contact's pair. `settings`: the nested
-/// dual's (its QP tolerance and iteration cap are p.solver's). Factorises what the scheme needs
+/// dual's (its QP tolerance and iteration cap are p.solver's, and its explicit_limit when the
+/// case sets explicit_dual_limit). Factorises what the scheme needs
 /// (the stabilised scheme's M_u). Throws Error when contact_dual = "combined" cannot run.
 [[nodiscard]] ContactMethod choose_contact_method(const Problem& p, Bodies& bodies,
                                                   DualContactSettings settings,

@@ -139,6 +139,9 @@ struct SolverSettings {
   double qp_tolerance = 1e-8;
   int max_qp_iterations = 2000;
   ContactDual contact_dual = ContactDual::nested;
+  /// The nested dual forms F explicitly while it has at most this many rows (0: always
+  /// matrix-free); unset: DualContactSettings::explicit_limit as the caller gave it (1500).
+  std::optional<int> explicit_dual_limit;
   std::string factorization;  // "" = automatic; "mumps" | "cholmod" | "petsc"
   // FETI (bodies with subdomains > 1, 6.2): relative gluing/Dirichlet residual, iteration cap
   // of the projected CG, preconditioner.
