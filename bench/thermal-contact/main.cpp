@@ -72,7 +72,9 @@ int main(int argc, char** argv) {
   }
   for (const auto& [file, variant] : runs) {
     const bool before = variant == Variant::before;
-    const auto problem = tc::io::read_case(file);
+    auto problem = tc::io::read_case(file);
+    if (variant == Variant::staggered)
+      problem.solver.friction_loop = tc::physics::FrictionLoop::staggered;
     const auto t0 = Clock::now();
     const std::clock_t c0 = std::clock();
     tc::physics::Simulation sim(problem);
@@ -82,7 +84,6 @@ int main(int argc, char** argv) {
       settings.scale = false;
     }
     if (problem.contact) sim.enable_mortar_contact(settings);
-    if (variant == Variant::staggered) sim.set_friction_loop(tc::physics::FrictionLoop::staggered);
     Counts counts;
     const auto status = sim.run(counts);
     const double total = std::chrono::duration<double>(Clock::now() - t0).count();

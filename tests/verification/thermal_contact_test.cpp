@@ -243,27 +243,27 @@ TEST(ThermalContact, LaggedConductanceDivergesWhenStrongAndConvergesWhenWeak) {
   // iff ρ(A⁻¹L) < 1; here ρ ≈ h(L₁/κ₁ + L₂/κ₂) = 150·2/52 = 5.8 (strong) and 0.058 (weak).
   NullObserver none;
   {
-    const auto p = conduction_blocks(10.0);
+    auto p = conduction_blocks(10.0);
+    p.solver.conductance_treatment = physics::ConductanceTreatment::lagged;
     physics::Simulation sim(p);
     sim.enable_mortar_contact();
-    sim.set_conductance_treatment(physics::ConductanceTreatment::Lagged);
     const auto status = sim.run(none);
     EXPECT_FALSE(status.completed) << "the lagged conductance was expected to diverge";
     std::cout << "[ measure  ] lagged conductance, strong: " << status.message << "\n";
   }
   long iterations[2] = {0, 0};
   for (const auto treatment :
-       {physics::ConductanceTreatment::Implicit, physics::ConductanceTreatment::Lagged}) {
-    const auto p = conduction_blocks(0.1);  // β_C = 0.05, h = 1.5
+       {physics::ConductanceTreatment::implicit, physics::ConductanceTreatment::lagged}) {
+    auto p = conduction_blocks(0.1);  // β_C = 0.05, h = 1.5
+    p.solver.conductance_treatment = treatment;
     physics::Simulation sim(p);
     sim.enable_mortar_contact();
-    sim.set_conductance_treatment(treatment);
     const auto status = sim.run(none);
     ASSERT_TRUE(status.completed) << status.message;
     const double h = sim.interface_laws().beta_c(kAnyTheta) * 30;
     const double q = (kHigh - kLow) / (2.0 / kKappa + 1.0 / h);
     for (const double f : sim.contact_heat_flux()) EXPECT_NEAR(f, -q, 1e-8 * q);
-    iterations[treatment == physics::ConductanceTreatment::Lagged] =
+    iterations[treatment == physics::ConductanceTreatment::lagged] =
         sim.total_coupling_iterations();
   }
   std::cout << "[ measure  ] weak conductance (h L/κ = 0.058), coupling iterations in 3 steps: "
@@ -419,10 +419,10 @@ TEST(ThermalContact, AitkenRelaxationDoesNotSlowTheCoulombFixedPoint) {
   long iterations[2] = {0, 0};
   double heat[2] = {0, 0};
   for (const bool aitken : {false, true}) {
-    const auto p = sliding_blocks(true, true, kFriction);
+    auto p = sliding_blocks(true, true, kFriction);
+    p.solver.friction.acceleration = aitken;
     physics::Simulation sim(p);
     sim.enable_mortar_contact();
-    sim.set_coupling_acceleration(aitken);
     slide(sim);
     iterations[aitken] = sim.total_coupling_iterations();
     heat[aitken] = sim.history("heat_generated");

@@ -64,7 +64,7 @@ struct ThermalContact {
 };
 
 /// d_θγ of §4.4: nodal heat inputs over each body's nodes [W] and their sum, the friction
-/// work of the step over τ (physics::Simulation::contact_heat_step).
+/// work of the step over τ (physics::ContactCoupling::heat_step).
 struct FrictionalHeat {
   std::vector<double> slave, master;
   double total = 0;

@@ -682,7 +682,9 @@ void CaseReader::read_solver(const TableReader& root) {
       "solver", Need::optional,
       {"coupling_tolerance", "max_coupling_iterations", "friction_loop", "qp_tolerance",
        "max_qp_iterations", "factorization", "feti_tolerance", "max_feti_iterations",
-       "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations"});
+       "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations",
+       "coupling_acceleration", "conductance_treatment", "qp_forcing", "qp_forcing_cap",
+       "loop_forcing", "explicit_dual_limit"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -694,8 +696,26 @@ void CaseReader::read_solver(const TableReader& root) {
     settings.friction_loop =
         *v == "nested" ? physics::FrictionLoop::nested : physics::FrictionLoop::staggered;
   if (const auto v = s->number("qp_tolerance", Need::optional, unit)) settings.qp_tolerance = *v;
+  if (const auto v = s->boolean("coupling_acceleration")) settings.friction.acceleration = *v;
+  if (const auto v = s->choice("conductance_treatment", Need::optional, {"implicit", "lagged"}))
+    settings.conductance_treatment = *v == "implicit" ? physics::ConductanceTreatment::implicit
+                                                      : physics::ConductanceTreatment::lagged;
+  if (const auto v = s->number("qp_forcing", Need::optional, unit))
+    settings.friction.qp_forcing = *v;
+  if (const auto v = s->number("qp_forcing_cap", Need::optional, unit)) {
+    settings.friction.qp_forcing_cap = *v;
+    // The forced QP tolerance is clamped to [qp_tolerance, qp_forcing_cap].
+    if (*v < settings.qp_tolerance)
+      s->issue("qp_forcing_cap", fmt::format("found {:g}, below qp_tolerance = {:g}; expected a "
+                                             "number in [qp_tolerance, 1)",
+                                             *v, settings.qp_tolerance));
+  }
+  if (const auto v = s->number("loop_forcing", Need::optional, unit))
+    settings.friction.loop_forcing = *v;
   if (const auto v = s->integer("max_qp_iterations", Need::optional, 1))
     settings.max_qp_iterations = *v;
+  if (const auto v = s->integer("explicit_dual_limit", Need::optional, 0))
+    settings.explicit_dual_limit = *v;
   if (const auto v =
           s->choice("factorization", Need::optional, {"auto", "mumps", "cholmod", "petsc"}))
     settings.factorization = *v == "auto" ? "" : *v;

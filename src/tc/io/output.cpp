@@ -363,9 +363,8 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
   out.print("  \"factorization\": {},\n", json_string(sim.factorization()));
   out.print("  \"dual_operator\": {},\n",
             json_string(dual && dual->rows().n_rows() > 0 ? physics::name(dual->kind()) : "none"));
-  out.print("  \"contact_dual\": {},\n", json_string(!dual                         ? "none"
-                                                     : sim.combined_contact_dual() ? "combined"
-                                                                                   : "nested"));
+  const auto* enforcement = sim.contact_enforcement();
+  out.print("  \"contact_dual\": {},\n", json_string(enforcement ? enforcement->name() : "none"));
   out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
   out.print("  \"last\": {{\n{}  }}\n", last);
   out.print("}}\n");

@@ -1,7 +1,7 @@
 #pragma once
 // The heat of the contact interface (2.13, §4.4) from the multipliers and the slip of a step:
 // the friction work per contact node, its distribution to the two bodies' nodes (d_θγ), and
-// the conducted flux β_C λ_n [θ]. Simulation::contact_heat_step puts them into (4.3).
+// the conducted flux β_C λ_n [θ]. ContactCoupling::heat_step puts them into (4.3).
 #include <span>
 #include <vector>
 

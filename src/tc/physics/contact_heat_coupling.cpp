@@ -34,7 +34,8 @@ void ContactHeatCoupling::heat_step(const Problem& p, const HeatPair& pair,
   if (it.mortar && c.frictional_heating && it.laws.frictional) {
     // d_θγ from the multipliers: the friction work of the step λ_τ,k·(B_τ(u − u^k))_k per
     // contact node over τ, δ_C of it to the slave through D, 1 − δ_C to the master through M;
-    // contact_bookkeeping sums the same work at u^{k+1}: heat = dissipation by construction.
+    // ContactCoupling::bookkeeping sums the same work at u^{k+1}: heat = dissipation by
+    // construction.
     const double tau = p.time.step;
     for (auto [s, st] : {std::pair{&ss, &pair.slave_state}, {&sm, &pair.master_state}}) {
       s->velocity.copy_from(s->u_new);  // (the thermoelastic term of heat_rhs used it above)
@@ -62,7 +63,7 @@ void ContactHeatCoupling::heat_step(const Problem& p, const HeatPair& pair,
     for (size_t k = 0; k < gamma.size(); ++k) gamma[k] = it.laws.beta_c[k] * gamma[k];
     conductance_ = it.mortar->thermal_conductance(gamma, 1.0);
   }
-  if (conduct && treatment_ == ConductanceTreatment::Lagged) {
+  if (conduct && treatment_ == ConductanceTreatment::lagged) {
     // (6.2): L θ^p of the previous iterate to the right-hand side.
     const auto& l = *conductance_;
     l.ss.mult(ss.theta_new, ss.work_theta);
@@ -74,7 +75,7 @@ void ContactHeatCoupling::heat_step(const Problem& p, const HeatPair& pair,
   }
   pair.slave_system.prescribe_theta(t, ss.theta_new);
   pair.master_system.prescribe_theta(t, sm.theta_new);
-  const bool implicit = conduct && treatment_ == ConductanceTreatment::Implicit;
+  const bool implicit = conduct && treatment_ == ConductanceTreatment::implicit;
   if (implicit) {
     if (!interface_heat_) {
       interface_heat_ = std::make_unique<InterfaceHeatSolver>(

@@ -8,6 +8,7 @@
 
 #include "tc/contact/contact_rows.hpp"
 #include "tc/contact/mortar_pair.hpp"
+#include "tc/physics/bodies.hpp"
 #include "tc/physics/body_field.hpp"
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/interface_laws.hpp"
@@ -17,21 +18,8 @@
 
 namespace tc::physics {
 
-/// How the contact conductance L_θγ of §4.4 enters the heat step of the fixed point (6.3).
-enum class ConductanceTreatment {
-  Implicit,  // L θ^{p+1} on the left, solved exactly through the interface (default)
-  Lagged     // the thesis' (6.2): L θ^p of the previous iterate on the right-hand side
-};
-
 /// The two bodies of the contact pair in the heat step.
-struct HeatPair {
-  BodyField& slave;
-  BodyField& master;
-  const BodySystem& slave_system;
-  const BodySystem& master_system;
-  const BodyState& slave_state;  // at t^k
-  const BodyState& master_state;
-};
+using HeatPair = BodyPair;
 
 /// The multipliers of the current iterate as the heat step reads them.
 struct ContactIterate {
@@ -73,7 +61,7 @@ class ContactHeatCoupling {
   void pair_boundary_heat(const Problem& p, const HeatPair& pair, bool implicit, double t, int step,
                           int iteration);
 
-  ConductanceTreatment treatment_ = ConductanceTreatment::Implicit;
+  ConductanceTreatment treatment_ = ConductanceTreatment::implicit;
   std::unique_ptr<InterfaceHeatSolver> interface_heat_;
   std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step
   contact::FrictionalHeat frictional_heat_;             // d_θγ of the last heat step

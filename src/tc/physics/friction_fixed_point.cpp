@@ -59,21 +59,23 @@ double coulomb_fixed_point(TrescaIteration& t, const core::Vector& lambda,
   const double qp_tol = p.qp_tolerance;
   double residual = 0;
   // Inexact where it cannot matter (forcing terms as in inexact Newton methods):
-  // - a QP to 1e-2 of the last fixed-point residual (clamped to [qp_tolerance, 1e-3]); a
-  //   residual that rises shows a loose QP's λ passed for converged (seen on bench/contact's
-  //   long quasistatic slides: the loop cycled), and the step's QPs are exact from then on;
+  // - a QP to qp_forcing (1e-2) of the last fixed-point residual, clamped to [qp_tolerance,
+  //   qp_forcing_cap = 1e-3] (a cap below the
+  //   QP tolerance means no forcing); a residual that rises shows a loose QP's λ passed for
+  //   converged (seen on bench/contact's long quasistatic slides: the loop cycled), and the step's
+  //   QPs are exact from then on;
   // - with thermal expansion, while the residual is above the tolerance, the loop at this θ
-  //   stops once its residual fell 100-fold: θ moves in the next heat step, and with it
-  //   u_free and λ (measured on example 06: λ_n(γ) − γ jumps back to ~2e-3 of ‖λ‖ at the next
-  //   iteration whatever the accuracy reached before).
+  //   stops once its residual fell by loop_forcing (1e-2): θ moves in the next heat step, and
+  //   with it u_free and λ (measured on example 06: λ_n(γ) − γ jumps back to ~2e-3 of ‖λ‖ at
+  //   the next iteration whatever the accuracy reached before).
   // The outer loop stops only on an update that met the tolerance with a QP to the QP
   // tolerance, so the fixed point it returns is that of the exact scheme.
-  constexpr double qp_forcing = 1e-2, loop_forcing = 1e-2;
   const bool friction = p.frictional;
   double first = -1;
   for (int update = 1; update <= p.max_updates; ++update) {
-    const double rtol =
-        friction && !t.exact_qps ? std::clamp(qp_forcing * t.last, qp_tol, 1e-3) : qp_tol;
+    const double rtol = friction && !t.exact_qps ? std::clamp(p.qp_forcing * t.last, qp_tol,
+                                                              std::max(p.qp_forcing_cap, qp_tol))
+                                                 : qp_tol;
     solve_qp(rtol);
     t.converged = rtol <= qp_tol;
     if (!friction) break;  // γ plays no part
@@ -86,7 +88,7 @@ double coulomb_fixed_point(TrescaIteration& t, const core::Vector& lambda,
     if (first < 0) first = t.last;
     t.converged = t.last <= tol && rtol <= qp_tol;
     if (t.converged) break;
-    if (t.cut_short && t.last > tol && t.last <= loop_forcing * first) break;
+    if (t.cut_short && t.last > tol && t.last <= p.loop_forcing * first) break;
     if (update == p.max_updates && p.max_updates > 1)
       throw NumericalError(
           fmt::format("the Tresca → Coulomb fixed point γ = λ_n (6.3) did not converge to {:.1e} "

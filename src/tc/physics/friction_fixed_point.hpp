@@ -22,9 +22,9 @@ struct TrescaIteration {
   double last = 1.0;  // ‖λ_n(γ) − γ‖/‖λ‖ of the last update (1 before the first of a step)
   bool converged = false;      // the last update met the tolerance, its QP solved to qp_tolerance
   bool exact_qps = false;      // the QPs of the rest of the step to qp_tolerance
-  bool cut_short = false;      // stop after a 100-fold fall (θ, hence u_free, moves next)
+  bool cut_short = false;      // stop after a 1/loop_forcing-fold fall (θ, u_free move next)
   bool relax = false;          // Aitken on (friction > 0 and acceleration on)
-  bool defer = false;          // u formed after convergence (only B u inside, see couple_contact)
+  bool defer = false;          // u formed after convergence (only B u inside: ContactCoupling)
   std::vector<double> bu_old;  // B u^k, when deferred
 
   // γ = λ_n of the current multipliers, the relaxation forgotten; bound_k = 𝔉_k γ_k.
@@ -40,6 +40,10 @@ struct CoulombFixedPoint {
   bool frictional = false;           // the law has 𝔉 > 0 somewhere (else γ plays no part)
   double tolerance = 0;  // on ‖λ_n(γ) − γ‖/‖λ‖ ([solver] coupling_tolerance)
   double qp_tolerance = 0;
+  // The forcing terms (FrictionFixedPointSettings, problem.hpp): a QP to qp_forcing × the last
+  // residual within [qp_tolerance, qp_forcing_cap]; a cut-short loop stops after a
+  // 1/loop_forcing-fold fall.
+  double qp_forcing = 1e-2, qp_forcing_cap = 1e-3, loop_forcing = 1e-2;
   int max_updates = 1;
   int step = 0, outer = 0;  // for the messages: the step and the staggered iteration
 };

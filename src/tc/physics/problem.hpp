@@ -113,13 +113,38 @@ enum class ContactDual {
   combined    // one TFETI QP over gluing, Dirichlet and contact multipliers (feti::ContactFeti)
 };
 
+/// How the contact conductance L_θγ of §4.4 enters the heat step of the fixed point (6.3).
+enum class ConductanceTreatment {
+  implicit,  // L θ^{p+1} on the left, solved exactly through the interface (default)
+  lagged     // the thesis' (6.2): L θ^p of the previous iterate on the right-hand side
+};
+
+/// The Tresca → Coulomb fixed point of a step (friction_fixed_point.hpp): its acceleration and
+/// its forcing terms, which leave a QP or a loop inexact only where that cannot change the
+/// answer (as in inexact Newton methods; docs/choices.md, "friction loop").
+struct FrictionFixedPointSettings {
+  bool acceleration = true;  // Aitken's Δ² on γ; off: the plain update γ ← λ_n of (6.3)
+  /// A QP to qp_forcing × the last relative residual ‖λ_n(γ) − γ‖/‖λ‖, clamped to
+  /// [qp_tolerance, qp_forcing_cap]; the update that ends the loop has a QP to qp_tolerance.
+  double qp_forcing = 1e-2;
+  double qp_forcing_cap = 1e-3;
+  /// Nested loop with thermal expansion: the loop at one θ stops once its residual fell by this
+  /// factor (θ, hence u_free and λ, moves in the next heat step).
+  double loop_forcing = 1e-2;
+};
+
 struct SolverSettings {
   double coupling_tolerance = 1e-6;
   int max_coupling_iterations = 20;
   FrictionLoop friction_loop = FrictionLoop::nested;
+  FrictionFixedPointSettings friction;
+  ConductanceTreatment conductance_treatment = ConductanceTreatment::implicit;
   double qp_tolerance = 1e-8;
   int max_qp_iterations = 2000;
   ContactDual contact_dual = ContactDual::nested;
+  /// The nested dual forms F explicitly while it has at most this many rows (0: always
+  /// matrix-free); unset: DualContactSettings::explicit_limit as the caller gave it (1500).
+  std::optional<int> explicit_dual_limit;
   std::string factorization;  // "" = automatic; "mumps" | "cholmod" | "petsc"
   // FETI (bodies with subdomains > 1, 6.2): relative gluing/Dirichlet residual, iteration cap
   // of the projected CG, preconditioner.

@@ -1,0 +1,106 @@
+#include "tc/physics/contact_enforcement.hpp"
+
+#include <fmt/format.h>
+
+#include "tc/core/error.hpp"
+#include "tc/physics/finite_checks.hpp"
+
+namespace tc::physics {
+
+void ContactEnforcement::save(Checkpoint& c) const {
+  dual_->save_compliance(std::span<std::vector<int>, 4>(&c.compliance[0], 4));
+}
+
+void ContactEnforcement::restore(const Checkpoint& c) {
+  dual_->replay_compliance(std::span<const std::vector<int>, 4>(&c.compliance[0], 4));
+}
+
+void NestedDualEnforcement::solve_qp(const BodyPair& pair, const TrescaQp& qp, core::Vector& lambda,
+                                     ContactStatistics& stats) {
+  // u stays u_free here (recover = false): finish_qps forms it, or only B u, once per θ.
+  const auto r = dual().solve(pair.slave.u_prev, pair.master.u_prev, qp.targets, qp.bound, lambda,
+                              pair.slave.u_new, pair.master.u_new, false, qp.rtol);
+  stats.qp_iterations += r.iterations;
+  stats.operator_applications += r.operator_applications;
+  ++stats.friction_iterations;
+  if (!r.converged())
+    throw NumericalError(fmt::format("the contact QP (6.9) did not converge: {}", r.message),
+                         qp.step, qp.outer, r.projected_gradient);
+}
+
+void NestedDualEnforcement::finish_qps(const BodyPair& pair, const core::Vector& lambda,
+                                       const TrescaIteration& t, std::vector<double>& iterate_slip,
+                                       int step, int outer) {
+  auto& ss = pair.slave;
+  auto& sm = pair.master;
+  if (t.defer) {  // B u = B u_free − Fλ: the frictional heat's slip without forming u
+    core::Vector bu;
+    dual().constraint_values(ss.u_prev, sm.u_prev, lambda, bu);
+    iterate_slip = bu.to_std();
+    for (size_t i = 0; i < iterate_slip.size(); ++i) iterate_slip[i] -= t.bu_old[i];
+  } else {
+    dual().recover(lambda, ss.u_new, sm.u_new);
+    require_finite(ss.u_new, "u = u_free − A⁻¹Bᵀλ", step, outer);
+    require_finite(sm.u_new, "u = u_free − A⁻¹Bᵀλ", step, outer);
+  }
+}
+
+CombinedTfetiEnforcement::CombinedTfetiEnforcement(std::unique_ptr<DualContactSolver> dual,
+                                                   const feti::Feti& slave,
+                                                   const feti::Feti& master, int max_qp_iterations)
+    : ContactEnforcement(std::move(dual)),
+      slave_(slave),
+      master_(master),
+      max_qp_iterations_(max_qp_iterations) {}
+
+void CombinedTfetiEnforcement::set_rows(ContactRows rows) {
+  dual().set_rows(std::move(rows));
+  const auto& r = dual().rows();  // the combined B and G on this step's contact rows
+  feti_ = std::make_unique<feti::ContactFeti>(slave_, master_, r.slave, r.master, r.dim);
+}
+
+void CombinedTfetiEnforcement::solve_qp(const BodyPair& pair, const TrescaQp& qp,
+                                        core::Vector& lambda, ContactStatistics& stats) {
+  // The whole mechanical step at this Tresca bound: one TFETI QP over the gluing, Dirichlet
+  // and contact multipliers (6.4), SMALBE warm-started from the last one's λ and μ; u comes
+  // with it. Its tolerance is that of the nested QP on both ‖g^P‖ and ‖Gλ − e‖.
+  feti::ContactFetiOptions o;
+  o.smalbe.rtol = qp.rtol;
+  o.smalbe.equality_rtol = qp.rtol;
+  o.smalbe.max_inner_iterations = max_qp_iterations_;
+  const auto r = feti_->solve(pair.slave.rhs_u, pair.master.rhs_u, qp.targets, qp.bound,
+                              pair.slave.u_new, pair.master.u_new, lambda, o, &state_);
+  stats.qp_iterations += r.inner_iterations;
+  stats.operator_applications += r.operator_applications;
+  outer_ += r.outer_iterations;
+  ++stats.friction_iterations;
+  if (!r.converged())
+    throw NumericalError(
+        fmt::format("the combined TFETI contact QP (6.4, SMALBE) did not converge: {}", r.message),
+        qp.step, qp.outer, r.projected_gradient);
+}
+
+void CombinedTfetiEnforcement::finish_qps(const BodyPair& pair, const core::Vector&,
+                                          const TrescaIteration&, std::vector<double>&, int step,
+                                          int outer) {
+  require_finite(pair.slave.u_new, "displacement", step, outer);  // u came with λ
+  require_finite(pair.master.u_new, "displacement", step, outer);
+}
+
+void CombinedTfetiEnforcement::save(Checkpoint& c) const {
+  ContactEnforcement::save(c);
+  c.feti_body_lambda.assign(state_.body.data(), state_.body.data() + state_.body.size());
+  c.feti_mu.assign(state_.mu.data(), state_.mu.data() + state_.mu.size());
+  c.total_smalbe_outer = outer_;
+}
+
+void CombinedTfetiEnforcement::restore(const Checkpoint& c) {
+  ContactEnforcement::restore(c);
+  state_.body = Eigen::Map<const Eigen::VectorXd>(
+      c.feti_body_lambda.data(), static_cast<Eigen::Index>(c.feti_body_lambda.size()));
+  state_.mu = Eigen::Map<const Eigen::VectorXd>(c.feti_mu.data(),
+                                                static_cast<Eigen::Index>(c.feti_mu.size()));
+  outer_ = c.total_smalbe_outer;
+}
+
+}  // namespace tc::physics

@@ -1,0 +1,78 @@
+#pragma once
+// How the time scheme meets contact ([time] contact_scheme, docs/choices.md): what a step does
+// before its QPs (the modified mass's release bound, the stabilised predictor) and where the
+// slip is measured from (5.4). One implementation per scheme; choose_contact_method
+// (contact_method.hpp) picks it.
+#include <memory>
+
+#include "tc/core/timer.hpp"
+#include "tc/physics/bodies.hpp"
+#include "tc/physics/checkpoint.hpp"
+#include "tc/physics/dual_contact.hpp"
+#include "tc/physics/ledger.hpp"
+
+namespace tc::physics {
+
+class ContactTimeScheme {
+ public:
+  virtual ~ContactTimeScheme() = default;
+  /// Before the QPs of the step, with its rows set and λ^k moved onto them (`lambda`).
+  virtual void prepare(const BodyPair& /*pair*/, DualContactSolver& /*dual*/,
+                       const core::Vector& /*lambda*/, ContactStatistics& /*stats*/, int /*step*/) {
+  }
+  /// The displacement the slip is measured from, into each field's work_u: c_τ = B_τ of it.
+  virtual void slip_reference(const BodyPair& pair) const = 0;
+  /// The mean contact traction of the step per unit of λ (traction_per_multiplier).
+  [[nodiscard]] virtual double traction_per_multiplier() const;
+  /// The stabilised predictor's mass projection and its compliance (slots 4–7 of the
+  /// checkpoint); nothing for the other schemes.
+  virtual void save(Checkpoint& /*c*/) const {}
+  virtual void restore(const Checkpoint& /*c*/) {}
+};
+
+/// Quasistatic: slip from u^k, B_τu − c_τ = τ B_τu̇^{k+1}.
+class QuasistaticContact final : public ContactTimeScheme {
+ public:
+  void slip_reference(const BodyPair& pair) const override;
+};
+
+/// The thesis' Newmark (5.1–5.4): slip from u^k + τ/2 u̇^k, B_τu − c_τ = τ/2 B_τu̇^{k+1}.
+class PlainNewmarkContact : public ContactTimeScheme {
+ public:
+  explicit PlainNewmarkContact(double tau) : tau_(tau) {}
+  void slip_reference(const BodyPair& pair) const override;
+
+ protected:
+  double tau_;
+};
+
+/// Newmark with the modified mass of Hager, Hüeber & Wohlmuth: the contact nodes have no
+/// inertia (massless_rates), the slip is measured from u^k, and a node releases with
+/// λ_n^{k+1} ≥ −λ_n^k (release_floor), so the step's mean contact force does no work.
+class ModifiedMassContact final : public ContactTimeScheme {
+ public:
+  void prepare(const BodyPair& pair, DualContactSolver& dual, const core::Vector& lambda,
+               ContactStatistics& stats, int step) override;
+  void slip_reference(const BodyPair& pair) const override;
+};
+
+/// The contact-stabilised Newmark of Deuflhard, Krause & Ertel: the predictor projected onto
+/// the admissible set in the mass norm (a frictionless QP with F_M = Σ B_i M_i⁻¹ B_iᵀ), the
+/// position update without the last step's contact force; λ is twice the mean traction.
+class StabilisedNewmarkContact final : public PlainNewmarkContact {
+ public:
+  /// Factorises M_u of both bodies (taking the one of the initial acceleration when kept).
+  StabilisedNewmarkContact(const Problem& p, Bodies& bodies, int slave, int master,
+                           const DualContactSettings& settings, core::PhaseTimers& timers);
+  void prepare(const BodyPair& pair, DualContactSolver& dual, const core::Vector& lambda,
+               ContactStatistics& stats, int step) override;
+  [[nodiscard]] double traction_per_multiplier() const override;
+  void save(Checkpoint& c) const override;
+  void restore(const Checkpoint& c) override;
+
+ private:
+  core::PhaseTimers& timers_;
+  std::unique_ptr<DualContactSolver> projection_;
+};
+
+}  // namespace tc::physics

@@ -1,0 +1,87 @@
+#include "tc/physics/energies.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tc::physics {
+
+double kinetic_energy(const Problem& p, const Bodies& bodies) {
+  if (p.time.scheme != Scheme::dynamic) return 0.0;
+  double e = 0;
+  for (int b = 0; b < bodies.size(); ++b)
+    e += 0.5 * bodies.systems[b]->matrices().mass_u.quadratic_form(bodies.states[b].v,
+                                                                   bodies.fields[b]->work_u);
+  return e;
+}
+
+double strain_energy(const Bodies& bodies) {
+  double e = 0;
+  for (int b = 0; b < bodies.size(); ++b)
+    e += 0.5 * bodies.systems[b]->matrices().stiffness_u.quadratic_form(bodies.states[b].u,
+                                                                        bodies.fields[b]->work_u);
+  return e;
+}
+
+double thermal_energy(const Problem& p, const Bodies& bodies) {
+  const double theta0 = p.physics.reference_temperature;
+  double e = 0;
+  for (int b = 0; b < bodies.size(); ++b) {
+    const auto& vol = bodies.systems[b]->node_volumes();
+    const auto theta = bodies.states[b].theta.to_std();
+    const double c = bodies.systems[b]->body().material.heat_capacity();
+    for (size_t a = 0; a < vol.size(); ++a) e += c * vol[a] * (theta[a] - theta0);
+  }
+  return e;
+}
+
+double thermal_free_energy(const Problem& p, const Bodies& bodies) {
+  const double theta0 = p.physics.reference_temperature;
+  double e = 0;
+  for (int b = 0; b < bodies.size(); ++b) {
+    auto& s = *bodies.fields[b];
+    s.dtheta.copy_from(bodies.states[b].theta);
+    s.dtheta.shift(-theta0);
+    e += bodies.systems[b]->matrices().mass_theta.quadratic_form(s.dtheta, s.work_theta) /
+         (2.0 * theta0);
+  }
+  return e;
+}
+
+double extreme_temperature(const Bodies& bodies, bool largest) {
+  double e = largest ? -INFINITY : INFINITY;
+  for (const auto& st : bodies.states) {
+    PetscReal v = 0;
+    if (largest) {
+      TC_PETSC(VecMax(st.theta.get(), nullptr, &v));
+      e = std::max(e, static_cast<double>(v));
+    } else {
+      TC_PETSC(VecMin(st.theta.get(), nullptr, &v));
+      e = std::min(e, static_cast<double>(v));
+    }
+  }
+  return e;
+}
+
+void support_forces(const Problem& p, const Bodies& bodies, int b, double t, core::Vector& r) {
+  const auto& sys = *bodies.systems[b];
+  const auto& m = sys.matrices();
+  const auto& st = bodies.states[b];
+  auto& s = *bodies.fields[b];
+  core::Vector& f = s.f_u;
+  sys.mechanical_load(t, f);
+  m.stiffness_u.mult(st.u, r);
+  if (p.time.scheme == Scheme::dynamic) m.mass_u.mult_add(st.a, r);
+  if (p.physics.thermal_expansion) {
+    s.dtheta.copy_from(st.theta);
+    s.dtheta.shift(-p.physics.reference_temperature);
+    m.coupling_u_theta.mult_add(s.dtheta, r);
+  }
+  {  // f is scratch: overwrite its constrained entries with the support forces, keep the rest
+    auto rv = r.view();
+    auto fv = f.view();
+    for (const PetscInt d : sys.u_dirichlet_dofs()) fv[d] = rv[d];
+  }
+  r.copy_from(f);
+}
+
+}  // namespace tc::physics
