@@ -209,6 +209,7 @@ TEST(CaseReader, FixedPointKeysHaveTheirDefaultsAndAreRead) {
   EXPECT_DOUBLE_EQ(defaults.friction.qp_forcing, 1e-2);
   EXPECT_DOUBLE_EQ(defaults.friction.qp_forcing_cap, 1e-3);
   EXPECT_DOUBLE_EQ(defaults.friction.loop_forcing, 1e-2);
+  EXPECT_EQ(defaults.friction.max_updates, 100);
   EXPECT_FALSE(defaults.explicit_dual_limit.has_value());
   const auto dir = fs::temp_directory_path() / "tc_io_case_reader_fixed_point_test";
   fs::create_directories(dir);
@@ -217,17 +218,19 @@ TEST(CaseReader, FixedPointKeysHaveTheirDefaultsAndAreRead) {
     std::ifstream in(valid_case("plane-strain-2d.toml"));
     text.assign(std::istreambuf_iterator<char>(in), {});
   }
-  std::ofstream(dir / "case.toml") << text
-                                   << "\n[solver]\ncoupling_acceleration = false\n"
-                                      "conductance_treatment = \"lagged\"\nqp_forcing = 0.1\n"
-                                      "qp_forcing_cap = 0.01\nloop_forcing = 0.5\n"
-                                      "explicit_dual_limit = 0\n";
+  std::ofstream(dir / "case.toml")
+      << text
+      << "\n[solver]\ncoupling_acceleration = false\n"
+         "conductance_treatment = \"lagged\"\nqp_forcing = 0.1\n"
+         "qp_forcing_cap = 0.01\nloop_forcing = 0.5\nmax_friction_updates = 7\n"
+         "explicit_dual_limit = 0\n";
   const auto s = read_case(dir / "case.toml").solver;
   EXPECT_FALSE(s.friction.acceleration);
   EXPECT_EQ(s.conductance_treatment, tc::physics::ConductanceTreatment::lagged);
   EXPECT_DOUBLE_EQ(s.friction.qp_forcing, 0.1);
   EXPECT_DOUBLE_EQ(s.friction.qp_forcing_cap, 0.01);
   EXPECT_DOUBLE_EQ(s.friction.loop_forcing, 0.5);
+  EXPECT_EQ(s.friction.max_updates, 7);
   EXPECT_EQ(s.explicit_dual_limit, 0);
   fs::remove_all(dir);
 }

@@ -684,7 +684,7 @@ void CaseReader::read_solver(const TableReader& root) {
        "max_qp_iterations", "factorization", "feti_tolerance", "max_feti_iterations",
        "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations",
        "coupling_acceleration", "conductance_treatment", "qp_forcing", "qp_forcing_cap",
-       "loop_forcing", "explicit_dual_limit"});
+       "loop_forcing", "max_friction_updates", "explicit_dual_limit"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -712,6 +712,8 @@ void CaseReader::read_solver(const TableReader& root) {
   }
   if (const auto v = s->number("loop_forcing", Need::optional, unit))
     settings.friction.loop_forcing = *v;
+  if (const auto v = s->integer("max_friction_updates", Need::optional, 1))
+    settings.friction.max_updates = *v;
   if (const auto v = s->integer("max_qp_iterations", Need::optional, 1))
     settings.max_qp_iterations = *v;
   if (const auto v = s->integer("explicit_dual_limit", Need::optional, 0))

@@ -203,7 +203,7 @@ int ContactCoupling::couple(int step) {
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.
     if (nested || tresca.gamma.empty()) tresca.restart(lambda_, dim, nodal_laws_.friction);
     const double fixed_residual = mech_step(tresca, targets, step, iteration,
-                                            nested ? problem_.solver.max_coupling_iterations : 1);
+                                            nested ? problem_.solver.friction.max_updates : 1);
     lambda_prev.axpy(-1.0, lambda_);
     const double dl = lambda_prev.norm(), ln = lambda_.norm();
     const double rl = ln > 0 ? dl / ln : dl, rth = thn > 0 ? dth / thn : dth;

@@ -131,6 +131,12 @@ struct FrictionFixedPointSettings {
   /// Nested loop with thermal expansion: the loop at one θ stops once its residual fell by this
   /// factor (θ, hence u_free and λ, moves in the next heat step).
   double loop_forcing = 1e-2;
+  /// Nested loop: the Tresca → Coulomb updates allowed at one θ. The map γ ↦ λ_n(γ) contracts
+  /// slowly where friction moves the pressure (a block dragged by its top tilts onto its
+  /// leading edge): 12–34 Aitken-relaxed updates per step at the reversals of a quasistatic
+  /// slide in plane strain (tests/verification/quasistatic_work_test.cpp), where the plain
+  /// update diverges.
+  int max_updates = 100;
 };
 
 struct SolverSettings {
