@@ -220,7 +220,8 @@ int ContactCoupling::couple(int step) {
         fmt::format("the staggered fixed point (6.3) with contact did not converge to {:.1e}", tol),
         step, iteration - 1, change);
   iterate_slip_.clear();
-  if (tresca.defer) {  // u_new holds u_free of the last iteration
+  qp_bound_ = std::move(tresca.qp_bound);  // empty without friction
+  if (tresca.defer) {                      // u_new holds u_free of the last iteration
     auto scope = timers_.scope("qp");
     dual.recover(lambda_, ss.u_new, sm.u_new);
   }
@@ -245,7 +246,7 @@ void ContactCoupling::bookkeeping() {
   const auto& rows = method_.enforcement->dual().rows();
   const auto l = lambda_.to_std();
   const double unit = traction_per_multiplier();
-  stats_.record_step(rows, l, slip_, unit, nodal_laws_.friction, mortar_.get());
+  stats_.record_step(rows, l, slip_, unit, qp_bound_, mortar_.get());
   if (mortar_) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
     const auto& c = *problem_.contact;
     heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);

@@ -85,8 +85,9 @@ class ContactCoupling {
   std::vector<double> iterate_slip_;
   ContactStatistics stats_;
   ContactHeatCoupling heat_;
-  InterfaceLaws laws_;    // the contact's 𝔉(θ), γ_C(θ)
-  NodalLaws nodal_laws_;  // …at the contact nodes of the last coupling iterate
+  InterfaceLaws laws_;            // the contact's 𝔉(θ), γ_C(θ)
+  NodalLaws nodal_laws_;          // …at the contact nodes of the last coupling iterate
+  std::vector<double> qp_bound_;  // the Tresca bounds 𝔉_kγ_k of the step's last QP
   std::vector<double> heat_flux_;
   long total_qp_ = 0, total_applications_ = 0;
 };

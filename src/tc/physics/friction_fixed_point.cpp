@@ -79,6 +79,7 @@ double coulomb_fixed_point(TrescaIteration& t, const core::Vector& lambda,
     solve_qp(rtol);
     t.converged = rtol <= qp_tol;
     if (!friction) break;  // γ plays no part
+    t.qp_bound = t.bound;
     residual = t.update(lambda, p.dim, p.friction);
     const double ln = lambda.norm();
     const double before = t.last;

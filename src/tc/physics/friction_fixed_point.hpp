@@ -18,6 +18,7 @@ namespace tc::physics {
 // residuals (ω = 1 at the first update: the plain update of 6.3).
 struct TrescaIteration {
   std::vector<double> gamma, bound, residual, residual_prev;
+  std::vector<double> qp_bound;  // the bound of the last QP (bound moves on with each update)
   double omega = 1.0;
   double last = 1.0;  // ‖λ_n(γ) − γ‖/‖λ‖ of the last update (1 before the first of a step)
   bool converged = false;      // the last update met the tolerance, its QP solved to qp_tolerance

@@ -9,7 +9,7 @@ namespace tc::physics {
 
 void ContactStatistics::record_step(const contact::ContactRows& rows,
                                     std::span<const double> lambda, std::span<const double> slip,
-                                    double unit, std::span<const double> friction,
+                                    double unit, std::span<const double> bound,
                                     const contact::MortarPair* mortar) {
   const int dim = rows.dim;
   const auto& l = lambda;
@@ -36,7 +36,8 @@ void ContactStatistics::record_step(const contact::ContactRows& rows,
     cs.tangential_force_sum += unit * w * lt;
     if (ln > 0) {
       ++cs.active_nodes;
-      if (friction[k] > 0 && lt >= friction[k] * ln * (1 - slip_tolerance)) ++cs.slip_nodes;
+      const double b = bound.empty() ? 0.0 : bound[k];
+      if (b > 0 && lt >= b * (1 - slip_tolerance)) ++cs.slip_nodes;
     }
   }
   cs.tangential_force = unit * std::hypot(resultant[0], resultant[1], resultant[2]);

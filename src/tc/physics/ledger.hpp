@@ -18,18 +18,20 @@ struct ContactStatistics {
   double tangential_force_sum = 0;  // Σ_k w_k ‖λ_τ,k‖
   double dissipation = 0;           // cumulative Σ_steps λ_τᵀ B_τ Δu (J)
   int active_nodes = 0;             // λ_n,k > 0
-  int slip_nodes = 0;  // active, on the Coulomb bound (‖λ_τ,k‖ ≥ 𝔉_kλ_n,k(1 − slip_tolerance))
+  int slip_nodes = 0;               // active, on the Tresca bound of the step's last QP
 
-  /// A node slips when ‖λ_τ,k‖ ≥ 𝔉_kλ_n,k(1 − slip_tolerance), 𝔉_k > 0 (its own 𝔉 of the
-  /// interface temperature, interface_laws.hpp).
+  /// A node slips when it lies on the friction circle of the QP that produced λ,
+  /// ‖λ_τ,k‖ ≥ 𝔉_kγ_k(1 − slip_tolerance) with 𝔉_kγ_k > 0: exact to the QP's accuracy, where
+  /// the Coulomb circle 𝔉_kλ_n,k is met only to the fixed point's (the coupling tolerance on
+  /// ‖λ‖, 1e-5 of a node's ratio seen on examples/07, which counted slipping nodes as stuck).
   static constexpr double slip_tolerance = 1e-6;
 
   /// The forces and node counts of the step from its multipliers (node-major, `unit` the
   /// traction per multiplier), and its friction work Σ_k λ_τ,k·slip_k added to the
-  /// dissipation. The resultant uses the mortar pair's tangents when there is one. `friction`
-  /// holds 𝔉_k per contact node.
+  /// dissipation. The resultant uses the mortar pair's tangents when there is one. `bound`
+  /// holds the Tresca bound 𝔉_kγ_k of the last QP per contact node (empty: no friction).
   void record_step(const contact::ContactRows& rows, std::span<const double> lambda,
-                   std::span<const double> slip, double unit, std::span<const double> friction,
+                   std::span<const double> slip, double unit, std::span<const double> bound,
                    const contact::MortarPair* mortar);
 };
 
