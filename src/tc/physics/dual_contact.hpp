@@ -155,6 +155,7 @@ class DualContactSolver {
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
   DofCompliance compliance_[2];  // slave, master
+  std::vector<double> w_[2];     // B_i,T S_i of form_from_compliance, kept between steps
   mutable core::Vector ws_, wm_, ys_, ym_, zs_, zm_;
 };
 
