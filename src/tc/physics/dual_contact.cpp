@@ -283,45 +283,47 @@ bool DualContactSolver::form_from_compliance() {
       }
     }
   }
-  // W_i = B_i,T S_i (m × |T|, column-major), a column of S at a time: W(r, q) = Σ_p b(r, p)
-  // S(p, q) over the few entries of row r, S's column q in cache (S is symmetric to the bit).
-  for (int i = 0; i < 2; ++i) {
-    const auto& s = compliance_[i].matrix();
-    const auto t = static_cast<size_t>(compliance_[i].size());
-    auto& w = w_[i];
-    w.resize(static_cast<size_t>(m) * t);
-    const auto& r = bt[i];
-    for (size_t q = 0; q < t; ++q) {
-      const double* sq = s.data() + q * t;
-      double* wq = w.data() + q * static_cast<size_t>(m);
-      for (PetscInt k = 0; k < m; ++k) {
-        double acc = 0;
-        for (PetscInt e = r.start[k]; e < r.start[k + 1]; ++e)
-          acc += r.value[static_cast<size_t>(e)] * sq[r.pos[static_cast<size_t>(e)]];
-        wq[k] = acc;
-      }
-    }
-  }
-  // G = F_s + F_m, F_i(r, c) = Σ_q b_i(c, q) W_i(r, q), a band of `band` rows at a time so
-  // that the band of W_i (band × |T|) stays in cache while every column c passes; then
-  // F = ½(G + Gᵀ), symmetric to the bit, in place by tiles. (Before: W_iᵀ and F_i formed
-  // whole, 28 MB each at 1 875 rows, and F read transposed from them: 0.2 s a step.)
+  // By bands of `band` rows r: the band of W_i = B_i,T S_i, row r = Σ_p b(r, p) S(p, :) over
+  // the few entries of row r (S's columns, contiguous: S is symmetric to the bit), stored q by
+  // q; then G = F_s + F_m on the band, F_i(r, c) = Σ_q b_i(c, q) W_i(r, q), the band of W_i in
+  // cache while every column c passes, straight into F's storage; then F = ½(G + Gᵀ) in place
+  // by tiles. (Before: W_iᵀ and F_i formed whole, 28 MB each at 1 875 rows, then read
+  // transposed: 0.2 s a step.)
   TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_dense_.out()));
   PetscScalar* fv = nullptr;
   TC_PETSC(MatDenseGetArray(f_dense_.get(), &fv));
   PetscInt ldf = m;
   TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ldf));
   constexpr PetscInt band = 32;
+  std::vector<double> row_major;
   for (PetscInt r0 = 0; r0 < m; r0 += band) {
     const PetscInt nr = std::min(band, m - r0);
+    for (int i = 0; i < 2; ++i) {
+      const auto& sm = compliance_[i].matrix();
+      const auto t = static_cast<size_t>(compliance_[i].size());
+      const auto& r = bt[i];
+      row_major.assign(static_cast<size_t>(nr) * t, 0.0);
+      for (PetscInt k = 0; k < nr; ++k) {
+        double* wr = row_major.data() + static_cast<size_t>(k) * t;
+        for (PetscInt e = r.start[r0 + k]; e < r.start[r0 + k + 1]; ++e) {
+          const double v = r.value[static_cast<size_t>(e)];
+          const double* sp = sm.data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * t;
+          for (size_t q = 0; q < t; ++q) wr[q] += v * sp[q];
+        }
+      }
+      auto& w = w_[i];
+      w.resize(t * band);
+      for (size_t q = 0; q < t; ++q)
+        for (PetscInt k = 0; k < nr; ++k)
+          w[q * band + static_cast<size_t>(k)] = row_major[static_cast<size_t>(k) * t + q];
+    }
     for (PetscInt c = 0; c < m; ++c) {
       double acc[2][band] = {};
       for (int i = 0; i < 2; ++i) {
         const auto& r = bt[i];
         for (PetscInt e = r.start[c]; e < r.start[c + 1]; ++e) {
           const double v = r.value[static_cast<size_t>(e)];
-          const double* wq =
-              w_[i].data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * m + r0;
+          const double* wq = w_[i].data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * band;
           for (PetscInt k = 0; k < nr; ++k) acc[i][k] += v * wq[k];
         }
       }
