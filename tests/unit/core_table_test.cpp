@@ -88,7 +88,12 @@ TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
       if (k == 5) cols[2] = -1;  // a zero right-hand side
       std::vector<double> out(rows.size() * static_cast<size_t>(k), -7.0);
       const bool done = solver.unit_solve_rows(cols, rows, out.data());
-      if (package != MATSOLVERCHOLMOD) {
+#if PETSC_VERSION_GE(3, 14, 0) && PETSC_VERSION_LT(3, 19, 0)  // where the path is compiled
+      const bool expected = package == MATSOLVERCHOLMOD;
+#else
+      const bool expected = false;
+#endif
+      if (!expected) {
         EXPECT_FALSE(done) << package;
         EXPECT_EQ(out[0], -7.0) << package;
         continue;

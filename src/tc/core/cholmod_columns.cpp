@@ -19,7 +19,10 @@
 
 namespace tc::core {
 
-#if defined(TC_HAVE_CHOLMOD) && !defined(PETSC_USE_64BIT_INDICES) && !defined(PETSC_USE_COMPLEX)
+// PETSc's private layout is assumed for 3.14–3.18 only (run and tested here on 3.18.5); other
+// versions compile the fallback.
+#if defined(TC_HAVE_CHOLMOD) && !defined(PETSC_USE_64BIT_INDICES) && \
+    !defined(PETSC_USE_COMPLEX) && PETSC_VERSION_GE(3, 14, 0) && PETSC_VERSION_LT(3, 19, 0)
 
 extern "C" {
 // The Fortran BLAS that CHOLMOD calls (the same library: the same kernels, the same bits).
