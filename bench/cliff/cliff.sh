@@ -2,8 +2,8 @@
 # Issue 22's cliff at 1500 multipliers: example 06 refined (master 24×80×6, slave 24×24×4:
 # 69 200 dofs, 1 875 multipliers once the 625 slave nodes touch), 12 steps of 0.01 s (contact
 # from step 7). Runs a baseline binary and this build in the same command and prints the wall
-# time, the QP and dual set-up seconds of each, the ratio, and the largest relative difference
-# of the last history row.
+# time, the QP, dual set-up and factorisation seconds of each, the ratio, and the largest
+# relative difference of the last history row.
 #   bench/cliff/cliff.sh BASELINE_BINARY
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -26,7 +26,8 @@ s = {k: json.load(open(f"{w}/{k}/summary.json")) for k in ("baseline", "current"
 for k, v in s.items():
     t = v["wall_seconds"]
     print(f"{k:8s} total {sum(t.values()):7.2f} s  qp {t['qp']:7.2f} s  dual set-up "
-          f"{t['dual_setup']:6.2f} s  QP iterations {v['qp_iterations']}  F {v['dual_operator']}"
+          f"{t['dual_setup']:6.2f} s  factorisation {t['factorization']:6.2f} s  "
+          f"QP iterations {v['qp_iterations']}  F {v['dual_operator']}"
           f"  multipliers {v['multipliers']}  dofs {v['dofs']}")
 tb, tc = (sum(s[k]["wall_seconds"].values()) for k in ("baseline", "current"))
 print(f"ratio baseline/current: {tb / tc:.1f}x")

@@ -82,3 +82,71 @@ TEST(Petsc, CholeskySolvesAnSpdSystem) {
     EXPECT_LT(x.norm(), 1e-11) << package;
   }
 }
+
+TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
+  // A 3D Laplacian (7 points, shifted) large enough for CHOLMOD's supernodal factor: the rows
+  // of A⁻¹[e_c] from unit_solve_rows, which visits only the supernodes they need, against the
+  // dense block solve: the same bits (CHOLMOD), or false and nothing written (other packages).
+  const PetscInt g = 14, n = g * g * g;
+  std::vector<PetscInt> nnz(n, 7);
+  tc::core::SparseMatrix a(n, n, nnz);
+  const auto id = [&](PetscInt x, PetscInt y, PetscInt z) { return x + g * (y + g * z); };
+  for (PetscInt z = 0; z < g; ++z)
+    for (PetscInt y = 0; y < g; ++y)
+      for (PetscInt x = 0; x < g; ++x) {
+        const PetscInt i = id(x, y, z);
+        const double d = 6.5, o = -1.0;
+        a.add_values(std::span(&i, 1), std::span(&i, 1), &d);
+        for (const PetscInt j : {x + 1 < g ? id(x + 1, y, z) : -1, y + 1 < g ? id(x, y + 1, z) : -1,
+                                 z + 1 < g ? id(x, y, z + 1) : -1})
+          if (j >= 0) {
+            a.add_values(std::span(&i, 1), std::span(&j, 1), &o);
+            a.add_values(std::span(&j, 1), std::span(&i, 1), &o);
+          }
+      }
+  a.assemble();
+  std::vector<PetscInt> rows;  // a face, as the contact dofs are
+  for (PetscInt y = 0; y < g; ++y)
+    for (PetscInt x = 0; x < g; ++x) rows.push_back(id(x, y, g - 1));
+  for (const auto& package : tc::core::available_cholesky_packages()) {
+    tc::core::CholeskySolver solver(a, package);
+    for (const PetscInt k : {1, 5, 64}) {
+      std::vector<PetscInt> cols(rows.begin(), rows.begin() + k);
+      if (k == 5) cols[2] = -1;  // a zero right-hand side
+      std::vector<double> out(rows.size() * static_cast<size_t>(k), -7.0);
+      const bool done = solver.unit_solve_rows(cols, rows, out.data());
+#if PETSC_VERSION_GE(3, 14, 0) && PETSC_VERSION_LT(3, 19, 0)  // where the path is compiled
+      const bool expected = package == MATSOLVERCHOLMOD;
+#else
+      const bool expected = false;
+#endif
+      if (!expected) {
+        EXPECT_FALSE(done) << package;
+        EXPECT_EQ(out[0], -7.0) << package;
+        continue;
+      }
+      ASSERT_TRUE(done) << "CHOLMOD's supernodal factor was not reached, k = " << k;
+      ::Mat b = nullptr, x = nullptr;
+      TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, k, nullptr, &b));
+      TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, k, nullptr, &x));
+      for (PetscInt c = 0; c < k; ++c)
+        if (cols[static_cast<size_t>(c)] >= 0)
+          TC_PETSC(MatSetValue(b, cols[static_cast<size_t>(c)], c, 1.0, INSERT_VALUES));
+      for (::Mat m : {b, x}) {
+        TC_PETSC(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY));
+        TC_PETSC(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY));
+      }
+      solver.solve_many(b, x);
+      const PetscScalar* xv = nullptr;
+      TC_PETSC(MatDenseGetArrayRead(x, &xv));
+      for (PetscInt c = 0; c < k; ++c)
+        for (size_t r = 0; r < rows.size(); ++r)
+          ASSERT_EQ(out[r + static_cast<size_t>(c) * rows.size()],
+                    xv[static_cast<size_t>(rows[r] + c * n)])
+              << "k = " << k << ", column " << c << ", row " << rows[r];
+      TC_PETSC(MatDenseRestoreArrayRead(x, &xv));
+      TC_PETSC(MatDestroy(&b));
+      TC_PETSC(MatDestroy(&x));
+    }
+  }
+}

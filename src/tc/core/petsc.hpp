@@ -4,6 +4,7 @@
 // naming the call. MPI and PETSc headers stay inside core and the layers that assemble.
 #include <petscksp.h>
 
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
@@ -166,6 +167,8 @@ class SparseMatrix {
 /// A direct Cholesky factorisation of an SPD SparseMatrix, done once, solved many times.
 /// The package is "mumps" or "cholmod" (PETSc's MatSolverType); it may be overridden with the
 /// PETSc option -tc_factor_package.
+struct CholeskyColumns;  // cholmod_columns.cpp
+
 class CholeskySolver {
  public:
   CholeskySolver() = default;
@@ -175,11 +178,20 @@ class CholeskySolver {
   /// X = A⁻¹B for dense B and X (n × k, column-major, PETSc MATSEQDENSE): one multi-right-hand
   /// side solve, which the factorisation packages do with level-3 BLAS.
   void solve_many(::Mat b, ::Mat x) const;
+  /// out(i, j) = (A⁻¹ e_c)[rows[i]] for c = cols[j] (a column −1 is a zero right-hand side),
+  /// column-major |rows| × |cols|: with CHOLMOD's supernodal factor, the forward solve visits
+  /// only the supernodes the columns reach and the backward solve only those of the rows and
+  /// their ancestors, each with CHOLMOD's own BLAS calls, so the entries are those of
+  /// solve_many on the same block, bit for bit. Returns false, writing nothing, with another
+  /// package (the caller then uses solve_many).
+  bool unit_solve_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
+                       double* out) const;
   [[nodiscard]] const std::string& package() const { return package_; }
 
  private:
   Handle<::KSP, KSPDestroy> ksp_;
   std::string package_;
+  mutable std::shared_ptr<CholeskyColumns> columns_;  // the factor's structure, on first use
 };
 
 /// The factorisation packages this PETSc build offers for Cholesky on sequential AIJ.

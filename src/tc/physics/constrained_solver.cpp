@@ -53,6 +53,15 @@ void ConstrainedSolver::solve_homogeneous_many(::Mat b, ::Mat x) const {
   factor_.solve_many(b, x);
 }
 
+bool ConstrainedSolver::solve_unit_rows(std::span<const PetscInt> cols,
+                                        std::span<const PetscInt> rows, double* out) const {
+  if (feti_) return false;
+  std::vector<PetscInt> c(cols.begin(), cols.end());
+  for (auto& d : c)  // the block solve zeroes the constrained rows of its right-hand side
+    if (std::binary_search(dofs_.begin(), dofs_.end(), d)) d = -1;
+  return factor_.unit_solve_rows(c, rows, out);
+}
+
 void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
   if (feti_) {
     feti_->solve(b, x);

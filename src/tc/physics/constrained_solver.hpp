@@ -6,6 +6,7 @@
 // A body cut into subdomains is solved by Total FETI instead (feti::Feti, 6.2), with the same
 // contract: callers do not know which one they have.
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "tc/core/petsc.hpp"
@@ -28,6 +29,12 @@ class ConstrainedSolver {
   /// X = A⁻¹B with zero prescribed values, for k right-hand sides at once (dense n × k; the
   /// constrained rows of B are zeroed in place).
   void solve_homogeneous_many(::Mat b, ::Mat x) const;
+  /// The rows `rows` of A⁻¹[e_c for c in cols] with zero prescribed values (a constrained c
+  /// gives a zero column), column-major |rows| × |cols|, without forming the n × k block:
+  /// core::CholeskySolver::unit_solve_rows, the same bits as solve_homogeneous_many on that
+  /// block. False (nothing written) when the factorisation cannot (FETI, MUMPS).
+  bool solve_unit_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
+                       double* out) const;
   [[nodiscard]] const std::string& package() const {
     return feti_ ? feti_->package() : factor_.package();
   }

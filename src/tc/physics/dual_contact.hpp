@@ -51,8 +51,9 @@ struct DualContactSettings {
 /// Dirichlet data: constrained dofs have zero rows and columns). A row b of B vanishes off T,
 /// so bᵀA⁻¹c = b_Tᵀ S c_T exactly (up to the direct solver's round-off): with S, F = B A⁻¹Bᵀ
 /// costs sparse-dense products and no solve for rows on dofs seen before. A new dof costs one
-/// solve (in blocks of right-hand sides); its column's entries on the old T give the new row
-/// too, by the symmetry of A.
+/// solve (in blocks of right-hand sides, restricted to the supernodes they reach when the
+/// factor allows: ConstrainedSolver::solve_unit_rows); its column's entries on the old T give
+/// the new row too, by the symmetry of A.
 class DofCompliance {
  public:
   DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs);
@@ -155,6 +156,7 @@ class DualContactSolver {
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
   DofCompliance compliance_[2];  // slave, master
+  std::vector<double> w_[2];     // form_from_compliance: a band of B_i,T S_i (work space)
   mutable core::Vector ws_, wm_, ys_, ym_, zs_, zm_;
 };
 
