@@ -20,6 +20,10 @@ struct ContactFeti::Part {
   /// f is scattered to and u gathered from.
   std::vector<std::pair<PetscInt, PetscInt>> carried;
   [[nodiscard]] bool owned() const { return sub->owned; }
+  /// Entry i's row in the replicated dual vectors: its row of the combined B.
+  [[nodiscard]] auto row() const {
+    return [this](size_t i) { return b[i].row; };
+  }
 };
 
 namespace {
@@ -117,29 +121,25 @@ void ContactFeti::sum_over_ranks(double* data, Eigen::Index n) const {
   core::sum_over_ranks(comm_, data, n, "ContactFeti");
 }
 
-void ContactFeti::sum_subdomain_products(const Eigen::VectorXd& x, Eigen::VectorXd& y,
-                                         const char* phase, Local local) const {
+void ContactFeti::sum_subdomain_products(DualIn x, DualOut y, const char* phase,
+                                         Local local) const {
   // y = Σ_s B_s X_s B_sᵀ x over the subdomains this rank owns, of either body, summed over the
   // ranks (X_s = A_s⁺ for F, A_s for the lumped preconditioner).
-  y.setZero(m_);
+  y.setZero();
   core::collective_check(comm_, phase, [&] {
-    for (const auto& p : parts_) {
-      if (!p.owned()) continue;
-      auto& w = p.sub->w;
-      w.setZero(p.sub->n(), 1);
-      for (const auto& e : p.b) w(e.dof, 0) += e.value * x[e.row];
-      (p.sub->*local)(w, p.sub->z);
-      for (const auto& e : p.b) y[e.row] += e.value * p.sub->z(e.dof, 0);
-    }
+    for (const auto& p : parts_)
+      if (p.owned())
+        p.sub->add_product(p.b, p.row(), x, y,
+                           [local](const Feti::Subdomain& sub) { (sub.*local)(sub.w, sub.z); });
   });
   sum_over_ranks(y.data(), y.size());
 }
 
-void ContactFeti::precondition(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+void ContactFeti::precondition(DualIn x, DualOut y) const {
   sum_subdomain_products(x, y, "combined FETI preconditioner", &Feti::Subdomain::mult);
 }
 
-void ContactFeti::apply_f(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+void ContactFeti::apply_f(DualIn x, DualOut y) const {
   sum_subdomain_products(x, y, "combined FETI subdomain solve", &Feti::Subdomain::pseudo_solve);
   ++stats_.applications;
 }
@@ -152,7 +152,6 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
                                     ContactFetiState* warm) const {
   const auto t0 = std::chrono::steady_clock::now();
   stats_.applications = 0;
-  const core::Vector* b[2] = {&b_slave, &b_master};
   core::Vector* x[2] = {&x_slave, &x_master};
   const auto n_contact = static_cast<size_t>(m_ - offset_[2]);
   if (c.size() != n_contact || friction_bound.size() != node_scale_.size())
@@ -162,30 +161,32 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
   // e = Rᵀf (6.4).
   std::vector<Eigen::MatrixXd> fs(parts_.size());
   Eigen::VectorXd d = Eigen::VectorXd::Zero(m_), e = Eigen::VectorXd::Zero(g_.rows());
-  std::vector<std::vector<double>> bv(2), xv(2);
-  for (int bi = 0; bi < 2; ++bi) bv[bi] = b[bi]->to_std(), xv[bi] = x[bi]->to_std();
-  core::collective_check(comm_, "combined FETI right-hand side", [&] {
-    for (size_t k = 0; k < parts_.size(); ++k) {
-      const auto& p = parts_[k];
-      if (!p.owned()) continue;
-      auto& f = fs[k];
-      f.setZero(p.sub->n(), 1);
-      for (const auto& [i, g] : p.carried) f(i, 0) = bv[p.body_index][static_cast<size_t>(g)];
-      if (p.sub->r.cols() > 0)
-        e.segment(p.kernel_offset, p.sub->r.cols()) = p.sub->r.transpose() * f;
-      Eigen::MatrixXd w = f;
-      p.sub->pseudo_solve(w, p.sub->z);
-      for (const auto& en : p.b) d[en.row] += en.value * p.sub->z(en.dof, 0);
+  {
+    // The loads and the Dirichlet values read in place.
+    const core::Vector::ReadView br[2] = {b_slave.read(), b_master.read()};
+    const core::Vector::ReadView xr[2] = {x_slave.read(), x_master.read()};
+    core::collective_check(comm_, "combined FETI right-hand side", [&] {
+      for (size_t k = 0; k < parts_.size(); ++k) {
+        const auto& p = parts_[k];
+        if (!p.owned()) continue;
+        auto& f = fs[k];
+        f.setZero(p.sub->n(), 1);
+        for (const auto& [i, g] : p.carried) f(i, 0) = br[p.body_index][g];
+        if (p.sub->r.cols() > 0)
+          e.segment(p.kernel_offset, p.sub->r.cols()) = p.sub->r.transpose() * f;
+        Eigen::MatrixXd w = f;
+        p.sub->pseudo_solve(w, p.sub->z);
+        p.sub->gather(p.b, p.row(), p.sub->z, d);
+      }
+    });
+    sum_over_ranks(d.data(), d.size());
+    sum_over_ranks(e.data(), e.size());
+    for (int bi = 0; bi < 2; ++bi) {
+      const Feti& body = *body_[bi];
+      const auto& row_dof = body.dirichlet_row_dofs();
+      for (size_t i = 0; i < row_dof.size(); ++i)
+        d[offset_[bi] + body.n_gluing() + static_cast<Eigen::Index>(i)] -= xr[bi][row_dof[i]];
     }
-  });
-  sum_over_ranks(d.data(), d.size());
-  sum_over_ranks(e.data(), e.size());
-  for (int bi = 0; bi < 2; ++bi) {
-    const Feti& body = *body_[bi];
-    const auto& row_dof = body.dirichlet_row_dofs();
-    for (size_t i = 0; i < row_dof.size(); ++i)
-      d[offset_[bi] + body.n_gluing() + static_cast<Eigen::Index>(i)] -=
-          xv[bi][static_cast<size_t>(row_dof[i])];
   }
   for (size_t i = 0; i < n_contact; ++i)
     d[offset_[2] + static_cast<Eigen::Index>(i)] -=
@@ -204,22 +205,18 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
     else
       set.add_disc({row + 1, row + 2, {r}});
   }
-  // F and the lumped preconditioner as qp operators on the replicated dual vectors.
-  Eigen::VectorXd xe(m_), ye(m_);
-  const auto dual_operator =
-      [&](void (ContactFeti::*product)(const Eigen::VectorXd&, Eigen::VectorXd&) const) {
-        return qp::FunctionOperator(
-            [this, product, &xe, &ye](const core::Vector& in, core::Vector& out) {
-              {
-                const auto iv = in.read();
-                xe = Eigen::Map<const Eigen::VectorXd>(iv.span().data(), m_);
-              }
-              (this->*product)(xe, ye);
-              auto ov = out.view();
-              for (Eigen::Index i = 0; i < m_; ++i) ov[static_cast<PetscInt>(i)] = ye[i];
-            },
-            dv);
-      };
+  // F and the lumped preconditioner as qp operators on the replicated dual vectors, applied
+  // to the vectors' arrays in place (in and out are never one vector in the QP).
+  const auto dual_operator = [&](void (ContactFeti::*product)(DualIn, DualOut) const) {
+    return qp::FunctionOperator(
+        [this, product](const core::Vector& in, core::Vector& out) {
+          const auto iv = in.read();
+          auto ov = out.view();
+          (this->*product)(Eigen::Map<const Eigen::VectorXd>(iv.span().data(), m_),
+                           Eigen::Map<Eigen::VectorXd>(ov.span().data(), m_));
+        },
+        dv);
+  };
   const qp::FunctionOperator f = dual_operator(&ContactFeti::apply_f);
   const qp::FunctionOperator lumped = dual_operator(&ContactFeti::precondition);
   qp::SmalbeOptions so = options.smalbe;
@@ -230,11 +227,11 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
   if (warm) {
     // The contact part in the scaled multipliers λ̂ = λ/σ_k; SMALBE projects λ onto Ω.
     auto lw = lam.view();
-    const auto in = lambda.to_std();
-    if (in.size() == n_contact)
+    const auto in = lambda.read();
+    if (static_cast<size_t>(lambda.size()) == n_contact)
       for (size_t i = 0; i < n_contact; ++i)
         lw[static_cast<PetscInt>(offset_[2] + static_cast<Eigen::Index>(i))] =
-            in[i] / node_scale_[i / static_cast<size_t>(dim_)];
+            in[static_cast<PetscInt>(i)] / node_scale_[i / static_cast<size_t>(dim_)];
     if (warm->body.size() == offset_[2])
       for (Eigen::Index i = 0; i < offset_[2]; ++i) lw[static_cast<PetscInt>(i)] = warm->body[i];
     if (warm->mu.size() == g_.rows()) {
@@ -248,7 +245,8 @@ qp::SmalbeResult ContactFeti::solve(const core::Vector& b_slave, const core::Vec
   // u_s = A_s⁺(f_s − B_sᵀλ) + R_s α_s with α = −μ: the Lagrangian gradient Fλ − d + Gᵀμ is the
   // one of (6.4)'s Fλ − Gᵀα − d, so SMALBE's multiplier of Gλ = e is the amplitude of the
   // subdomains' rigid motions.
-  const auto lv = lam.to_std();
+  const auto lam_read = lam.read();
+  const auto lv = lam_read.span();
   if (warm) {
     warm->body = Eigen::Map<const Eigen::VectorXd>(lv.data(), offset_[2]);
     warm->mu = mu;

@@ -86,10 +86,11 @@ class ContactFeti {
  private:
   struct Part;  // one subdomain of one body with its rows of the combined B
   using Local = void (Feti::Subdomain::*)(Eigen::MatrixXd&, Eigen::MatrixXd&) const;
-  void sum_subdomain_products(const Eigen::VectorXd& x, Eigen::VectorXd& y, const char* phase,
-                              Local local) const;
-  void apply_f(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  void precondition(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  using DualIn = Eigen::Ref<const Eigen::VectorXd>;  // a replicated dual vector, not copied
+  using DualOut = Eigen::Ref<Eigen::VectorXd>;
+  void sum_subdomain_products(DualIn x, DualOut y, const char* phase, Local local) const;
+  void apply_f(DualIn x, DualOut y) const;
+  void precondition(DualIn x, DualOut y) const;
   void sum_over_ranks(double* data, Eigen::Index n) const;
 
   const Feti* body_[2];

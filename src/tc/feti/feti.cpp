@@ -311,9 +311,7 @@ void Feti::sum_subdomain_products(const Block& x, Block& y, const char* phase,
     if (before) before();
     for (int s = first_owned_; s < last_owned_; ++s) {
       const auto& sub = *subs_[static_cast<size_t>(s)];
-      sub.scatter_transpose_leaves(in, sub.w);
-      local(sub);
-      sub.gather_leaves(sub.z, out);
+      sub.add_product(sub.b, sub.leaf_row(), in, out, local);
     }
   });
   rows_.reduce(out, y);

@@ -3,6 +3,7 @@
 // and factorisations), shared by Feti and ContactFeti, which reuses the subdomains of two
 // bodies in one dual problem.
 #include <Eigen/Dense>
+#include <span>
 #include <vector>
 
 #include "tc/core/petsc.hpp"
@@ -46,21 +47,38 @@ struct Feti::Subdomain {
 
   [[nodiscard]] PetscInt n() const { return static_cast<PetscInt>(global_dof.size()); }
 
-  void scatter_transpose(const Block& x, Block& out) const {  // out = B_sᵀ x, x: m × k
+  /// The shared pieces of the dual operators Σ_s B_s X_s B_sᵀ of Feti and ContactFeti, for
+  /// the nonzeros `entries` of B_s whose i-th row stands at row(i) of the dual blocks (Feti:
+  /// the rank's leaf block, ContactFeti: the replicated dual vector).
+  /// out = B_sᵀ x (out: n × k).
+  template <class Row, class X>
+  void scatter_transpose(std::span<const Entry> entries, Row row, const X& x, Block& out) const {
     out.setZero(n(), x.cols());
-    for (const auto& e : b) out.row(e.dof) += e.value * x.row(e.row);
+    for (size_t i = 0; i < entries.size(); ++i)
+      out.row(entries[i].dof) += entries[i].value * x.row(row(i));
   }
-  void gather(const Block& in, Block& y) const {  // y += B_s in, y: m × k
-    for (const auto& e : b) y.row(e.row) += e.value * in.row(e.dof);
+  /// y += B_s in.
+  template <class Row, class Y>
+  void gather(std::span<const Entry> entries, Row row, const Block& in, Y& y) const {
+    for (size_t i = 0; i < entries.size(); ++i)
+      y.row(row(i)) += entries[i].value * in.row(entries[i].dof);
   }
-  /// The same on the rank's leaf block (the rows its subdomains touch, DualDistribution).
+  /// y += B_s X_s B_sᵀ x: w = B_sᵀ x, z = X_s w by `local` (A_s⁺ for F, A_s or the Schur
+  /// complement for a preconditioner), y += B_s z.
+  template <class Row, class X, class Y, class Local>
+  void add_product(std::span<const Entry> entries, Row row, const X& x, Y& y, Local&& local) const {
+    scatter_transpose(entries, row, x, w);
+    local(*this);
+    gather(entries, row, z, y);
+  }
+  /// The row of entry i in the rank's leaf block (DualDistribution).
+  [[nodiscard]] auto leaf_row() const {
+    return [this](size_t i) { return leaf[i]; };
+  }
   void scatter_transpose_leaves(const Block& x, Block& out) const {
-    out.setZero(n(), x.cols());
-    for (size_t i = 0; i < b.size(); ++i) out.row(b[i].dof) += b[i].value * x.row(leaf[i]);
+    scatter_transpose(b, leaf_row(), x, out);
   }
-  void gather_leaves(const Block& in, Block& y) const {
-    for (size_t i = 0; i < b.size(); ++i) y.row(leaf[i]) += b[i].value * in.row(b[i].dof);
-  }
+  void gather_leaves(const Block& in, Block& y) const { gather(b, leaf_row(), in, y); }
   /// out = A_s⁺ in, column by column through one multi-RHS solve (in is zeroed at the
   /// fixing dofs).
   void pseudo_solve(Block& in, Block& out) const {

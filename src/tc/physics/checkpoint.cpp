@@ -33,11 +33,11 @@ Checkpoint Simulation::checkpoint() const {
     const auto& st = bodies_.states[b];
     const auto& g = bodies_.fields[b]->g_free;
     c.bodies.push_back({st.u.to_std(), st.v.to_std(), st.a.to_std(), st.theta.to_std(),
-                        forces_[b].to_std(), g.get() ? g.to_std() : std::vector<double>{}});
+                        energy_.force(b).to_std(), g.get() ? g.to_std() : std::vector<double>{}});
   }
   contact_.save(c);
   c.row = history_.row();
-  c.external_work = external_work_;
+  c.external_work = energy_.external_work();
   c.total_coupling = total_coupling_;
   c.last_coupling = last_coupling_;
   c.boundary_heat = boundary_heat_;
@@ -59,12 +59,12 @@ void Simulation::restore(const Checkpoint& c) {
     restore_vector(st.v, cb.v, "u̇");
     restore_vector(st.a, cb.a, "ü");
     restore_vector(st.theta, cb.theta, "θ");
-    restore_vector(forces_[b], cb.force, "the force");
+    restore_vector(energy_.force(b), cb.force, "the force");
     restore_vector(bodies_.fields[b]->g_free, cb.g_free, "g");
   }
   contact_.restore(c);
   step_ = c.step;
-  external_work_ = c.external_work;
+  energy_.set_external_work(c.external_work);
   total_coupling_ = c.total_coupling;
   last_coupling_ = c.last_coupling;
   boundary_heat_ = c.boundary_heat;

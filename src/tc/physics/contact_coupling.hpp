@@ -58,6 +58,12 @@ class ContactCoupling {
   [[nodiscard]] long total_qp_iterations() const { return total_qp_; }
   [[nodiscard]] long total_operator_applications() const { return total_applications_; }
 
+  /// Its history.csv columns: those of its statistics and of the interface heat.
+  void register_history(History& h) const {
+    stats_.register_history(h);
+    heat_.heat().register_history(h);
+  }
+
   /// The contact's part of the restart record, and back.
   void save(Checkpoint& c) const;
   void restore(const Checkpoint& c);

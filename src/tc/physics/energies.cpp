@@ -84,4 +84,45 @@ void support_forces(const Problem& p, const Bodies& bodies, int b, double t, cor
   r.copy_from(f);
 }
 
+void EnergyBalance::start(double t) {
+  forces_.clear();
+  for (int b = 0; b < bodies_.size(); ++b) {
+    forces_.emplace_back(bodies_.systems[b]->n_u());
+    support_forces(problem_, bodies_, b, t, forces_[b]);
+  }
+}
+
+void EnergyBalance::account_step(const std::vector<core::Vector>& old_u, double t) {
+  // External work by the trapezoidal rule, ½(F^k + F^{k+1})·(u^{k+1} − u^k): with Newmark's
+  // average acceleration this makes the discrete energy balance exact for linear elasticity.
+  for (int b = 0; b < bodies_.size(); ++b) {
+    auto& s = *bodies_.fields[b];
+    s.work_u.copy_from(bodies_.states[b].u);
+    s.work_u.axpy(-1.0, old_u[b]);
+    const double before = forces_[b].dot(s.work_u);
+    support_forces(problem_, bodies_, b, t, forces_[b]);
+    external_work_ += 0.5 * (before + forces_[b].dot(s.work_u));
+  }
+}
+
+void EnergyBalance::register_history(History& h) const {
+  h.add("kinetic_energy", [this] { return kinetic_energy(problem_, bodies_); });
+  h.add("strain_energy", [this] { return strain_energy(bodies_); });
+  h.add("thermal_energy", [this] { return thermal_energy(problem_, bodies_); });
+  h.add("external_work", History::value_of(external_work_));
+  h.add("max_temperature", [this] { return extreme_temperature(bodies_, true); });
+  h.add("min_temperature", [this] { return extreme_temperature(bodies_, false); });
+  // The force on each reaction group per axis, Σ F_d over its dofs (F: support_forces).
+  const char* axes = "xyz";
+  for (int b = 0; b < bodies_.size(); ++b)
+    for (const auto& g : bodies_.systems[b]->reaction_groups())
+      for (int k = 0; k < problem_.dimension; ++k)
+        h.add(g.label + "_" + axes[k], [this, b, &dofs = g.dofs[k]] {
+          const auto f = forces_[b].read();
+          double sum = 0;
+          for (const PetscInt d : dofs) sum += f[d];
+          return sum;
+        });
+}
+
 }  // namespace tc::physics

@@ -1,8 +1,11 @@
 #pragma once
 // What the energy balance of the bodies reads (history.csv): the discrete energies of the
-// current state and the support reactions, whose work is the external work.
+// current state and the support reactions, whose work is the external work (EnergyBalance).
+#include <vector>
+
 #include "tc/core/petsc.hpp"
 #include "tc/physics/bodies.hpp"
+#include "tc/physics/history.hpp"
 #include "tc/physics/problem.hpp"
 
 namespace tc::physics {
@@ -22,5 +25,33 @@ namespace tc::physics {
 /// constrained dofs: the force the supports exert on the body, which with f_ext does the
 /// external work. The body's f_u is scratch.
 void support_forces(const Problem& p, const Bodies& bodies, int b, double t, core::Vector& r);
+
+/// The energy balance of the bodies: the support forces F^k of every body and the external work
+/// W = Σ_steps ½(F^k + F^{k+1})·(u^{k+1} − u^k), with the energies of the state (history.csv).
+class EnergyBalance {
+ public:
+  EnergyBalance(const Problem& p, const Bodies& bodies) : problem_(p), bodies_(bodies) {}
+
+  /// F⁰ of every body, once the initial states are set.
+  void start(double t);
+  /// Adds the external work of the step from `old_u` (u^k per body) to the states' u^{k+1},
+  /// and takes the support forces of t^{k+1}.
+  void account_step(const std::vector<core::Vector>& old_u, double t);
+  /// Its history.csv columns: the energies, external_work, max_/min_temperature, and the force
+  /// on each reaction group per axis (reaction_<body>_<where>_x|y|z).
+  void register_history(History& h) const;
+
+  /// F = f_ext + R of body b at the current step (checkpoint).
+  [[nodiscard]] const core::Vector& force(int b) const { return forces_[b]; }
+  [[nodiscard]] core::Vector& force(int b) { return forces_[b]; }
+  [[nodiscard]] double external_work() const { return external_work_; }
+  void set_external_work(double w) { external_work_ = w; }
+
+ private:
+  const Problem& problem_;
+  const Bodies& bodies_;
+  std::vector<core::Vector> forces_;  // f_ext + reactions at the current step, per body
+  double external_work_ = 0;
+};
 
 }  // namespace tc::physics

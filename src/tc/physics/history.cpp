@@ -3,20 +3,72 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 
 #include "tc/core/error.hpp"
 
 namespace tc::physics {
 
-void History::add(std::string column, Value value) {
-  columns_.push_back(std::move(column));
-  values_.push_back(std::move(value));
+namespace {
+
+// The columns of docs/case-format.md ("What a run leaves in the output directory") in the
+// file's order, which is part of the format; each with the component that registers it.
+constexpr std::array<const char*, 25> kStandardColumns = {
+    "step",                          // Simulation
+    "time",                          // Simulation
+    "coupling_iterations",           // Simulation
+    "qp_iterations",                 // ContactStatistics
+    "operator_applications",         // ContactStatistics
+    "kinetic_energy",                // EnergyBalance
+    "strain_energy",                 // EnergyBalance
+    "thermal_energy",                // EnergyBalance
+    "external_work",                 // EnergyBalance
+    "contact_normal_force",          // ContactStatistics
+    "contact_tangential_force",      // ContactStatistics
+    "frictional_dissipation",        // ContactStatistics
+    "heat_generated",                // ContactHeat
+    "heat_to_slave",                 // ContactHeat
+    "heat_to_master",                // ContactHeat
+    "heat_conducted",                // ContactHeat
+    "max_temperature",               // EnergyBalance
+    "min_temperature",               // EnergyBalance
+    "active_nodes",                  // ContactStatistics
+    "slip_nodes",                    // ContactStatistics
+    "wall_seconds",                  // Simulation
+    "friction_iterations",           // ContactStatistics
+    "contact_tangential_force_sum",  // ContactStatistics
+    "heat_film",                     // BoundaryHeat
+    "heat_radiation",                // BoundaryHeat
+};
+
+}  // namespace
+
+std::span<const char* const> History::standard_columns() {
+  return kStandardColumns;
+}
+
+History::History()
+    : columns_(kStandardColumns.begin(), kStandardColumns.end()), values_(columns_.size()) {}
+
+void History::add(const std::string& column, Value value) {
+  const auto standard = std::find(kStandardColumns.begin(), kStandardColumns.end(), column);
+  if (standard == kStandardColumns.end()) {  // appended as given (two supports may share a label)
+    columns_.push_back(column);
+    values_.push_back(std::move(value));
+    return;
+  }
+  auto& slot = values_[standard - kStandardColumns.begin()];
+  if (slot) throw Error("history column '" + column + "' registered twice");
+  slot = std::move(value);
 }
 
 void History::record() {
   row_.clear();
   row_.reserve(values_.size());
-  for (const auto& value : values_) row_.push_back(value());
+  for (size_t i = 0; i < values_.size(); ++i) {
+    if (!values_[i]) throw Error("history column '" + columns_[i] + "' has no component");
+    row_.push_back(values_[i]());
+  }
 }
 
 void History::restore(std::vector<double> row) {

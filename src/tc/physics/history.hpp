@@ -1,9 +1,13 @@
 #pragma once
-// history.csv: one row per step, one column per quantity. Each column is registered with the
-// name it has in the file and the function that reads its value from the component owning it
-// (docs/case-format.md lists them), so a column's name and value are written in one place
-// and never matched by position.
+// history.csv: one row per step, one column per quantity. Each component registers the columns
+// it owns (register_history: Simulation, EnergyBalance, ContactCoupling with its statistics and
+// heat, BoundaryHeat), each with the name it has in the file and the function that reads its
+// value, so a column's name and value are written in one place and never matched by position.
+// The order of the columns is the file's contract (docs/case-format.md) and is kept here, apart
+// from who registers them: the standard columns in their order, then the others (the support
+// reactions) in the order they were added.
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -13,9 +17,24 @@ class History {
  public:
   using Value = std::function<double()>;
 
-  /// Appends a column; its value is read by `value` at every record().
-  void add(std::string column, Value value);
-  /// The row of the current state: every column's value, in the order they were added.
+  /// The columns every history.csv opens with, in their order (docs/case-format.md).
+  [[nodiscard]] static std::span<const char* const> standard_columns();
+
+  History();
+
+  /// The column value of a counter or a number kept by a component that outlives the history.
+  [[nodiscard]] static Value value_of(const int& n) {
+    return [&n] { return static_cast<double>(n); };
+  }
+  [[nodiscard]] static Value value_of(const double& x) {
+    return [&x] { return x; };
+  }
+
+  /// Registers a column: a standard one takes its place in the order (Error when it was
+  /// registered before), any other follows them.
+  void add(const std::string& column, Value value);
+  /// The row of the current state: every column's value, in the order of columns(). Throws
+  /// Error when a standard column has not been registered.
   void record();
   /// Replaces the row (restart: the row of the checkpoint's step); throws Error when its
   /// length is not the number of columns.
@@ -28,7 +47,7 @@ class History {
 
  private:
   std::vector<std::string> columns_;
-  std::vector<Value> values_;
+  std::vector<Value> values_;  // empty while a standard column waits for its component
   std::vector<double> row_;
 };
 

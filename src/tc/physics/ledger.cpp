@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include "tc/physics/bodies.hpp"
 #include "tc/physics/contact_heat.hpp"
 
 namespace tc::physics {
@@ -41,6 +42,38 @@ void ContactStatistics::record_step(const contact::ContactRows& rows,
     }
   }
   cs.tangential_force = unit * std::hypot(resultant[0], resultant[1], resultant[2]);
+}
+
+void ContactStatistics::register_history(History& h) const {
+  h.add("qp_iterations", History::value_of(qp_iterations));
+  h.add("operator_applications", History::value_of(operator_applications));
+  h.add("contact_normal_force", History::value_of(normal_force));
+  h.add("contact_tangential_force", History::value_of(tangential_force));
+  h.add("frictional_dissipation", History::value_of(dissipation));
+  h.add("active_nodes", History::value_of(active_nodes));
+  h.add("slip_nodes", History::value_of(slip_nodes));
+  h.add("friction_iterations", History::value_of(friction_iterations));
+  h.add("contact_tangential_force_sum", History::value_of(tangential_force_sum));
+}
+
+void ContactHeat::register_history(History& h) const {
+  h.add("heat_generated", History::value_of(generated));
+  h.add("heat_to_slave", History::value_of(to_slave));
+  h.add("heat_to_master", History::value_of(to_master));
+  h.add("heat_conducted", History::value_of(conducted));
+}
+
+void BoundaryHeat::account_step(const Bodies& bodies, double t, double tau) {
+  for (int b = 0; b < bodies.size(); ++b) {
+    const auto p = bodies.systems[b]->boundary_heat_loss(t, bodies.states[b].theta);
+    film += tau * p.film;
+    radiation += tau * p.radiation;
+  }
+}
+
+void BoundaryHeat::register_history(History& h) const {
+  h.add("heat_film", History::value_of(film));
+  h.add("heat_radiation", History::value_of(radiation));
 }
 
 }  // namespace tc::physics

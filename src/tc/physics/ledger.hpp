@@ -5,8 +5,11 @@
 
 #include "tc/contact/contact_rows.hpp"
 #include "tc/contact/mortar_pair.hpp"
+#include "tc/physics/history.hpp"
 
 namespace tc::physics {
+
+struct Bodies;
 
 /// What the contact did in the last step (history.csv columns).
 struct ContactStatistics {
@@ -33,6 +36,9 @@ struct ContactStatistics {
   void record_step(const contact::ContactRows& rows, std::span<const double> lambda,
                    std::span<const double> slip, double unit, std::span<const double> bound,
                    const contact::MortarPair* mortar);
+  /// Its history.csv columns (qp_iterations, operator_applications, the forces, the
+  /// dissipation, the node counts, friction_iterations).
+  void register_history(History& h) const;
 };
 
 /// Heat through the contact interface, cumulative from t = 0 [J] (history.csv):
@@ -44,6 +50,9 @@ struct ContactStatistics {
 ///  these sums, the conductance and the history's forces use it.
 struct ContactHeat {
   double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
+
+  /// Its history.csv columns heat_generated, heat_to_slave, heat_to_master, heat_conducted.
+  void register_history(History& h) const;
 };
 
 /// Heat lost through the film and the radiation boundaries of all bodies, cumulative from
@@ -51,6 +60,13 @@ struct ContactHeat {
 /// Σ_steps τ Σ ∫εσ(θ⁴ − θ∞⁴)dS at t^{k+1} (negative when the body gained heat).
 struct BoundaryHeat {
   double film = 0, radiation = 0;
+
+  /// Adds the heat of the step that ended at t: τ Σ h∫(θ − θ∞)dS and τ Σ ∫εσ(θ⁴ − θ∞⁴)dS at
+  /// t^{k+1} with θ^{k+1}, the terms of the backward Euler step, so that Δthermal_energy =
+  /// heat in − heat_film − heat_radiation closes to the solver tolerance.
+  void account_step(const Bodies& bodies, double t, double tau);
+  /// Its history.csv columns heat_film, heat_radiation.
+  void register_history(History& h) const;
 };
 
 }  // namespace tc::physics

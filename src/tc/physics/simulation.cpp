@@ -24,7 +24,8 @@ double seconds_since(Clock::time_point t0) {
 Simulation::Simulation(const Problem& problem)
     : problem_(problem),
       steps_(problem, bodies_, timers_),
-      contact_(problem, bodies_, steps_, timers_) {
+      contact_(problem, bodies_, steps_, timers_),
+      energy_(problem, bodies_) {
   for (int b = 0; b < static_cast<int>(problem_.bodies.size()); ++b) {
     {
       auto t = timers_.scope("assembly");
@@ -92,10 +93,9 @@ void Simulation::initialise() {
       s.initial_mass->solve(s.rhs_u, st.a);
     }
     bodies_.states.push_back(std::move(st));
-    forces_.emplace_back(sys.n_u());
   }
 
-  for (int b = 0; b < n_bodies(); ++b) support_forces(problem_, bodies_, b, time(), forces_[b]);
+  energy_.start(time());
   register_history();
   history_.record();
 }
@@ -148,24 +148,8 @@ void Simulation::advance() {
 
 void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling,
                                          double wall) {
-  // External work by the trapezoidal rule, ½(F^k + F^{k+1})·(u^{k+1} − u^k): with Newmark's
-  // average acceleration this makes the discrete energy balance exact for linear elasticity.
-  for (int b = 0; b < n_bodies(); ++b) {
-    auto& s = *bodies_.fields[b];
-    s.work_u.copy_from(bodies_.states[b].u);
-    s.work_u.axpy(-1.0, old_u[b]);
-    const double before = forces_[b].dot(s.work_u);
-    support_forces(problem_, bodies_, b, time(), forces_[b]);
-    external_work_ += 0.5 * (before + forces_[b].dot(s.work_u));
-  }
-  // Heat lost through the film and radiation boundaries in the step: τ Σ h∫(θ − θ∞)dS and
-  // τ Σ ∫εσ(θ⁴ − θ∞⁴)dS at t^{k+1} with θ^{k+1}, the terms of the backward Euler step, so
-  // that Δthermal_energy = heat in − heat_film − heat_radiation closes to the solver tolerance.
-  for (int b = 0; b < n_bodies(); ++b) {
-    const auto p = bodies_.systems[b]->boundary_heat_loss(time(), bodies_.states[b].theta);
-    boundary_heat_.film += problem_.time.step * p.film;
-    boundary_heat_.radiation += problem_.time.step * p.radiation;
-  }
+  energy_.account_step(old_u, time());
+  boundary_heat_.account_step(bodies_, time(), problem_.time.step);
   total_coupling_ += coupling;
   last_coupling_ = coupling;
   last_wall_ = wall;
@@ -173,48 +157,15 @@ void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u,
 }
 
 void Simulation::register_history() {
-  // The columns of history.csv in their order (docs/case-format.md), each with its quantity.
+  // Each component registers the columns it owns; History keeps the file's order.
   auto& h = history_;
-  const auto& cs = contact_.statistics();
-  const auto& heat = contact_.heat().heat();
-  const auto count = [](const int& n) { return [&n] { return static_cast<double>(n); }; };
-  const auto value = [](const double& x) { return [&x] { return x; }; };
-  h.add("step", count(step_));
+  h.add("step", History::value_of(step_));
   h.add("time", [this] { return time(); });
-  h.add("coupling_iterations", count(last_coupling_));
-  h.add("qp_iterations", count(cs.qp_iterations));
-  h.add("operator_applications", count(cs.operator_applications));
-  h.add("kinetic_energy", [this] { return kinetic_energy(); });
-  h.add("strain_energy", [this] { return strain_energy(); });
-  h.add("thermal_energy", [this] { return thermal_energy(); });
-  h.add("external_work", value(external_work_));
-  h.add("contact_normal_force", value(cs.normal_force));
-  h.add("contact_tangential_force", value(cs.tangential_force));
-  h.add("frictional_dissipation", value(cs.dissipation));
-  h.add("heat_generated", value(heat.generated));
-  h.add("heat_to_slave", value(heat.to_slave));
-  h.add("heat_to_master", value(heat.to_master));
-  h.add("heat_conducted", value(heat.conducted));
-  h.add("max_temperature", [this] { return extreme_temperature(bodies_, true); });
-  h.add("min_temperature", [this] { return extreme_temperature(bodies_, false); });
-  h.add("active_nodes", count(cs.active_nodes));
-  h.add("slip_nodes", count(cs.slip_nodes));
-  h.add("wall_seconds", value(last_wall_));
-  h.add("friction_iterations", count(cs.friction_iterations));
-  h.add("contact_tangential_force_sum", value(cs.tangential_force_sum));
-  h.add("heat_film", value(boundary_heat_.film));
-  h.add("heat_radiation", value(boundary_heat_.radiation));
-  // The force on each reaction group per axis, Σ F_d over its dofs (F: support_forces).
-  const char* axes = "xyz";
-  for (int b = 0; b < n_bodies(); ++b)
-    for (const auto& g : bodies_.systems[b]->reaction_groups())
-      for (int k = 0; k < problem_.dimension; ++k)
-        h.add(g.label + "_" + axes[k], [this, b, &dofs = g.dofs[k]] {
-          const auto f = forces_[b].read();
-          double sum = 0;
-          for (const PetscInt d : dofs) sum += f[d];
-          return sum;
-        });
+  h.add("coupling_iterations", History::value_of(last_coupling_));
+  h.add("wall_seconds", History::value_of(last_wall_));
+  energy_.register_history(h);
+  contact_.register_history(h);
+  boundary_heat_.register_history(h);
 }
 
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {

@@ -161,16 +161,15 @@ class Simulation {
   void initialise();
   void static_initial_state(int b, BodyState& st);
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
-  void register_history();  // the columns of history.csv, each with what fills it
+  void register_history();  // the columns of history.csv: its own and its components'
 
   const Problem& problem_;
   core::PhaseTimers timers_;
   Bodies bodies_;
-  BodySteps steps_;                   // the heat and mechanical steps of one body, its loop (6.3)
-  ContactCoupling contact_;           // the contact pair's loop (6.3) and its enforcement
-  std::vector<core::Vector> forces_;  // f_ext + reactions at the current step, per body
+  BodySteps steps_;          // the heat and mechanical steps of one body, its loop (6.3)
+  ContactCoupling contact_;  // the contact pair's loop (6.3) and its enforcement
+  EnergyBalance energy_;     // support forces and external work
   int step_ = 0;
-  double external_work_ = 0;
   long total_coupling_ = 0;
   int last_coupling_ = 0;
   double last_wall_ = 0;  // seconds of the last step (history.csv wall_seconds)
