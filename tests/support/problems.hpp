@@ -49,6 +49,38 @@ inline physics::BoundaryCondition hold(const std::string& where, std::initialize
   return bc;
 }
 
+/// A [[boundary]] entry of `body` prescribing the listed displacement components.
+inline physics::BoundaryCondition displacement_bc(
+    int body, const std::string& where,
+    std::initializer_list<std::pair<int, core::TimeTable>> comps) {
+  physics::BoundaryCondition bc;
+  bc.body = body;
+  bc.where = where;
+  for (const auto& [k, t] : comps) bc.displacement[k] = t;
+  return bc;
+}
+
+/// A [[boundary]] entry of `body` holding its temperature at `value`.
+inline physics::BoundaryCondition temperature_bc(int body, const std::string& where, double value) {
+  physics::BoundaryCondition bc;
+  bc.body = body;
+  bc.where = where;
+  bc.temperature = core::TimeTable(value);
+  return bc;
+}
+
+/// A 3D box body [lo, hi] with `cells`, starting at temperature θ.
+inline physics::Body box_body(const std::string& name, const fem::Material& mat,
+                              const mesh::Point& lo, const mesh::Point& hi,
+                              std::array<int, 3> cells, double theta) {
+  physics::Body b;
+  b.name = name;
+  b.material = mat;
+  b.mesh = mesh::make_box(3, lo, hi, cells);
+  b.initial_temperature = theta;
+  return b;
+}
+
 /// The [contact] of a two-body problem: slave body and surface, master body and surface, 𝔉.
 inline physics::ContactSettings contact_pair(int slave, std::string slave_where, int master,
                                              std::string master_where, double friction = 0) {

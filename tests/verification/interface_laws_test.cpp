@@ -25,33 +25,6 @@ namespace {
 
 constexpr double kTheta0 = 293.15;
 
-physics::BoundaryCondition fix(int body, const std::string& where,
-                               std::initializer_list<std::pair<int, core::TimeTable>> comps) {
-  physics::BoundaryCondition bc;
-  bc.body = body;
-  bc.where = where;
-  for (const auto& [k, t] : comps) bc.displacement[k] = t;
-  return bc;
-}
-
-physics::BoundaryCondition temperature(int body, const std::string& where, double value) {
-  physics::BoundaryCondition bc;
-  bc.body = body;
-  bc.where = where;
-  bc.temperature = core::TimeTable(value);
-  return bc;
-}
-
-physics::Body block(const std::string& name, const fem::Material& mat, const mesh::Point& lo,
-                    const mesh::Point& hi, std::array<int, 3> cells, double theta) {
-  physics::Body b;
-  b.name = name;
-  b.material = mat;
-  b.mesh = mesh::make_box(3, lo, hi, cells);
-  b.initial_temperature = theta;
-  return b;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Sliding over a temperature gradient: the slider [0,1]²×[1,1.5] (4×4×2) is pressed (step 1)
 // onto the base [−0.25,1.25]²×[0,1] (5×5×3, bottom held, wider: the slider stays covered) and
@@ -85,14 +58,14 @@ physics::Problem sliding_on_a_gradient(core::TemperatureTable friction, bool hea
   p.time.end = kTau * (kSlideSteps + 1);
   p.physics.reference_temperature = kTheta0;
   p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(block("slider", mat, {0, 0, 1}, {1, 1, 1.5}, {4, 4, 2}, kTheta0 + 30));
-  p.bodies.push_back(block("base", mat, {-0.25, -0.25, 0}, {1.25, 1.25, 1}, {5, 5, 3}, kTheta0));
+  p.bodies.push_back(box_body("slider", mat, {0, 0, 1}, {1, 1, 1.5}, {4, 4, 2}, kTheta0 + 30));
+  p.bodies.push_back(box_body("base", mat, {-0.25, -0.25, 0}, {1.25, 1.25, 1}, {5, 5, 3}, kTheta0));
   const core::TimeTable press({0, kTau}, {0, -1e-5});
   const core::TimeTable drag({0, kTau, kTau * (kSlideSteps + 1)}, {0, 0, kV * kTau * kSlideSteps});
-  p.boundaries.push_back(fix(0, "zmax", {{0, drag}, {1, 0.0}, {2, press}}));
-  p.boundaries.push_back(fix(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
-  p.boundaries.push_back(temperature(0, "xmin", kTheta0 + 10));
-  p.boundaries.push_back(temperature(0, "xmax", kTheta0 + 50));
+  p.boundaries.push_back(displacement_bc(0, "zmax", {{0, drag}, {1, 0.0}, {2, press}}));
+  p.boundaries.push_back(displacement_bc(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
+  p.boundaries.push_back(temperature_bc(0, "xmin", kTheta0 + 10));
+  p.boundaries.push_back(temperature_bc(0, "xmax", kTheta0 + 50));
   auto c = contact_pair(0, "zmin", 1, "zmax");
   c.friction = std::move(friction);
   c.conductance_slave = 1e-4;
@@ -223,16 +196,16 @@ TEST(InterfaceLaws, SteadyConductionUsesTheConductanceTableAtTheInterfaceTempera
   p.time.end = 5 * p.time.step;
   p.physics.reference_temperature = kTheta0;
   p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(block("lower", mat, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3}, kTheta0));
-  p.bodies.push_back(block("upper", mat, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2}, kTheta0));
-  p.boundaries.push_back(fix(0, "zmin", {{2, 0.0}}));
-  p.boundaries.push_back(fix(1, "zmax", {{2, -kPush}}));
+  p.bodies.push_back(box_body("lower", mat, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3}, kTheta0));
+  p.bodies.push_back(box_body("upper", mat, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2}, kTheta0));
+  p.boundaries.push_back(displacement_bc(0, "zmin", {{2, 0.0}}));
+  p.boundaries.push_back(displacement_bc(1, "zmax", {{2, -kPush}}));
   for (int b = 0; b < 2; ++b) {
-    p.boundaries.push_back(fix(b, "xmin", {{0, 0.0}}));
-    p.boundaries.push_back(fix(b, "ymin", {{1, 0.0}}));
+    p.boundaries.push_back(displacement_bc(b, "xmin", {{0, 0.0}}));
+    p.boundaries.push_back(displacement_bc(b, "ymin", {{1, 0.0}}));
   }
-  p.boundaries.push_back(temperature(0, "zmin", kLow));
-  p.boundaries.push_back(temperature(1, "zmax", kHigh));
+  p.boundaries.push_back(temperature_bc(0, "zmin", kLow));
+  p.boundaries.push_back(temperature_bc(1, "zmax", kHigh));
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = core::TemperatureTable({kLow, kHigh}, {4.0, 16.0});
   c.conductance_master = 10.0;

@@ -18,15 +18,6 @@
 namespace tc::test {
 namespace {
 
-physics::BoundaryCondition fix(int body, const std::string& where,
-                               std::initializer_list<std::pair<int, core::TimeTable>> comps) {
-  physics::BoundaryCondition bc;
-  bc.body = body;
-  bc.where = where;
-  for (const auto& [k, t] : comps) bc.displacement[k] = t;
-  return bc;
-}
-
 // Plane strain: the block [0,1]×[1,1.5] (4×2 cells) pressed 10 µm (step 1) on the base
 // [−1,2]×[0,1] (12×3, bottom held), then dragged 4 cm along x in m steps, back, and forth.
 physics::Problem reciprocating_slide(int m) {
@@ -53,8 +44,8 @@ physics::Problem reciprocating_slide(int m) {
   const core::TimeTable press({0, tau}, {0, -1e-5});
   const core::TimeTable drag({0, tau, (m + 1) * tau, (2 * m + 1) * tau, (3 * m + 1) * tau},
                              {0, 0, stroke, 0, stroke});
-  p.boundaries.push_back(fix(0, "ymax", {{0, drag}, {1, press}}));
-  p.boundaries.push_back(fix(1, "ymin", {{0, 0.0}, {1, 0.0}}));
+  p.boundaries.push_back(displacement_bc(0, "ymax", {{0, drag}, {1, press}}));
+  p.boundaries.push_back(displacement_bc(1, "ymin", {{0, 0.0}, {1, 0.0}}));
   auto c = contact_pair(1, "ymax", 0, "ymin", 0.3);
   c.heat_conduction = false;
   c.frictional_heating = false;

@@ -29,33 +29,6 @@ namespace {
 constexpr double kTheta0 = 293.15;
 constexpr double kAnyTheta = kTheta0;  // the conductances and 𝔉 here are constants
 
-physics::BoundaryCondition fix(int body, const std::string& where,
-                               std::initializer_list<std::pair<int, core::TimeTable>> comps) {
-  physics::BoundaryCondition bc;
-  bc.body = body;
-  bc.where = where;
-  for (const auto& [k, t] : comps) bc.displacement[k] = t;
-  return bc;
-}
-
-physics::BoundaryCondition temperature(int body, const std::string& where, double value) {
-  physics::BoundaryCondition bc;
-  bc.body = body;
-  bc.where = where;
-  bc.temperature = core::TimeTable(value);
-  return bc;
-}
-
-physics::Body block(const std::string& name, const fem::Material& mat, const mesh::Point& lo,
-                    const mesh::Point& hi, std::array<int, 3> cells, double theta) {
-  physics::Body b;
-  b.name = name;
-  b.material = mat;
-  b.mesh = mesh::make_box(3, lo, hi, cells);
-  b.initial_temperature = theta;
-  return b;
-}
-
 /// Σ ∫ ρc_p(θ − θ₀) of one body (history's thermal_energy per body).
 double body_energy(const physics::Simulation& sim, int b) {
   const auto& vol = sim.system(b).node_volumes();
@@ -166,16 +139,16 @@ physics::Problem conduction_blocks(double gamma, int steps = 3) {
   p.time.end = steps * p.time.step;
   p.physics.reference_temperature = kTheta0;
   p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(block("lower", mat, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3}, kTheta0));
-  p.bodies.push_back(block("upper", mat, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2}, kTheta0));
-  p.boundaries.push_back(fix(0, "zmin", {{2, 0.0}}));
-  p.boundaries.push_back(fix(1, "zmax", {{2, -kPush}}));
+  p.bodies.push_back(box_body("lower", mat, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3}, kTheta0));
+  p.bodies.push_back(box_body("upper", mat, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2}, kTheta0));
+  p.boundaries.push_back(displacement_bc(0, "zmin", {{2, 0.0}}));
+  p.boundaries.push_back(displacement_bc(1, "zmax", {{2, -kPush}}));
   for (int b = 0; b < 2; ++b) {
-    p.boundaries.push_back(fix(b, "xmin", {{0, 0.0}}));
-    p.boundaries.push_back(fix(b, "ymin", {{1, 0.0}}));
+    p.boundaries.push_back(displacement_bc(b, "xmin", {{0, 0.0}}));
+    p.boundaries.push_back(displacement_bc(b, "ymin", {{1, 0.0}}));
   }
-  p.boundaries.push_back(temperature(0, "zmin", kLow));
-  p.boundaries.push_back(temperature(1, "zmax", kHigh));
+  p.boundaries.push_back(temperature_bc(0, "zmin", kLow));
+  p.boundaries.push_back(temperature_bc(1, "zmax", kHigh));
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = c.conductance_master = gamma;
   p.contact = c;
@@ -288,12 +261,12 @@ physics::Problem sliding_blocks(bool conduction, bool frictional_heating, double
   p.time.end = kTau * (kSlideSteps + 1);
   p.physics.reference_temperature = kTheta0;
   p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(block("slider", mat, {0, 0, 1}, {1, 1, 1.5}, {4, 4, 2}, kTheta0 + 5));
-  p.bodies.push_back(block("base", mat, {-0.25, -0.25, 0}, {1.25, 1.25, 1}, {5, 5, 3}, kTheta0));
+  p.bodies.push_back(box_body("slider", mat, {0, 0, 1}, {1, 1, 1.5}, {4, 4, 2}, kTheta0 + 5));
+  p.bodies.push_back(box_body("base", mat, {-0.25, -0.25, 0}, {1.25, 1.25, 1}, {5, 5, 3}, kTheta0));
   const core::TimeTable press({0, kTau}, {0, -1e-5});
   const core::TimeTable drag({0, kTau, kTau * (kSlideSteps + 1)}, {0, 0, kV * kTau * kSlideSteps});
-  p.boundaries.push_back(fix(0, "zmax", {{0, drag}, {1, 0.0}, {2, press}}));
-  p.boundaries.push_back(fix(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
+  p.boundaries.push_back(displacement_bc(0, "zmax", {{0, drag}, {1, 0.0}, {2, press}}));
+  p.boundaries.push_back(displacement_bc(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
   auto c = contact_pair(0, "zmin", 1, "zmax", friction);
   c.conductance_slave = 1e-4;  // δ_C = 0.2, β_C = 8e-5 W/(m²K Pa)
   c.conductance_master = 4e-4;
@@ -501,11 +474,11 @@ TEST(ThermalContact, TwoHalfSpacesUnderConstantFrictionalPower) {
   p.time.end = kT;
   p.physics.reference_temperature = kTheta0;
   p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(block("upper", mat, {0, 0, 0}, {1, 1, kL}, {1, 1, 120}, kTheta0));
-  p.bodies.push_back(block("lower", mat, {0, 0, -kL}, {1, 1, 0}, {1, 1, 120}, kTheta0));
+  p.bodies.push_back(box_body("upper", mat, {0, 0, 0}, {1, 1, kL}, {1, 1, 120}, kTheta0));
+  p.bodies.push_back(box_body("lower", mat, {0, 0, -kL}, {1, 1, 0}, {1, 1, 120}, kTheta0));
   const core::TimeTable drag({0, kT}, {0, kSpeed * kT});
-  p.boundaries.push_back(fix(0, "zmax", {{0, drag}, {1, 0.0}, {2, -kPress}}));
-  p.boundaries.push_back(fix(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
+  p.boundaries.push_back(displacement_bc(0, "zmax", {{0, drag}, {1, 0.0}, {2, -kPress}}));
+  p.boundaries.push_back(displacement_bc(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
   auto c = contact_pair(0, "zmin", 1, "zmax", 0.5);
   c.conductance_slave = 5;
   c.conductance_master = 1.25;
@@ -575,15 +548,17 @@ TEST(ThermalContact, HeatedSlaveBetweenMasterAndWallPressesHarder) {
   p.physics.reference_temperature = kTheta0;
   p.physics.thermoelastic_heating = false;
   const double delta = 1e-5, h_s = 0.5, h_m = 1.0, r = 3.5e8;  // ΔT = 100 K after 1 s
-  p.bodies.push_back(block("heated", mat, {0, 0, 1}, {1, 1, 1.5}, {3, 3, 2}, kTheta0));
-  p.bodies.push_back(block("base", mat, {0, 0, 0}, {1, 1, 1}, {2, 2, 3}, kTheta0));
+  p.bodies.push_back(box_body("heated", mat, {0, 0, 1}, {1, 1, 1.5}, {3, 3, 2}, kTheta0));
+  p.bodies.push_back(box_body("base", mat, {0, 0, 0}, {1, 1, 1}, {2, 2, 3}, kTheta0));
   p.bodies[0].heat_source = core::TimeTable(r);
-  p.boundaries.push_back(fix(0, "zmax", {{2, -delta}}));
-  p.boundaries.push_back(fix(1, "zmin", {{2, 0.0}}));
+  p.boundaries.push_back(displacement_bc(0, "zmax", {{2, -delta}}));
+  p.boundaries.push_back(displacement_bc(1, "zmin", {{2, 0.0}}));
   for (int b = 0; b < 2; ++b)
-    for (const auto* side : {"xmin", "xmax"}) p.boundaries.push_back(fix(b, side, {{0, 0.0}}));
+    for (const auto* side : {"xmin", "xmax"})
+      p.boundaries.push_back(displacement_bc(b, side, {{0, 0.0}}));
   for (int b = 0; b < 2; ++b)
-    for (const auto* side : {"ymin", "ymax"}) p.boundaries.push_back(fix(b, side, {{1, 0.0}}));
+    for (const auto* side : {"ymin", "ymax"})
+      p.boundaries.push_back(displacement_bc(b, side, {{1, 0.0}}));
   auto c = contact_pair(0, "zmin", 1, "zmax");
   c.conductance_slave = c.conductance_master = 1e-3;
   c.heat_conduction = false;

@@ -156,6 +156,12 @@ bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<c
         static_cast<size_t>(j) * static_cast<size_t>(n)] = 1.0;
   const double one = 1.0, minus_one = -1.0;
   const int inc = 1;
+  // E = the rows of Y below a supernode's diagonal block (its ancestors' rows), CHOLMOD's E.
+  const auto gather_below = [&](int ps2, int nsrow2) {
+    for (int ii = 0; ii < nsrow2; ++ii)
+      for (int j = 0; j < k; ++j)
+        e[ii + j * nsrow2] = y[static_cast<size_t>(ls[ps2 + ii]) + static_cast<size_t>(j) * n];
+  };
   // Forward, Y = L⁻¹Y, on the supernodes the columns reach: elsewhere Y stays zero and every
   // skipped update would subtract an exact zero. Each visited supernode makes CHOLMOD's own
   // calls (cholmod_super_lsolve), in the same order.
@@ -163,9 +169,7 @@ bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<c
     const int k1 = super[s], nscol = super[s + 1] - k1;
     const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
     const double* l1 = lx + lpx[s];
-    for (int ii = 0; ii < nsrow2; ++ii)
-      for (int j = 0; j < k; ++j)
-        e[ii + j * nsrow2] = y[static_cast<size_t>(ls[ps2 + ii]) + static_cast<size_t>(j) * n];
+    gather_below(ps2, nsrow2);
     if (k == 1) {
       dtrsv_("L", "N", "N", &nscol, l1, &nsrow, y + k1, &inc);
       dgemv_("N", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, y + k1, &inc, &one, e, &inc);
@@ -187,9 +191,7 @@ bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<c
     const int k1 = super[s], nscol = super[s + 1] - k1;
     const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
     const double* l1 = lx + lpx[s];
-    for (int ii = 0; ii < nsrow2; ++ii)
-      for (int j = 0; j < k; ++j)
-        e[ii + j * nsrow2] = y[static_cast<size_t>(ls[ps2 + ii]) + static_cast<size_t>(j) * n];
+    gather_below(ps2, nsrow2);
     if (k == 1) {
       dgemv_("C", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, e, &inc, &one, y + k1, &inc);
       dtrsv_("L", "C", "N", &nscol, l1, &nsrow, y + k1, &inc);
