@@ -129,13 +129,13 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
   s_.conservativeResize(t, t);
   const auto n = static_cast<PetscInt>(index_.size());
   constexpr Eigen::Index block = 64;  // bounds the dense work space to n × block
-  std::vector<double> part;  // the new columns on T, when the factor gives them directly
+  std::vector<double> part;           // the new columns on T, when the factor gives them directly
   for (Eigen::Index j0 = old; j0 < t; j0 += block) {
     const auto k = std::min(block, t - j0);
     part.resize(static_cast<size_t>(t * k));
-    if (solver_.solve_unit_rows(std::span(dofs_).subspan(static_cast<size_t>(j0),
-                                                         static_cast<size_t>(k)),
-                                std::span(dofs_).first(static_cast<size_t>(t)), part.data())) {
+    if (solver_.solve_unit_rows(
+            std::span(dofs_).subspan(static_cast<size_t>(j0), static_cast<size_t>(k)),
+            std::span(dofs_).first(static_cast<size_t>(t)), part.data())) {
       for (Eigen::Index c = 0; c < k; ++c)
         for (Eigen::Index a = 0; a < t; ++a) {
           const double v = part[static_cast<size_t>(a + c * t)];
@@ -323,7 +323,8 @@ bool DualContactSolver::form_from_compliance() {
         const auto& r = bt[i];
         for (PetscInt e = r.start[c]; e < r.start[c + 1]; ++e) {
           const double v = r.value[static_cast<size_t>(e)];
-          const double* wq = w_[i].data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * band;
+          const double* wq =
+              w_[i].data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * band;
           for (PetscInt k = 0; k < nr; ++k) acc[i][k] += v * wq[k];
         }
       }
