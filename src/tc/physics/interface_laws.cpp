@@ -10,7 +10,8 @@ namespace tc::physics {
 InterfaceLaws::InterfaceLaws(const ContactSettings& c)
     : friction_(c.friction),
       gamma_slave_(c.conductance_slave),
-      gamma_master_(c.conductance_master) {}
+      gamma_master_(c.conductance_master),
+      conducting_(conducts_somewhere()) {}
 
 double InterfaceLaws::beta_c(double theta) const {
   const double gs = gamma_slave_(theta), gm = gamma_master_(theta);
@@ -22,7 +23,7 @@ double InterfaceLaws::delta_c(double theta) const {
   return gs + gm > 0 ? gs / (gs + gm) : 0.5;
 }
 
-bool InterfaceLaws::conducting() const {
+bool InterfaceLaws::conducts_somewhere() const {
   // Both conductances are linear between the union of their table points and constant beyond:
   // both are > 0 somewhere iff they are at one of those points or halfway between two (two
   // linear functions ≥ 0 may each vanish at one end of an interval and both be > 0 inside).

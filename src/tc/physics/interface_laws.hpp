@@ -36,7 +36,7 @@ class InterfaceLaws {
   /// 𝔉 > 0 at some temperature.
   [[nodiscard]] bool frictional() const { return friction_.max_value() > 0; }
   /// β_C > 0 at some temperature: both conductances > 0 there.
-  [[nodiscard]] bool conducting() const;
+  [[nodiscard]] bool conducting() const { return conducting_; }
   [[nodiscard]] bool friction_varies() const { return !friction_.is_constant(); }
   [[nodiscard]] bool conductance_varies() const {
     return !gamma_slave_.is_constant() || !gamma_master_.is_constant();
@@ -53,7 +53,10 @@ class InterfaceLaws {
                                        const core::Vector& theta_master) const;
 
  private:
+  [[nodiscard]] bool conducts_somewhere() const;
+
   core::TemperatureTable friction_, gamma_slave_, gamma_master_;
+  bool conducting_ = false;  // conducts_somewhere(), fixed with the tables
 };
 
 /// θ_Γ,k = ½(θ_s,k + θ_m,k) at contact node k: θ_s at the slave node, θ_m =
