@@ -93,6 +93,73 @@ inline physics::ContactSettings contact_pair(int slave, std::string slave_where,
   return c;
 }
 
+/// A slider [0,1]²×[1,1.5] (4×4×2 cells, at `slider_theta`) pressed 10 µm in the first step of τ
+/// onto a base [−0.25,1.25]²×[0,1] (5×5×3, at θ₀, bottom held) and dragged along x by its top
+/// at v for `slide_steps` more steps; quasistatic, no thermoelastic heating. The contact: the
+/// slider's bottom (slave) on the base's top, wider, so the slave stays covered; 𝔉 as given,
+/// γ_C^s = 1e-4, γ_C^m = 4e-4 (δ_C = 0.2, β_C = 8e-5 W/(m²K Pa)), the QP and the coupling to
+/// 1e-10 and 1e-8 (above the QP's accuracy of λ, ~1e-9 here).
+inline physics::Problem slider_on_base(const fem::Material& mat, double tau, double v,
+                                       int slide_steps, double theta0, double slider_theta,
+                                       double friction) {
+  physics::Problem p;
+  p.dimension = 3;
+  p.time.scheme = physics::Scheme::quasistatic;
+  p.time.step = tau;
+  p.time.end = tau * (slide_steps + 1);
+  p.physics.reference_temperature = theta0;
+  p.physics.thermoelastic_heating = false;
+  p.bodies.push_back(box_body("slider", mat, {0, 0, 1}, {1, 1, 1.5}, {4, 4, 2}, slider_theta));
+  p.bodies.push_back(box_body("base", mat, {-0.25, -0.25, 0}, {1.25, 1.25, 1}, {5, 5, 3}, theta0));
+  const core::TimeTable press({0, tau}, {0, -1e-5});
+  const core::TimeTable drag({0, tau, tau * (slide_steps + 1)}, {0, 0, v * tau * slide_steps});
+  p.boundaries.push_back(displacement_bc(0, "zmax", {{0, drag}, {1, 0.0}, {2, press}}));
+  p.boundaries.push_back(displacement_bc(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
+  auto c = contact_pair(0, "zmin", 1, "zmax", friction);
+  c.conductance_slave = 1e-4;
+  c.conductance_master = 4e-4;
+  p.contact = c;
+  p.solver.qp_tolerance = 1e-10;
+  p.solver.coupling_tolerance = 1e-8;
+  p.solver.max_coupling_iterations = 50;
+  return p;
+}
+
+/// Steady conduction through two pressed blocks (verification.md's 4C case): lower
+/// [0.5,1.5]²×[−0.5,0.5] (3×3×3) and upper [0.5,1.5]²×[0.5,1.5] (2×2×2), E = 4000, ν = 0,
+/// α = 0, ρ = c_p = 1, κ as given; the lower's bottom held in z, the upper's top pushed down
+/// `push`, both on rollers at xmin and ymin; τ = 1e4 s for `steps` quasistatic steps, no
+/// thermoelastic heating, QP and coupling to 1e-12. The caller adds temperatures and contact.
+inline physics::Problem pressed_conduction_blocks(double theta0, double kappa, double push,
+                                                  int steps) {
+  fem::Material mat;
+  mat.density = 1;
+  mat.young_modulus = 4000;
+  mat.poisson_ratio = 0;
+  mat.thermal_expansion = 0;
+  mat.specific_heat = 1;
+  mat.thermal_conductivity = kappa;
+  physics::Problem p;
+  p.dimension = 3;
+  p.time.scheme = physics::Scheme::quasistatic;
+  p.time.step = 1e4;
+  p.time.end = steps * p.time.step;
+  p.physics.reference_temperature = theta0;
+  p.physics.thermoelastic_heating = false;
+  p.bodies.push_back(box_body("lower", mat, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3}, theta0));
+  p.bodies.push_back(box_body("upper", mat, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2}, theta0));
+  p.boundaries.push_back(displacement_bc(0, "zmin", {{2, 0.0}}));
+  p.boundaries.push_back(displacement_bc(1, "zmax", {{2, -push}}));
+  for (int b = 0; b < 2; ++b) {
+    p.boundaries.push_back(displacement_bc(b, "xmin", {{0, 0.0}}));
+    p.boundaries.push_back(displacement_bc(b, "ymin", {{1, 0.0}}));
+  }
+  p.solver.qp_tolerance = 1e-12;
+  p.solver.coupling_tolerance = 1e-12;
+  p.solver.max_coupling_iterations = 50;
+  return p;
+}
+
 /// Dense copy of a (small) PETSc matrix.
 inline Eigen::MatrixXd to_dense(const core::SparseMatrix& a) {
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(a.rows(), a.cols());

@@ -313,47 +313,9 @@ double contact_pair_error(Exchange kind) {
   const double theta0 = 293.15, theta_low = theta0 + 20, kappa = 52, push = 0.015;
   const double h_film = 100, ambient = kind == Exchange::radiation ? 600.0 : theta0 + 40;
   const double eps = 0.9;
-  fem::Material mat;
-  mat.density = 1;
-  mat.young_modulus = 4000;
-  mat.poisson_ratio = 0;
-  mat.thermal_expansion = 0;
-  mat.specific_heat = 1;
-  mat.thermal_conductivity = kappa;
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme = physics::Scheme::quasistatic;
-  p.time.step = 1e4;  // ρc_pL²/κ = 0.02 s: three steps reach the steady state to round-off
-  p.time.end = 4 * p.time.step;
-  p.physics.reference_temperature = theta0;
-  p.physics.thermoelastic_heating = false;
-  for (int b = 0; b < 2; ++b) {
-    physics::Body body;
-    body.name = b == 0 ? "lower" : "upper";
-    body.material = mat;
-    body.mesh = b == 0 ? mesh::make_box(3, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3})
-                       : mesh::make_box(3, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2});
-    body.initial_temperature = theta0;
-    p.bodies.push_back(std::move(body));
-  }
-  auto fix = [&](int body, const std::string& where, int k, double value) {
-    physics::BoundaryCondition bc;
-    bc.body = body;
-    bc.where = where;
-    bc.displacement[k] = core::TimeTable(value);
-    p.boundaries.push_back(bc);
-  };
-  fix(0, "zmin", 2, 0.0);
-  fix(1, "zmax", 2, -push);
-  for (int b = 0; b < 2; ++b) {
-    fix(b, "xmin", 0, 0.0);
-    fix(b, "ymin", 1, 0.0);
-  }
-  physics::BoundaryCondition low;
-  low.body = 0;
-  low.where = "zmin";
-  low.temperature = core::TimeTable(theta_low);
-  p.boundaries.push_back(low);
+  // ρc_pL²/κ = 0.02 s against τ = 1e4 s: three steps reach the steady state to round-off.
+  auto p = pressed_conduction_blocks(theta0, kappa, push, 4);
+  p.boundaries.push_back(temperature_bc(0, "zmin", theta_low));
   physics::BoundaryCondition top;
   top.body = 1;
   top.where = "zmax";
@@ -368,9 +330,6 @@ double contact_pair_error(Exchange kind) {
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = c.conductance_master = 10.0;
   p.contact = c;
-  p.solver.qp_tolerance = 1e-12;
-  p.solver.coupling_tolerance = 1e-12;
-  p.solver.max_coupling_iterations = 50;
   physics::Simulation sim(p);
   sim.enable_mortar_contact();
   Quiet quiet;

@@ -51,31 +51,12 @@ physics::Problem sliding_on_a_gradient(core::TemperatureTable friction, bool hea
   auto mat = steel();
   mat.thermal_expansion = 0;
   mat.specific_heat = heat ? mat.specific_heat : 1e-6;
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme = physics::Scheme::quasistatic;
-  p.time.step = kTau;
-  p.time.end = kTau * (kSlideSteps + 1);
-  p.physics.reference_temperature = kTheta0;
-  p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(box_body("slider", mat, {0, 0, 1}, {1, 1, 1.5}, {4, 4, 2}, kTheta0 + 30));
-  p.bodies.push_back(box_body("base", mat, {-0.25, -0.25, 0}, {1.25, 1.25, 1}, {5, 5, 3}, kTheta0));
-  const core::TimeTable press({0, kTau}, {0, -1e-5});
-  const core::TimeTable drag({0, kTau, kTau * (kSlideSteps + 1)}, {0, 0, kV * kTau * kSlideSteps});
-  p.boundaries.push_back(displacement_bc(0, "zmax", {{0, drag}, {1, 0.0}, {2, press}}));
-  p.boundaries.push_back(displacement_bc(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
+  auto p = slider_on_base(mat, kTau, kV, kSlideSteps, kTheta0, kTheta0 + 30, 0.0);
   p.boundaries.push_back(temperature_bc(0, "xmin", kTheta0 + 10));
   p.boundaries.push_back(temperature_bc(0, "xmax", kTheta0 + 50));
-  auto c = contact_pair(0, "zmin", 1, "zmax");
-  c.friction = std::move(friction);
-  c.conductance_slave = 1e-4;
-  c.conductance_master = 4e-4;
-  c.heat_conduction = heat;
-  c.frictional_heating = heat;
-  p.contact = c;
-  p.solver.qp_tolerance = 1e-10;
-  p.solver.coupling_tolerance = 1e-8;  // above the QP's accuracy of λ (~1e-9 here)
-  p.solver.max_coupling_iterations = 50;
+  p.contact->friction = std::move(friction);
+  p.contact->heat_conduction = heat;
+  p.contact->frictional_heating = heat;
   return p;
 }
 
@@ -182,37 +163,14 @@ TEST(InterfaceLaws, AConstantAsANumberOrAOnePointOrAFlatTableGivesTheSameHistory
 constexpr double kLow = kTheta0 + 20, kHigh = kTheta0 + 40, kKappa = 52, kPush = 0.015;
 
 TEST(InterfaceLaws, SteadyConductionUsesTheConductanceTableAtTheInterfaceTemperature) {
-  fem::Material mat;
-  mat.density = 1;
-  mat.young_modulus = 4000;
-  mat.poisson_ratio = 0;
-  mat.thermal_expansion = 0;
-  mat.specific_heat = 1;
-  mat.thermal_conductivity = kKappa;
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme = physics::Scheme::quasistatic;
-  p.time.step = 1e4;  // the transient decays by < 1e-5 per step: steady to round-off in 5
-  p.time.end = 5 * p.time.step;
-  p.physics.reference_temperature = kTheta0;
-  p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(box_body("lower", mat, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3}, kTheta0));
-  p.bodies.push_back(box_body("upper", mat, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2}, kTheta0));
-  p.boundaries.push_back(displacement_bc(0, "zmin", {{2, 0.0}}));
-  p.boundaries.push_back(displacement_bc(1, "zmax", {{2, -kPush}}));
-  for (int b = 0; b < 2; ++b) {
-    p.boundaries.push_back(displacement_bc(b, "xmin", {{0, 0.0}}));
-    p.boundaries.push_back(displacement_bc(b, "ymin", {{1, 0.0}}));
-  }
+  // τ = 1e4 s: the transient decays by < 1e-5 per step, steady to round-off in 5.
+  auto p = pressed_conduction_blocks(kTheta0, kKappa, kPush, 5);
   p.boundaries.push_back(temperature_bc(0, "zmin", kLow));
   p.boundaries.push_back(temperature_bc(1, "zmax", kHigh));
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = core::TemperatureTable({kLow, kHigh}, {4.0, 16.0});
   c.conductance_master = 10.0;
   p.contact = c;
-  p.solver.qp_tolerance = 1e-12;
-  p.solver.coupling_tolerance = 1e-12;
-  p.solver.max_coupling_iterations = 50;
   physics::Simulation sim(p);
   sim.enable_mortar_contact();
   double conducted_before = 0;

@@ -125,36 +125,12 @@ TEST(InterfaceHeatSolver, SolvesTheCoupledSystemExactlyWithDirichletNodesOnTheIn
 constexpr double kLow = kTheta0 + 20, kHigh = kTheta0 + 40, kKappa = 52, kPush = 0.015;
 
 physics::Problem conduction_blocks(double gamma, int steps = 3) {
-  fem::Material mat;
-  mat.density = 1;
-  mat.young_modulus = 4000;
-  mat.poisson_ratio = 0;
-  mat.thermal_expansion = 0;
-  mat.specific_heat = 1;
-  mat.thermal_conductivity = kKappa;
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme = physics::Scheme::quasistatic;
-  p.time.step = 1e4;
-  p.time.end = steps * p.time.step;
-  p.physics.reference_temperature = kTheta0;
-  p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(box_body("lower", mat, {0.5, 0.5, -0.5}, {1.5, 1.5, 0.5}, {3, 3, 3}, kTheta0));
-  p.bodies.push_back(box_body("upper", mat, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {2, 2, 2}, kTheta0));
-  p.boundaries.push_back(displacement_bc(0, "zmin", {{2, 0.0}}));
-  p.boundaries.push_back(displacement_bc(1, "zmax", {{2, -kPush}}));
-  for (int b = 0; b < 2; ++b) {
-    p.boundaries.push_back(displacement_bc(b, "xmin", {{0, 0.0}}));
-    p.boundaries.push_back(displacement_bc(b, "ymin", {{1, 0.0}}));
-  }
+  auto p = pressed_conduction_blocks(kTheta0, kKappa, kPush, steps);
   p.boundaries.push_back(temperature_bc(0, "zmin", kLow));
   p.boundaries.push_back(temperature_bc(1, "zmax", kHigh));
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = c.conductance_master = gamma;
   p.contact = c;
-  p.solver.qp_tolerance = 1e-12;
-  p.solver.coupling_tolerance = 1e-12;
-  p.solver.max_coupling_iterations = 50;
   return p;
 }
 
@@ -254,28 +230,9 @@ constexpr int kSlideSteps = 10;
 physics::Problem sliding_blocks(bool conduction, bool frictional_heating, double friction) {
   auto mat = steel();
   mat.thermal_expansion = 0;
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme = physics::Scheme::quasistatic;
-  p.time.step = kTau;
-  p.time.end = kTau * (kSlideSteps + 1);
-  p.physics.reference_temperature = kTheta0;
-  p.physics.thermoelastic_heating = false;
-  p.bodies.push_back(box_body("slider", mat, {0, 0, 1}, {1, 1, 1.5}, {4, 4, 2}, kTheta0 + 5));
-  p.bodies.push_back(box_body("base", mat, {-0.25, -0.25, 0}, {1.25, 1.25, 1}, {5, 5, 3}, kTheta0));
-  const core::TimeTable press({0, kTau}, {0, -1e-5});
-  const core::TimeTable drag({0, kTau, kTau * (kSlideSteps + 1)}, {0, 0, kV * kTau * kSlideSteps});
-  p.boundaries.push_back(displacement_bc(0, "zmax", {{0, drag}, {1, 0.0}, {2, press}}));
-  p.boundaries.push_back(displacement_bc(1, "zmin", {{0, 0.0}, {1, 0.0}, {2, 0.0}}));
-  auto c = contact_pair(0, "zmin", 1, "zmax", friction);
-  c.conductance_slave = 1e-4;  // δ_C = 0.2, β_C = 8e-5 W/(m²K Pa)
-  c.conductance_master = 4e-4;
-  c.heat_conduction = conduction;
-  c.frictional_heating = frictional_heating;
-  p.contact = c;
-  p.solver.qp_tolerance = 1e-10;
-  p.solver.coupling_tolerance = 1e-8;  // above the QP's accuracy of λ (~1e-9 here)
-  p.solver.max_coupling_iterations = 50;
+  auto p = slider_on_base(mat, kTau, kV, kSlideSteps, kTheta0, kTheta0 + 5, friction);
+  p.contact->heat_conduction = conduction;
+  p.contact->frictional_heating = frictional_heating;
   return p;
 }
 
