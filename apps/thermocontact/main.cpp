@@ -180,7 +180,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
                                           : tc::io::EarlierRun::refuse;
     const tc::io::OutputLock lock(problem.output.directory, restart.empty(), earlier);
     tc::physics::Simulation sim(problem);
-    if (problem.contact) sim.enable_mortar_contact();
+    if (!problem.contacts.empty()) sim.enable_mortar_contact();
     const auto case_hash = tc::io::input_hash(problem);
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
     if (tc::core::PetscSession::rank() == 0) {

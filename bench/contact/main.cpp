@@ -38,7 +38,7 @@ physics::Problem sliding_block(std::array<int, 3> master, std::array<int, 3> sla
   const double end = 0.1 * steps;
   bench::clamp_and_drag(p, 0.2, 1e-4, end, 0.3 / 35 * (steps - 2));
   auto c = test::contact_pair(1, "zmin", 0, "zmax", 0.3);
-  p.contact = c;
+  p.contacts = {c};
   p.solver.qp_tolerance = 1e-10;
   p.solver.coupling_tolerance = 1e-8;
   return p;

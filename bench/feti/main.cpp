@@ -244,7 +244,7 @@ physics::Problem contact_blocks(int h, int s, int steps) {
   if (std::getenv("TC_BENCH_DYNAMIC")) p.time.scheme = physics::Scheme::dynamic;
   const double end = 0.1 * steps;
   bench::clamp_and_drag(p, 0.1, 1e-3, end, 2e-4 * (steps - 1));
-  p.contact = test::contact_pair(1, "zmin", 0, "zmax", 0.3);
+  p.contacts = {test::contact_pair(1, "zmin", 0, "zmax", 0.3)};
   p.solver.qp_tolerance = 1e-8;
   p.solver.coupling_tolerance = 1e-6;
   p.solver.feti_tolerance = 1e-8;

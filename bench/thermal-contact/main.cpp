@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
       settings.compliance_limit = 0;
       settings.scale = false;
     }
-    if (problem.contact) sim.enable_mortar_contact(settings);
+    if (!problem.contacts.empty()) sim.enable_mortar_contact(settings);
     Counts counts;
     const auto status = sim.run(counts);
     const double total = std::chrono::duration<double>(Clock::now() - t0).count();

@@ -118,7 +118,7 @@ inline physics::Problem slider_on_base(const fem::Material& mat, double tau, dou
   auto c = contact_pair(0, "zmin", 1, "zmax", friction);
   c.conductance_slave = 1e-4;
   c.conductance_master = 4e-4;
-  p.contact = c;
+  p.contacts = {c};
   p.solver.qp_tolerance = 1e-10;
   p.solver.coupling_tolerance = 1e-8;
   p.solver.max_coupling_iterations = 50;

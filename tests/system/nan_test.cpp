@@ -114,7 +114,7 @@ TEST(NaN, InTheDisplacementOfAContactBodyItIsFoundByTheContactPhase) {
   sim.advance();
   sim.advance();
   auto c = sim.checkpoint();
-  for (auto& x : c.bodies[p.contact->slave_body].u) x = nan;
+  for (auto& x : c.bodies[p.contacts.at(0).slave_body].u) x = nan;
   sim.restore(c);
   expect_contains(numerical_error([&] { sim.advance(); }),
                   {"contact: the configuration", "not finite", "step 3"});

@@ -88,17 +88,17 @@ TEST(CaseReader, TwoBlocks3dFillsEverySection) {
   ASSERT_TRUE(pushed.traction[2]);
   EXPECT_DOUBLE_EQ((*pushed.traction[2])(0.0), -1.0e6);
 
-  ASSERT_TRUE(p.contact);
-  EXPECT_EQ(p.contact->slave_body, 1);
-  EXPECT_EQ(p.contact->master_body, 0);
-  EXPECT_EQ(p.contact->slave_where, "zmin");
-  EXPECT_EQ(p.contact->master_where, "zmax");
-  EXPECT_DOUBLE_EQ(p.contact->friction(300.0), 0.9);  // numbers: constants in θ
-  EXPECT_TRUE(p.contact->friction.is_constant());
-  EXPECT_DOUBLE_EQ(p.contact->conductance_slave(300.0), 2.5e-3);
-  EXPECT_DOUBLE_EQ(p.contact->conductance_master(300.0), 2.5e-3);
-  EXPECT_TRUE(p.contact->heat_conduction);
-  EXPECT_TRUE(p.contact->frictional_heating);
+  ASSERT_EQ(p.contacts.size(), 1u);
+  EXPECT_EQ(p.contacts.at(0).slave_body, 1);
+  EXPECT_EQ(p.contacts.at(0).master_body, 0);
+  EXPECT_EQ(p.contacts.at(0).slave_where, "zmin");
+  EXPECT_EQ(p.contacts.at(0).master_where, "zmax");
+  EXPECT_DOUBLE_EQ(p.contacts.at(0).friction(300.0), 0.9);  // numbers: constants in θ
+  EXPECT_TRUE(p.contacts.at(0).friction.is_constant());
+  EXPECT_DOUBLE_EQ(p.contacts.at(0).conductance_slave(300.0), 2.5e-3);
+  EXPECT_DOUBLE_EQ(p.contacts.at(0).conductance_master(300.0), 2.5e-3);
+  EXPECT_TRUE(p.contacts.at(0).heat_conduction);
+  EXPECT_TRUE(p.contacts.at(0).frictional_heating);
 
   EXPECT_DOUBLE_EQ(p.solver.coupling_tolerance, 1e-6);
   EXPECT_EQ(p.solver.max_coupling_iterations, 20);
@@ -143,7 +143,7 @@ TEST(CaseReader, PlaneStrainKeepsTwoComponentsAndDefaults) {
   ASSERT_TRUE(top.temperature);
   EXPECT_DOUBLE_EQ((*top.temperature)(0.005), 343.15);
 
-  EXPECT_FALSE(p.contact);
+  EXPECT_TRUE(p.contacts.empty());
   const tc::physics::SolverSettings defaults;
   EXPECT_EQ(p.solver.max_qp_iterations, defaults.max_qp_iterations);
   EXPECT_EQ(p.solver.coupling_tolerance, defaults.coupling_tolerance);
@@ -314,14 +314,14 @@ TEST(CaseReader, InterfaceLawsTakeNumbersAndTablesInTheInterfaceTemperature) {
          "friction = { temperature = [300.0, 400.0], value = [0.5, 0.3] }\n"
          "conductance = { slave = { temperature = [350.0], value = [2e-3] }, master = 1e-3 }\n";
   const Problem p = read_case(dir / "laws.toml");
-  ASSERT_TRUE(p.contact);
-  EXPECT_FALSE(p.contact->friction.is_constant());
-  EXPECT_DOUBLE_EQ(p.contact->friction(350.0), 0.4);
-  EXPECT_DOUBLE_EQ(p.contact->friction(200.0), 0.5);  // constant beyond the ends
-  EXPECT_DOUBLE_EQ(p.contact->friction(900.0), 0.3);
-  EXPECT_TRUE(p.contact->conductance_slave.is_constant());  // a one-point table
-  EXPECT_EQ(p.contact->conductance_slave(1.0), 2e-3);
-  EXPECT_EQ(p.contact->conductance_master(1.0), 1e-3);
+  ASSERT_EQ(p.contacts.size(), 1u);
+  EXPECT_FALSE(p.contacts.at(0).friction.is_constant());
+  EXPECT_DOUBLE_EQ(p.contacts.at(0).friction(350.0), 0.4);
+  EXPECT_DOUBLE_EQ(p.contacts.at(0).friction(200.0), 0.5);  // constant beyond the ends
+  EXPECT_DOUBLE_EQ(p.contacts.at(0).friction(900.0), 0.3);
+  EXPECT_TRUE(p.contacts.at(0).conductance_slave.is_constant());  // a one-point table
+  EXPECT_EQ(p.contacts.at(0).conductance_slave(1.0), 2e-3);
+  EXPECT_EQ(p.contacts.at(0).conductance_master(1.0), 1e-3);
   fs::remove_all(dir);
 }
 

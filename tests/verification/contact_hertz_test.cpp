@@ -140,7 +140,7 @@ physics::Problem cylinder_on_block(double h, double delta, double shift, double 
   p.boundaries.push_back(prescribe(0, "top", ux, uy));
   p.boundaries.push_back(prescribe(1, "bottom", core::TimeTable(0.0), core::TimeTable(0.0)));
   auto c = contact_pair(0, "arc", 1, "top", friction);
-  p.contact = c;
+  p.contacts = {c};
   p.solver.qp_tolerance = 1e-10;
   p.solver.coupling_tolerance = 1e-8;
   return p;

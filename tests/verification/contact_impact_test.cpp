@@ -74,7 +74,7 @@ Impact fall(physics::ContactScheme scheme, double tau) {
   auto clamp = hold("zmin", {0, 1, 2});
   clamp.body = 1;
   p.boundaries.push_back(clamp);
-  p.contact = contact_pair(0, "zmin", 1, "zmax");
+  p.contacts = {contact_pair(0, "zmin", 1, "zmax")};
   p.solver.qp_tolerance = 1e-10;
 
   physics::Simulation sim(p);

@@ -72,7 +72,7 @@ physics::Problem pressed_blocks(int dim, std::array<int, 3> upper_cells,
   }
   auto c = contact_pair(upper_is_slave ? 0 : 1, upper_is_slave ? bottom : top,
                         upper_is_slave ? 1 : 0, upper_is_slave ? top : bottom, friction);
-  p.contact = c;
+  p.contacts = {c};
   p.solver.qp_tolerance = 1e-12;
   p.solver.coupling_tolerance = 1e-10;
   return p;

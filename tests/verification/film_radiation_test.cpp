@@ -329,7 +329,7 @@ double contact_pair_error(Exchange kind) {
   p.boundaries.push_back(top);
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = c.conductance_master = 10.0;
-  p.contact = c;
+  p.contacts = {c};
   physics::Simulation sim(p);
   sim.enable_mortar_contact();
   Quiet quiet;

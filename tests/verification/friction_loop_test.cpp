@@ -36,7 +36,7 @@ struct Run {
 Run run(physics::FrictionLoop loop) {
   auto p =
       io::read_case(std::filesystem::path(TC_SOURCE_DIR) / "tests/cases/feti/thesis-coarse.toml");
-  p.contact->heat_conduction = true;
+  p.contacts.at(0).heat_conduction = true;
   // The defaults of case-format.md, not the FETI test's tight ones: what users run.
   p.solver.coupling_tolerance = 1e-6;
   p.solver.qp_tolerance = 1e-8;

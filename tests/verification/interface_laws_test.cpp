@@ -54,9 +54,9 @@ physics::Problem sliding_on_a_gradient(core::TemperatureTable friction, bool hea
   auto p = slider_on_base(mat, kTau, kV, kSlideSteps, kTheta0, kTheta0 + 30, 0.0);
   p.boundaries.push_back(temperature_bc(0, "xmin", kTheta0 + 10));
   p.boundaries.push_back(temperature_bc(0, "xmax", kTheta0 + 50));
-  p.contact->friction = std::move(friction);
-  p.contact->heat_conduction = heat;
-  p.contact->frictional_heating = heat;
+  p.contacts.at(0).friction = std::move(friction);
+  p.contacts.at(0).heat_conduction = heat;
+  p.contacts.at(0).frictional_heating = heat;
   return p;
 }
 
@@ -127,7 +127,7 @@ TEST(InterfaceLaws, AConstantAsANumberOrAOnePointOrAFlatTableGivesTheSameHistory
   for (const auto& f : forms) {
     auto p = sliding_on_a_gradient(f.friction, true);
     p.time.end = 4 * kTau;
-    p.contact->conductance_slave = f.gamma_slave;
+    p.contacts.at(0).conductance_slave = f.gamma_slave;
     physics::Simulation sim(p);
     sim.enable_mortar_contact();
     std::vector<std::vector<double>> rows;
@@ -170,7 +170,7 @@ TEST(InterfaceLaws, SteadyConductionUsesTheConductanceTableAtTheInterfaceTempera
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = core::TemperatureTable({kLow, kHigh}, {4.0, 16.0});
   c.conductance_master = 10.0;
-  p.contact = c;
+  p.contacts = {c};
   physics::Simulation sim(p);
   sim.enable_mortar_contact();
   double conducted_before = 0;

@@ -49,7 +49,7 @@ physics::Problem reciprocating_slide(int m) {
   auto c = contact_pair(1, "ymax", 0, "ymin", 0.3);
   c.heat_conduction = false;
   c.frictional_heating = false;
-  p.contact = c;
+  p.contacts = {c};
   p.solver.qp_tolerance = 1e-10;
   p.solver.coupling_tolerance = 1e-8;
   return p;

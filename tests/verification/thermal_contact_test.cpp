@@ -130,7 +130,7 @@ physics::Problem conduction_blocks(double gamma, int steps = 3) {
   p.boundaries.push_back(temperature_bc(1, "zmax", kHigh));
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = c.conductance_master = gamma;
-  p.contact = c;
+  p.contacts = {c};
   return p;
 }
 
@@ -231,8 +231,8 @@ physics::Problem sliding_blocks(bool conduction, bool frictional_heating, double
   auto mat = steel();
   mat.thermal_expansion = 0;
   auto p = slider_on_base(mat, kTau, kV, kSlideSteps, kTheta0, kTheta0 + 5, friction);
-  p.contact->heat_conduction = conduction;
-  p.contact->frictional_heating = frictional_heating;
+  p.contacts.at(0).heat_conduction = conduction;
+  p.contacts.at(0).frictional_heating = frictional_heating;
   return p;
 }
 
@@ -247,7 +247,7 @@ SlideResult slide(physics::Simulation& sim) {
   sim.advance();  // the press
   for (int s = 0; s < kSlideSteps; ++s) {
     sim.advance();
-    r.expected += kTau * sim.problem().contact->friction(kAnyTheta) *
+    r.expected += kTau * sim.problem().contacts.at(0).friction(kAnyTheta) *
                   sim.history("contact_normal_force") * kV;
   }
   r.slave_energy = body_energy(sim, 0) - e_s0;
@@ -439,7 +439,7 @@ TEST(ThermalContact, TwoHalfSpacesUnderConstantFrictionalPower) {
   auto c = contact_pair(0, "zmin", 1, "zmax", 0.5);
   c.conductance_slave = 5;
   c.conductance_master = 1.25;
-  p.contact = c;
+  p.contacts = {c};
   p.solver.qp_tolerance = 1e-12;
   p.solver.coupling_tolerance = 1e-10;
   p.solver.max_coupling_iterations = 50;
@@ -519,7 +519,7 @@ TEST(ThermalContact, HeatedSlaveBetweenMasterAndWallPressesHarder) {
   auto c = contact_pair(0, "zmin", 1, "zmax");
   c.conductance_slave = c.conductance_master = 1e-3;
   c.heat_conduction = false;
-  p.contact = c;
+  p.contacts = {c};
   p.solver.qp_tolerance = 1e-12;
   p.solver.coupling_tolerance = 1e-12;
   physics::Simulation sim(p);

@@ -625,7 +625,7 @@ void CaseReader::read_contact(const TableReader& root) {
   if (const auto v = t->boolean("heat_conduction")) c.heat_conduction = *v;
   if (const auto v = t->boolean("frictional_heating")) c.frictional_heating = *v;
   read_conductance(*t, c);
-  p_.contact = c;
+  p_.contacts = {c};
 }
 
 namespace {

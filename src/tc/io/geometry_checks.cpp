@@ -116,7 +116,7 @@ std::pair<int, int> centroid_inside(const mesh::Mesh& body, const mesh::Mesh& ot
 }  // namespace
 
 InitialContact initial_contact(const physics::Problem& p) {
-  const auto& c = *p.contact;
+  const auto& c = p.contacts.at(0);
   const auto& slave = p.bodies[c.slave_body].mesh;
   const auto& master = p.bodies[c.master_body].mesh;
   const contact::MortarPair pair(slave, c.slave_where, master, c.master_where);
@@ -151,8 +151,8 @@ std::vector<std::string> check_geometry(const physics::Problem& p) {
         file, describe(b), pairs.size(), pairs.size() == 1 ? "" : "s", pairs[0].first,
         pairs[0].second, x[0], x[1], x[2]));
   }
-  if (!p.contact) return warnings;
-  const auto& c = *p.contact;
+  if (p.contacts.empty()) return warnings;
+  const auto& c = p.contacts.at(0);
   const auto ic = initial_contact(p);
   const auto& slave = p.bodies[c.slave_body];
   const auto& master = p.bodies[c.master_body];

@@ -130,7 +130,7 @@ void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>
   // conducted heat flux β_C λ_n [θ] out of the slave (Simulation::contact_heat_flux).
   const auto* pair = sim.mortar();
   const auto* dual = sim.dual_solver();
-  if (!pair || !dual || body != sim.problem().contact->slave_body) return;
+  if (!pair || !dual || body != sim.problem().contacts.at(0).slave_body) return;
   const auto& rows = dual->rows();
   const int dim = rows.dim;
   const auto lambda = sim.contact_multipliers();

@@ -40,14 +40,17 @@ BodySystem::BodySystem(const Problem& problem, int index)
   th_dofs_ = keys(th_prescribed_);
   lumped_ = problem.physics.lumped_heat_capacity;
   if (lumped_) lump(m_.mass_theta);
-  const auto& c = problem.contact;
-  if (c && problem.time.scheme == Scheme::dynamic &&
-      problem.time.contact_scheme == ContactScheme::modified_mass &&
-      (index == c->slave_body || index == c->master_body)) {
-    massless_.assign(static_cast<size_t>(body_->mesh.n_nodes()), 0);
-    for (const int a :
-         body_->mesh.boundary_nodes(index == c->slave_body ? c->slave_where : c->master_where))
-      massless_[static_cast<size_t>(a)] = 1;
+  if (problem.time.scheme == Scheme::dynamic &&
+      problem.time.contact_scheme == ContactScheme::modified_mass)
+    for (const auto& c : problem.contacts)  // every contact surface of the body, of any pair
+      for (const auto& [b, where] :
+           {std::pair{c.slave_body, &c.slave_where}, {c.master_body, &c.master_where}}) {
+        if (b != index) continue;
+        massless_.resize(static_cast<size_t>(body_->mesh.n_nodes()), 0);
+        for (const int a : body_->mesh.boundary_nodes(*where))
+          massless_[static_cast<size_t>(a)] = 1;
+      }
+  if (!massless_.empty()) {
     for (int a = 0; a < body_->mesh.n_nodes(); ++a)
       if (massless_[static_cast<size_t>(a)])
         for (int k = 0; k < dim_; ++k) massless_dofs_.push_back(dim_ * a + k);

@@ -33,8 +33,8 @@ bool fixed_point_reached(double lambda_change, double theta_change, double previ
 
 void ContactCoupling::enable(ContactRowsBuilder builder, DualContactSettings settings,
                              const int& step) {
-  if (!problem_.contact) throw Error("enable_contact: the problem has no [contact]");
-  const auto& c = *problem_.contact;
+  if (problem_.contacts.empty()) throw Error("enable_contact: the problem has no [contact]");
+  const auto& c = problem_.contacts.at(0);
   rows_ = finite_rows(std::move(builder), step);
   laws_ = InterfaceLaws(c);
   heat_.set_treatment(problem_.solver.conductance_treatment);
@@ -43,8 +43,8 @@ void ContactCoupling::enable(ContactRowsBuilder builder, DualContactSettings set
 
 void ContactCoupling::enable_mortar(DualContactSettings settings, contact::MortarOptions options,
                                     const int& step) {
-  if (!problem_.contact) throw Error("enable_mortar_contact: the problem has no [contact]");
-  const auto& c = *problem_.contact;
+  if (problem_.contacts.empty()) throw Error("enable_mortar_contact: the problem has no [contact]");
+  const auto& c = problem_.contacts.at(0);
   {
     auto t = timers_.scope("mortar");
     mortar_ = std::make_unique<contact::MortarPair>(
@@ -60,7 +60,7 @@ void ContactCoupling::enable_mortar(DualContactSettings settings, contact::Morta
 }
 
 BodyPair ContactCoupling::pair() {
-  return bodies_.pair(problem_.contact->slave_body, problem_.contact->master_body);
+  return bodies_.pair(problem_.contacts.at(0).slave_body, problem_.contacts.at(0).master_body);
 }
 
 double ContactCoupling::traction_per_multiplier() const {
@@ -77,7 +77,7 @@ void ContactCoupling::heat_step(int step, int iteration) {
   //   (M_θ/τ + K_θ) θ + L_θγ θ = rhs + d_θγ(u̇)   (ContactHeatCoupling::heat_step),
   // rhs with the thermoelastic term of each body.
   auto scope = timers_.scope("heat_solve");
-  const auto& c = *problem_.contact;
+  const auto& c = problem_.contacts.at(0);
   const auto p = pair();
   const auto& rows = method_.enforcement->dual().rows();
   // 𝔉, β_C, δ_C at the interface temperature of the last iterate (θ^k at the first): fixed
@@ -124,7 +124,7 @@ double ContactCoupling::mech_step(TrescaIteration& t, std::span<const double> ta
 }
 
 int ContactCoupling::couple(int step) {
-  const auto& c = *problem_.contact;
+  const auto& c = problem_.contacts.at(0);
   const auto p = pair();
   auto& ss = p.slave;
   auto& sm = p.master;
@@ -248,7 +248,7 @@ void ContactCoupling::bookkeeping() {
   const double unit = traction_per_multiplier();
   stats_.record_step(rows, l, slip_, unit, qp_bound_, mortar_.get());
   if (mortar_) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
-    const auto& c = *problem_.contact;
+    const auto& c = problem_.contacts.at(0);
     heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
     if (c.heat_conduction && nodal_laws_.conducting &&
         mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {

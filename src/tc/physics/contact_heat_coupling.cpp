@@ -16,7 +16,7 @@ void ContactHeatCoupling::heat_step(const Problem& p, const HeatPair& pair,
   // displacement iterate; β_C and δ_C per contact node at the interface temperature of the last
   // coupling iterate (it.laws). L on the left through the interface (InterfaceHeatSolver), or
   // lagged.
-  const auto& c = *p.contact;
+  const auto& c = p.contacts.at(0);
   auto& ss = pair.slave;
   auto& sm = pair.master;
   frictional_heat_ = {};
@@ -131,8 +131,8 @@ void ContactHeatCoupling::pair_boundary_heat(const Problem& p, const HeatPair& p
   newton_ += o.iterations;
   newton_inner_ += o.inner_iterations;
   require_converged(o,
-                    fmt::format("the contact pair '{}'–'{}'", p.bodies[p.contact->slave_body].name,
-                                p.bodies[p.contact->master_body].name),
+                    fmt::format("the contact pair '{}'–'{}'", p.bodies[p.contacts.at(0).slave_body].name,
+                                p.bodies[p.contacts.at(0).master_body].name),
                     settings.newton_tolerance, step, iteration);
 }
 

@@ -6,7 +6,7 @@ namespace tc::physics {
 
 ContactMethod choose_contact_method(const Problem& p, Bodies& bodies, DualContactSettings settings,
                                     core::PhaseTimers& timers) {
-  const auto& c = *p.contact;
+  const auto& c = p.contacts.at(0);
   const int sb = c.slave_body, mb = c.master_body;
   settings.qp.rtol = p.solver.qp_tolerance;
   settings.qp.max_iterations = p.solver.max_qp_iterations;

@@ -17,6 +17,7 @@
 
 #include "tc/contact/contact_rows.hpp"
 #include "tc/physics/constrained_solver.hpp"
+#include "tc/physics/dof_compliance.hpp"
 #include "tc/qp/mpgp.hpp"
 
 namespace tc::physics {
@@ -45,40 +46,6 @@ struct DualContactSettings {
   /// and one for the tangent rows of each node (discs stay discs): Σ F Σ has a unit diagonal
   /// per node (docs/choices.md). Same minimiser; the stopping test is on Σ g^P against Σ d.
   bool scale = true;
-};
-
-/// S = (A⁻¹)_TT of one body on a growing set T of its dofs (A factorised, homogeneous
-/// Dirichlet data: constrained dofs have zero rows and columns). A row b of B vanishes off T,
-/// so bᵀA⁻¹c = b_Tᵀ S c_T exactly (up to the direct solver's round-off): with S, F = B A⁻¹Bᵀ
-/// costs sparse-dense products and no solve for rows on dofs seen before. A new dof costs one
-/// solve (in blocks of right-hand sides, restricted to the supernodes they reach when the
-/// factor allows: ConstrainedSolver::solve_unit_rows); its column's entries on the old T give
-/// the new row too, by the symmetry of A.
-class DofCompliance {
- public:
-  DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs);
-  /// The dofs of `dofs` not yet in T (each counted once).
-  [[nodiscard]] PetscInt missing(std::span<const PetscInt> dofs) const;
-  /// Adds the dofs not yet in T; returns the number of solves spent.
-  PetscInt cover(std::span<const PetscInt> dofs);
-  /// Position of `dof` in T, or −1.
-  [[nodiscard]] PetscInt index(PetscInt dof) const { return index_[dof]; }
-  [[nodiscard]] PetscInt size() const { return static_cast<PetscInt>(dofs_.size()); }
-  [[nodiscard]] const Eigen::MatrixXd& matrix() const { return s_; }
-  /// T in the order added, and the number of dofs each cover() added: enough to rebuild S
-  /// with the same solves in the same blocks, hence the same bits (restart).
-  [[nodiscard]] const std::vector<PetscInt>& dofs() const { return dofs_; }
-  [[nodiscard]] const std::vector<PetscInt>& chunks() const { return chunks_; }
-  /// Rebuilds S from scratch by replaying the recorded cover() calls (nothing to do when the
-  /// record is already this one's).
-  void replay(std::span<const PetscInt> dofs, std::span<const PetscInt> chunks);
-
- private:
-  const ConstrainedSolver& solver_;
-  std::vector<PetscInt> chunks_;
-  std::vector<PetscInt> index_;  // dof → position in T, or −1
-  std::vector<PetscInt> dofs_;   // T in the order added
-  Eigen::MatrixXd s_;
 };
 
 class DualContactSolver {

@@ -10,11 +10,14 @@
 namespace tc::physics {
 
 std::string combined_contact_dual_unavailable(const Problem& p) {
-  if (!p.contact) return "the case has no [contact]";
+  if (p.contacts.empty()) return "the case has no [contact]";
+  if (p.contacts.size() > 1)
+    return fmt::format("the case has {} contact pairs (the combined dual takes one)",
+                       p.contacts.size());
   if (p.time.scheme != Scheme::quasistatic)
     return "[time] scheme is \"dynamic\" (the combined dual is quasistatic only: the "
            "subdomains' rigid motions enter through Gλ = e)";
-  for (const int b : {p.contact->slave_body, p.contact->master_body})
+  for (const int b : {p.contacts.at(0).slave_body, p.contacts.at(0).master_body})
     if (p.bodies[static_cast<size_t>(b)].subdomains < 2)
       return "contact body \"" + p.bodies[static_cast<size_t>(b)].name +
              "\" is not decomposed (subdomains = 1; the combined dual needs TFETI on both)";

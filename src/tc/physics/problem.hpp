@@ -89,7 +89,10 @@ struct BoundaryCondition {
   std::optional<Radiation> radiation;                // εσ(θ⁴ − θ∞⁴) out of the body
 };
 
+/// One contact pair ([[contact]], or the single [contact] table): a slave surface of one body
+/// against a master surface of another, with the pair's own interface laws.
 struct ContactSettings {
+  std::string name;  // unique among the pairs; the suffix of its history.csv columns
   int slave_body = 0, master_body = 1;
   std::string slave_where, master_where;
   // The interface laws of (2.13), each a number or a table in the interface temperature
@@ -169,7 +172,7 @@ struct OutputSettings {
 };
 
 struct Problem;
-/// Why the combined contact dual cannot run this problem ("" when it can): it needs contact,
+/// Why the combined contact dual cannot run this problem ("" when it can): it needs one pair,
 /// the quasistatic scheme and both contact bodies decomposed (subdomains > 1: their mechanics
 /// solved by TFETI with the floating subdomains' rigid motions).
 [[nodiscard]] std::string combined_contact_dual_unavailable(const Problem& p);
@@ -182,7 +185,7 @@ struct Problem {
   PhysicsSettings physics;
   std::vector<Body> bodies;
   std::vector<BoundaryCondition> boundaries;
-  std::optional<ContactSettings> contact;
+  std::vector<ContactSettings> contacts;  // the contact pairs, in the order of the case file
   SolverSettings solver;
   OutputSettings output;
 };

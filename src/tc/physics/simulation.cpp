@@ -131,10 +131,10 @@ void Simulation::advance() {
   std::vector<core::Vector> old_u;
   for (const auto& st : bodies_.states) old_u.push_back(st.u.clone());
   int coupling = 0;
-  if (problem_.contact) {
+  if (!problem_.contacts.empty()) {
     if (!contact_.enabled())
       throw Error("the problem has contact but no contact rows (enable_contact)");
-    const auto& c = *problem_.contact;
+    const auto& c = problem_.contacts.at(0);
     coupling = contact_.couple(step_ + 1);
     for (int b = 0; b < n_bodies(); ++b)  // the bodies outside the pair
       if (b != c.slave_body && b != c.master_body) steps_.couple(b, step_ + 1);
