@@ -106,9 +106,24 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
   for (const auto& b : c.bodies)
     for (const auto* v : {&b.u, &b.v, &b.a, &b.theta, &b.force, &b.g_free}) e.put(*v);
   e.put(c.lambda);
-  e.put(std::vector<std::int32_t>(c.lambda_nodes.begin(), c.lambda_nodes.end()));
-  e.put(c.lambda_tangents);
-  for (const auto& v : c.compliance) e.put(std::vector<std::int32_t>(v.begin(), v.end()));
+  e.put(static_cast<std::int32_t>(c.pairs.size()));
+  for (const auto& pr : c.pairs) {
+    e.put(std::vector<std::int32_t>(pr.lambda_nodes.begin(), pr.lambda_nodes.end()));
+    e.put(pr.lambda_tangents);
+    const auto& s = pr.contact;
+    for (const int i : {s.qp_iterations, s.operator_applications, s.active_nodes, s.slip_nodes})
+      e.put(static_cast<std::int32_t>(i));
+    for (const double x :
+         {s.normal_force, s.tangential_force, s.tangential_force_sum, s.dissipation})
+      e.put(x);
+    for (const double x :
+         {pr.heat.generated, pr.heat.to_slave, pr.heat.to_master, pr.heat.conducted})
+      e.put(x);
+  }
+  for (const auto* record : {&c.compliance, &c.stabiliser_compliance}) {
+    e.put(static_cast<std::int32_t>(record->size()));
+    for (const auto& v : *record) e.put(std::vector<std::int32_t>(v.begin(), v.end()));
+  }
   e.put(c.slip);
   e.put(c.heat_flux);
   e.put(c.row);
@@ -120,13 +135,6 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
   e.put(c.feti_body_lambda);
   e.put(c.feti_mu);
   e.put(static_cast<std::int64_t>(c.total_smalbe_outer));
-  const auto& s = c.contact;
-  for (const int i : {s.qp_iterations, s.operator_applications, s.active_nodes, s.slip_nodes})
-    e.put(static_cast<std::int32_t>(i));
-  for (const double d : {s.normal_force, s.tangential_force, s.tangential_force_sum, s.dissipation})
-    e.put(d);
-  for (const double d : {c.heat.generated, c.heat.to_slave, c.heat.to_master, c.heat.conducted})
-    e.put(d);
   for (const double d : {c.boundary_heat.film, c.boundary_heat.radiation}) e.put(d);
   return e.finish();
 }
@@ -169,12 +177,33 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
   for (auto& b : c.bodies)
     for (auto* v : {&b.u, &b.v, &b.a, &b.theta, &b.force, &b.g_free}) *v = d.get_vector<double>();
   c.lambda = d.get_vector<double>();
-  const auto nodes = d.get_vector<std::int32_t>();
-  c.lambda_nodes.assign(nodes.begin(), nodes.end());
-  c.lambda_tangents = d.get_vector<double>();
-  for (auto& v : c.compliance) {
-    const auto x = d.get_vector<std::int32_t>();
-    v.assign(x.begin(), x.end());
+  const auto n_pairs = d.get<std::int32_t>();
+  if (n_pairs != static_cast<std::int32_t>(sim.problem().contacts.size()))
+    d.fail(
+        fmt::format("{} contact pairs, the case has {}", n_pairs, sim.problem().contacts.size()));
+  c.pairs.resize(static_cast<size_t>(n_pairs));
+  for (auto& pr : c.pairs) {
+    const auto nodes = d.get_vector<std::int32_t>();
+    pr.lambda_nodes.assign(nodes.begin(), nodes.end());
+    pr.lambda_tangents = d.get_vector<double>();
+    auto& s = pr.contact;
+    for (int* i : {&s.qp_iterations, &s.operator_applications, &s.active_nodes, &s.slip_nodes})
+      *i = d.get<std::int32_t>();
+    for (double* x :
+         {&s.normal_force, &s.tangential_force, &s.tangential_force_sum, &s.dissipation})
+      *x = d.get<double>();
+    for (double* x :
+         {&pr.heat.generated, &pr.heat.to_slave, &pr.heat.to_master, &pr.heat.conducted})
+      *x = d.get<double>();
+  }
+  for (auto* record : {&c.compliance, &c.stabiliser_compliance}) {
+    const auto n = d.get<std::int32_t>();
+    if (n < 0 || n > 2 * sim.n_bodies()) d.fail("a bad compliance record");
+    record->resize(static_cast<size_t>(n));
+    for (auto& v : *record) {
+      const auto x = d.get_vector<std::int32_t>();
+      v.assign(x.begin(), x.end());
+    }
   }
   c.slip = d.get_vector<double>();
   c.heat_flux = d.get_vector<double>();
@@ -187,13 +216,6 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
   c.feti_body_lambda = d.get_vector<double>();
   c.feti_mu = d.get_vector<double>();
   c.total_smalbe_outer = d.get<std::int64_t>();
-  auto& s = c.contact;
-  for (int* i : {&s.qp_iterations, &s.operator_applications, &s.active_nodes, &s.slip_nodes})
-    *i = d.get<std::int32_t>();
-  for (double* x : {&s.normal_force, &s.tangential_force, &s.tangential_force_sum, &s.dissipation})
-    *x = d.get<double>();
-  for (double* x : {&c.heat.generated, &c.heat.to_slave, &c.heat.to_master, &c.heat.conducted})
-    *x = d.get<double>();
   for (double* x : {&c.boundary_heat.film, &c.boundary_heat.radiation}) *x = d.get<double>();
   if (d.position() != body_size) d.fail("unexpected bytes after the data");
   return c;

@@ -124,32 +124,40 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
 }
 
 void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data) {
-  // On the slave's contact nodes (the multipliers live there), zero elsewhere: the pressure
-  // and the tangential traction Σ_l λ_τl τ_l (λ times the traction per multiplier: ½ with the
-  // contact-stabilised Newmark), the slip velocity Σ_l (B_τlΔu)_k/(w_k τ) τ_l and the
-  // conducted heat flux β_C λ_n [θ] out of the slave (Simulation::contact_heat_flux).
-  const auto* pair = sim.mortar();
+  // On the contact nodes of every pair whose slave is this body (the multipliers live there),
+  // zero elsewhere: the pressure and the tangential traction Σ_l λ_τl τ_l (λ times the traction
+  // per multiplier: ½ with the contact-stabilised Newmark), the slip velocity
+  // Σ_l (B_τlΔu)_k/(w_k τ) τ_l and the conducted heat flux β_C λ_n [θ] out of the slave.
+  const auto& contact = sim.contact();
   const auto* dual = sim.dual_solver();
-  if (!pair || !dual || body != sim.problem().contacts.at(0).slave_body) return;
-  const auto& rows = dual->rows();
-  const int dim = rows.dim;
-  const auto lambda = sim.contact_multipliers();
-  const auto& slip = sim.contact_slip();
+  bool slave = false;
+  for (int q = 0; q < contact.n_pairs(); ++q)
+    slave = slave || (contact.pair(q).mortar && contact.pair(q).settings->slave_body == body);
+  if (!dual || !slave) return;
   const int n = sim.system(body).body().mesh.n_nodes();
   Field pressure{"contact_pressure", 1, std::vector<double>(n, 0.0)};
   Field traction{"tangential_traction", 3, std::vector<double>(3 * n, 0.0)};
   Field slip_velocity{"slip_velocity", 3, std::vector<double>(3 * n, 0.0)};
   Field heat_flux{"contact_heat_flux", 1, std::vector<double>(n, 0.0)};
-  const auto& flux = sim.contact_heat_flux();
-  const bool have_slip = slip.size() == lambda.size() && !lambda.empty();
-  if (static_cast<PetscInt>(lambda.size()) == rows.n_rows() &&
-      rows.nodes.size() == pair->contact_nodes().size()) {
-    const double tau = sim.problem().time.step;
-    const double unit = sim.traction_per_multiplier();
+  const double tau = sim.problem().time.step;
+  const double unit = sim.traction_per_multiplier();
+  for (int q = 0; q < contact.n_pairs() && q < dual->n_pairs(); ++q) {
+    const auto& pr = contact.pair(q);
+    const auto* pair = pr.mortar.get();
+    if (!pair || pr.settings->slave_body != body) continue;
+    const auto& rows = dual->pair_rows(q);
+    const int dim = rows.dim;
+    const auto lambda = contact.multipliers(q);
+    const auto slip = contact.slip(q);
+    const auto& flux = pr.heat_flux;
+    const bool have_slip = slip.size() == lambda.size() && !lambda.empty();
+    if (static_cast<PetscInt>(lambda.size()) != rows.n_rows() ||
+        rows.nodes.size() != pair->contact_nodes().size())
+      continue;
     for (size_t k = 0; k < rows.nodes.size(); ++k) {
       const int a = rows.nodes[k];
-      pressure.values[a] = unit * lambda[dim * k];
-      if (flux.size() == rows.nodes.size()) heat_flux.values[a] = flux[k];
+      pressure.values[a] += unit * lambda[dim * k];
+      if (flux.size() == rows.nodes.size()) heat_flux.values[a] += flux[k];
       for (int l = 0; l + 1 < dim; ++l) {
         const auto& t = pair->tangents(l)[k];
         const double lt = unit * lambda[dim * k + 1 + l];
@@ -349,7 +357,7 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
   out.print("  \"operator_applications\": {},\n", sim.total_operator_applications());
   out.print("  \"dofs\": {},\n", sim.n_dofs());
   const auto* dual = sim.dual_solver();
-  out.print("  \"multipliers\": {},\n", dual ? dual->rows().n_rows() : 0);
+  out.print("  \"multipliers\": {},\n", dual ? dual->n_rows() : 0);
   out.print("  \"ranks\": {},\n", core::PetscSession::size());
   out.print("  \"subdomains\": {},\n", subdomains);
   const auto feti = sim.feti_statistics();
@@ -362,7 +370,7 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
                       : "none"));
   out.print("  \"factorization\": {},\n", json_string(sim.factorization()));
   out.print("  \"dual_operator\": {},\n",
-            json_string(dual && dual->rows().n_rows() > 0 ? physics::name(dual->kind()) : "none"));
+            json_string(dual && dual->n_rows() > 0 ? physics::name(dual->kind()) : "none"));
   const auto* enforcement = sim.contact_enforcement();
   out.print("  \"contact_dual\": {},\n", json_string(enforcement ? enforcement->name() : "none"));
   out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());

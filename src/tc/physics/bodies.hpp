@@ -9,14 +9,31 @@
 
 namespace tc::physics {
 
-/// The two bodies of the contact pair within a step: fields to work in, systems, states at t^k.
-struct BodyPair {
-  BodyField& slave;
-  BodyField& master;
-  const BodySystem& slave_system;
-  const BodySystem& master_system;
-  const BodyState& slave_state;  // at t^k
-  const BodyState& master_state;
+/// The bodies of the contact pairs within a step, each once: fields to work in, systems, states
+/// at t^k. With one pair the slave is member 0 and the master member 1.
+struct BodyGroup {
+  std::vector<int> index;  // Problem::bodies index of each member
+  std::vector<BodyField*> fields;
+  std::vector<const BodySystem*> systems;
+  std::vector<const BodyState*> states;
+
+  [[nodiscard]] int size() const { return static_cast<int>(index.size()); }
+  /// The member `v` of every field (of every state), in the group's order.
+  [[nodiscard]] std::vector<core::Vector*> field(core::Vector BodyField::*v) const {
+    std::vector<core::Vector*> out;
+    for (auto* f : fields) out.push_back(&(f->*v));
+    return out;
+  }
+  [[nodiscard]] std::vector<const core::Vector*> field_in(core::Vector BodyField::*v) const {
+    std::vector<const core::Vector*> out;
+    for (auto* f : fields) out.push_back(&(f->*v));
+    return out;
+  }
+  [[nodiscard]] std::vector<const core::Vector*> state(core::Vector BodyState::*v) const {
+    std::vector<const core::Vector*> out;
+    for (const auto* st : states) out.push_back(&(st->*v));
+    return out;
+  }
 };
 
 /// Every body of the problem, indexed as Problem::bodies.
@@ -26,9 +43,16 @@ struct Bodies {
   std::vector<BodyState> states;
 
   [[nodiscard]] int size() const { return static_cast<int>(systems.size()); }
-  [[nodiscard]] BodyPair pair(int slave, int master) {
-    return {*fields[slave],   *fields[master], *systems[slave],
-            *systems[master], states[slave],   states[master]};
+  /// The bodies `members` (Problem::bodies indices) as a group, in that order.
+  [[nodiscard]] BodyGroup group(const std::vector<int>& members) {
+    BodyGroup g;
+    for (const int b : members) {
+      g.index.push_back(b);
+      g.fields.push_back(fields[b].get());
+      g.systems.push_back(systems[b].get());
+      g.states.push_back(&states[b]);
+    }
+    return g;
   }
 };
 

@@ -1,7 +1,6 @@
 #pragma once
 // What a restart needs (io/checkpoint.hpp writes and reads it; Simulation::checkpoint and
 // restore in checkpoint.cpp fill and replay it, each component its own part).
-#include <array>
 #include <vector>
 
 #include "tc/physics/ledger.hpp"
@@ -19,12 +18,19 @@ struct Checkpoint {
   };
   int step = 0;
   std::vector<Body> bodies;
-  std::vector<double> lambda;           // node-major multipliers of the last step
-  std::vector<int> lambda_nodes;        // slave mesh node of each contact node of lambda
-  std::vector<double> lambda_tangents;  // 3D mortar: t_1 then t_2 of each node, xyz (warm start)
-  // The compliance records (DofCompliance::dofs, chunks) of the contact solver's slave and
-  // master, then of the stabiliser's: replayed on restore, so F has the same bits.
-  std::array<std::vector<int>, 8> compliance;
+  /// Per contact pair: what its multipliers refer to (the next step's warm start) and its
+  /// ledger.
+  struct Pair {
+    std::vector<int> lambda_nodes;        // slave mesh node of each contact node of the pair
+    std::vector<double> lambda_tangents;  // 3D mortar: t_1 then t_2 of each node, xyz
+    ContactStatistics contact;
+    ContactHeat heat;
+  };
+  std::vector<double> lambda;  // node-major multipliers of the last step, pair after pair
+  std::vector<Pair> pairs;
+  // The compliance records (DofCompliance::dofs, chunks) of each contact body of the contact
+  // solver, then of the stabiliser's: replayed on restore, so F has the same bits.
+  std::vector<std::vector<int>> compliance, stabiliser_compliance;
   std::vector<double> slip, heat_flux;
   std::vector<double> row;  // the history row of `step`
   double external_work = 0;
@@ -34,8 +40,6 @@ struct Checkpoint {
   // iterations so far (empty and 0 with the nested dual).
   std::vector<double> feti_body_lambda, feti_mu;
   long total_smalbe_outer = 0;
-  ContactStatistics contact;
-  ContactHeat heat;
   BoundaryHeat boundary_heat;
 };
 

@@ -31,36 +31,70 @@ bool fixed_point_reached(double lambda_change, double theta_change, double previ
 
 }  // namespace
 
+void ContactCoupling::add_pairs() {
+  group_ = ContactGroup(problem_);
+  pairs_.clear();
+  pairs_.resize(problem_.contacts.size());
+  for (size_t q = 0; q < pairs_.size(); ++q) {
+    auto& pr = pairs_[q];
+    const auto& c = problem_.contacts[q];
+    pr.settings = &c;
+    pr.bodies = group_.pairs[q];
+    pr.laws = InterfaceLaws(c);
+    // Crosspoints: a node on the slave surfaces of two pairs would carry two multipliers on the
+    // same dofs (F singular along their difference, docs/choices.md): the first pair keeps it.
+    const auto& mesh = problem_.bodies[c.slave_body].mesh;
+    pr.crosspoint.assign(static_cast<size_t>(mesh.n_nodes()), 0);
+    for (size_t e = 0; e < q; ++e) {
+      const auto& earlier = problem_.contacts[e];
+      if (earlier.slave_body != c.slave_body) continue;
+      std::vector<char> on(static_cast<size_t>(mesh.n_nodes()), 0);
+      for (const int a : mesh.boundary_nodes(earlier.slave_where)) on[a] = 1;
+      for (const int a : mesh.boundary_nodes(c.slave_where))
+        if (on[a]) pr.crosspoint[a] = 1;
+    }
+  }
+  heat_.set_treatment(problem_.solver.conductance_treatment);
+}
+
 void ContactCoupling::enable(ContactRowsBuilder builder, DualContactSettings settings,
                              const int& step) {
   if (problem_.contacts.empty()) throw Error("enable_contact: the problem has no [contact]");
-  const auto& c = problem_.contacts.at(0);
-  rows_ = finite_rows(std::move(builder), step);
-  laws_ = InterfaceLaws(c);
-  heat_.set_treatment(problem_.solver.conductance_treatment);
+  if (problem_.contacts.size() != 1)
+    throw Error("enable_contact: rows from a builder are for one contact pair");
+  pairs_.front().rows = finite_rows(std::move(builder), step);
   method_ = choose_contact_method(problem_, bodies_, std::move(settings), timers_);
 }
 
 void ContactCoupling::enable_mortar(DualContactSettings settings, contact::MortarOptions options,
                                     const int& step) {
   if (problem_.contacts.empty()) throw Error("enable_mortar_contact: the problem has no [contact]");
-  const auto& c = problem_.contacts.at(0);
-  {
-    auto t = timers_.scope("mortar");
-    mortar_ = std::make_unique<contact::MortarPair>(
-        problem_.bodies[c.slave_body].mesh, c.slave_where, problem_.bodies[c.master_body].mesh,
-        c.master_where, options);
+  for (auto& pr : pairs_) {
+    const auto& c = *pr.settings;
+    {
+      auto t = timers_.scope("mortar");
+      pr.mortar = std::make_unique<contact::MortarPair>(
+          problem_.bodies[c.slave_body].mesh, c.slave_where, problem_.bodies[c.master_body].mesh,
+          c.master_where, options);
+    }
+    auto* mortar = pr.mortar.get();
+    pr.rows = finite_rows(
+        [mortar](const core::Vector& u_slave, const core::Vector& u_master) {
+          mortar->update(u_slave.to_std(), u_master.to_std());
+          return mortar->rows();
+        },
+        step);
   }
-  enable(
-      [this](const core::Vector& u_slave, const core::Vector& u_master) {
-        mortar_->update(u_slave.to_std(), u_master.to_std());
-        return mortar_->rows();
-      },
-      std::move(settings), step);
+  method_ = choose_contact_method(problem_, bodies_, std::move(settings), timers_);
 }
 
-BodyPair ContactCoupling::pair() {
-  return bodies_.pair(problem_.contacts.at(0).slave_body, problem_.contacts.at(0).master_body);
+BodyGroup ContactCoupling::group() {
+  return bodies_.group(group_.members);
+}
+
+bool ContactCoupling::any_pair(bool (InterfaceLaws::*law)() const) const {
+  return std::any_of(pairs_.begin(), pairs_.end(),
+                     [&](const auto& pr) { return (pr.laws.*law)(); });
 }
 
 double ContactCoupling::traction_per_multiplier() const {
@@ -72,25 +106,87 @@ std::vector<double> ContactCoupling::multipliers() const {
   return lambda_.get() ? lambda_.to_std() : std::vector<double>{};
 }
 
+namespace {
+
+/// Entries [dim·from, dim·to) of a node-major vector.
+std::vector<double> nodes_of(std::span<const double> v, int dim, PetscInt from, PetscInt to) {
+  if (static_cast<PetscInt>(v.size()) < dim * to) return {};
+  return {v.begin() + dim * from, v.begin() + dim * to};
+}
+
+}  // namespace
+
+std::vector<double> ContactCoupling::multipliers(int q) const {
+  if (lambda_at_.size() < pairs_.size() + 1) return {};
+  return nodes_of(multipliers(), problem_.dimension, lambda_at_[q], lambda_at_[q + 1]);
+}
+
+std::vector<double> ContactCoupling::slip(int q) const {
+  if (lambda_at_.size() < pairs_.size() + 1) return {};
+  return nodes_of(slip_, problem_.dimension, lambda_at_[q], lambda_at_[q + 1]);
+}
+
+void ContactCoupling::register_history(History& h) const {
+  stats_.register_history(h);
+  heat_.heat().register_history(h);
+  if (pairs_.size() < 2) return;
+  for (size_t q = 0; q < pairs_.size(); ++q) {
+    const std::string suffix = "_" + pairs_[q].settings->name;
+    pairs_[q].stats.register_pair_history(h, suffix);
+    // The ledgers are kept by the heat coupling, which may resize them on restore: read them
+    // there at each record.
+    const auto& heat = heat_;
+    const auto column = [&heat, q](double ContactHeat::*x) -> History::Value {
+      return [&heat, q, x] { return q < heat.pair_heat().size() ? heat.pair_heat()[q].*x : 0.0; };
+    };
+    h.add("heat_generated" + suffix, column(&ContactHeat::generated));
+    h.add("heat_to_slave" + suffix, column(&ContactHeat::to_slave));
+    h.add("heat_to_master" + suffix, column(&ContactHeat::to_master));
+    h.add("heat_conducted" + suffix, column(&ContactHeat::conducted));
+  }
+}
+
 void ContactCoupling::heat_step(int step, int iteration) {
-  // (4.3) for the two bodies of the contact pair, backward Euler:
-  //   (M_θ/τ + K_θ) θ + L_θγ θ = rhs + d_θγ(u̇)   (ContactHeatCoupling::heat_step),
+  // (4.3) for the bodies of the contact pairs, backward Euler:
+  //   (M_θ/τ + K_θ) θ + Σ L_θγ θ = rhs + Σ d_θγ(u̇)   (ContactHeatCoupling::heat_step),
   // rhs with the thermoelastic term of each body.
   auto scope = timers_.scope("heat_solve");
-  const auto& c = problem_.contacts.at(0);
-  const auto p = pair();
-  const auto& rows = method_.enforcement->dual().rows();
+  auto g = group();
+  const auto& dual = method_.enforcement->dual();
   // 𝔉, β_C, δ_C at the interface temperature of the last iterate (θ^k at the first): fixed
   // for this heat step and the Tresca QPs after it (interface_laws.hpp).
-  nodal_laws_ = laws_.at_interface(mortar_.get(), rows, p.slave.theta_new, p.master.theta_new);
-  steps_.heat_rhs(c.slave_body);
-  steps_.heat_rhs(c.master_body);
-  heat_.heat_step(
-      problem_, p,
-      {mortar_.get(), rows, lambda_, traction_per_multiplier(), iterate_slip_, nodal_laws_},
-      step * problem_.time.step, step, iteration);
-  require_finite(p.slave.theta_new, "temperature", step, iteration);
-  require_finite(p.master.theta_new, "temperature", step, iteration);
+  nodal_laws_ = {};
+  for (int q = 0; q < n_pairs(); ++q) {
+    auto& pr = pairs_[q];
+    pr.nodal = pr.laws.at_interface(pr.mortar.get(), dual.pair_rows(q),
+                                    g.fields[pr.bodies.slave]->theta_new,
+                                    g.fields[pr.bodies.master]->theta_new);
+    auto& all = nodal_laws_;
+    for (auto [to, from] : {std::pair{&all.friction, &pr.nodal.friction},
+                            {&all.beta_c, &pr.nodal.beta_c},
+                            {&all.delta_c, &pr.nodal.delta_c}})
+      to->insert(to->end(), from->begin(), from->end());
+    all.frictional = all.frictional || pr.nodal.frictional;
+    all.conducting = all.conducting || pr.nodal.conducting;
+  }
+  for (const int b : group_.members) steps_.heat_rhs(b);
+  const auto lambda = lambda_.to_std();
+  const double unit = traction_per_multiplier();
+  const int dim = dual.dim();
+  std::vector<ContactIterate> iterates;
+  for (int q = 0; q < n_pairs(); ++q) {
+    const auto& pr = pairs_[q];
+    const auto from = static_cast<size_t>(dim * dual.pair_offset(q));
+    const auto to = static_cast<size_t>(dim * dual.pair_offset(q + 1));
+    iterates.push_back({*pr.settings, pr.bodies, pr.mortar.get(), dual.pair_rows(q),
+                        std::span(lambda).subspan(from, to - from), unit,
+                        iterate_slip_.empty()
+                            ? std::span<const double>()
+                            : std::span<const double>(iterate_slip_).subspan(from, to - from),
+                        pr.nodal});
+  }
+  heat_.heat_step(problem_, g, iterates, step * problem_.time.step, step, iteration);
+  for (const auto* f : g.fields) require_finite(f->theta_new, "temperature", step, iteration);
 }
 
 double ContactCoupling::mech_step(TrescaIteration& t, std::span<const double> targets, int step,
@@ -100,11 +196,10 @@ double ContactCoupling::mech_step(TrescaIteration& t, std::span<const double> ta
   // are left with the thermal coupling alone (docs/choices.md, "friction loop").
   auto scope = timers_.scope("qp");
   const auto& s = problem_.solver;
-  const auto p = pair();
+  const auto g = group();
   auto& enforcement = *method_.enforcement;
-  p.slave.u_prev.copy_from(p.slave.u_new);  // u_free, the QP's data
-  p.master.u_prev.copy_from(p.master.u_new);
-  const CoulombFixedPoint fp{.dim = enforcement.dual().rows().dim,
+  for (auto* f : g.fields) f->u_prev.copy_from(f->u_new);  // u_free, the QP's data
+  const CoulombFixedPoint fp{.dim = enforcement.dual().dim(),
                              .friction = nodal_laws_.friction,
                              .frictional = nodal_laws_.frictional,
                              .tolerance = s.coupling_tolerance,
@@ -116,88 +211,134 @@ double ContactCoupling::mech_step(TrescaIteration& t, std::span<const double> ta
                              .step = step,
                              .outer = outer};
   const double residual = coulomb_fixed_point(t, lambda_, fp, [&](double rtol) {
-    enforcement.solve_qp(p, {targets, t.bound, rtol, step, outer}, lambda_, stats_);
+    enforcement.solve_qp(g, {targets, t.bound, rtol, step, outer}, lambda_, stats_);
     require_finite(lambda_, "contact multiplier", step, outer);
   });
-  enforcement.finish_qps(p, lambda_, t, iterate_slip_, step, outer);
+  enforcement.finish_qps(g, lambda_, t, iterate_slip_, step, outer);
   return residual;
 }
 
-int ContactCoupling::couple(int step) {
-  const auto& c = problem_.contacts.at(0);
-  const auto p = pair();
-  auto& ss = p.slave;
-  auto& sm = p.master;
-  const auto& sts = p.slave_state;
-  const auto& stm = p.master_state;
+void ContactCoupling::set_rows(BodyGroup& g) {
   auto& enforcement = *method_.enforcement;
-  for (const int b : {c.slave_body, c.master_body})
-    begin_step(problem_, *bodies_.systems[b], bodies_.states[b], *bodies_.fields[b],
+  {
+    std::vector<ContactRows> rows;
+    {
+      auto scope = timers_.scope("mortar");
+      for (const auto& pr : pairs_)
+        rows.push_back(pr.rows(g.states[pr.bodies.slave]->u, g.states[pr.bodies.master]->u));
+    }
+    auto scope = timers_.scope("dual_setup");  // F formed explicitly here when it is small
+    enforcement.set_rows(std::move(rows), group_.pairs);
+  }
+  auto& dual = enforcement.dual();
+  const int dim = dual.dim();
+  // λ of the last step on these rows, pair by pair (each pair's nodes where they were).
+  if (n_pairs() == 1) {
+    pairs_.front().transfer.warm_start(dual.pair_rows(0), pairs_.front().mortar.get(), lambda_);
+  } else {
+    const auto previous = multipliers();
+    std::vector<double> next;
+    for (int q = 0; q < n_pairs(); ++q) {
+      auto& pr = pairs_[q];
+      const bool known = lambda_at_.size() == pairs_.size() + 1;
+      core::Vector lq =
+          known ? core::Vector::from(nodes_of(previous, dim, lambda_at_[q], lambda_at_[q + 1]))
+                : core::Vector();
+      pr.transfer.warm_start(dual.pair_rows(q), pr.mortar.get(), lq);
+      const auto v = lq.to_std();
+      next.insert(next.end(), v.begin(), v.end());
+    }
+    lambda_ = core::Vector::from(next);
+  }
+  lambda_at_.clear();
+  for (int q = 0; q <= n_pairs(); ++q) lambda_at_.push_back(dual.pair_offset(q));
+  // Crosspoints: the later pair's multipliers there held at 0 (λ_n ∈ [0, 0], no friction).
+  std::vector<char> held(static_cast<size_t>(dual.n_nodes()), 0);
+  bool any = false;
+  for (int q = 0; q < n_pairs(); ++q) {
+    const auto& nodes = dual.pair_rows(q).nodes;
+    for (size_t k = 0; k < nodes.size(); ++k)
+      if (pairs_[q].crosspoint[nodes[k]]) {
+        held[static_cast<size_t>(dual.pair_offset(q)) + k] = 1;
+        any = true;
+      }
+  }
+  if (any) {
+    dual.hold_at_zero(std::move(held));
+    auto lv = lambda_.view();
+    for (PetscInt k = 0; k < dual.n_nodes(); ++k)
+      if (dual.held_at_zero(k))
+        for (int i = 0; i < dim; ++i) lv[dim * k + i] = 0;
+  }
+}
+
+int ContactCoupling::couple(int step) {
+  auto g = group();
+  auto& enforcement = *method_.enforcement;
+  for (int i = 0; i < g.size(); ++i)
+    begin_step(problem_, *g.systems[i], bodies_.states[g.index[i]], *g.fields[i],
                step * problem_.time.step);
   stats_.qp_iterations = 0;
   stats_.operator_applications = 0;
   stats_.friction_iterations = 0;
-  {
-    ContactRows rows;
-    {
-      auto scope = timers_.scope("mortar");
-      rows = rows_(sts.u, stm.u);
-    }
-    auto scope = timers_.scope("dual_setup");  // F formed explicitly here when it is small
-    enforcement.set_rows(std::move(rows));
-  }
+  set_rows(g);
   auto& dual = enforcement.dual();
-  const auto& rows = dual.rows();
-  const int dim = rows.dim;
-  transfer_.warm_start(rows, mortar_.get(), lambda_);  // λ of the last step on these rows
-  method_.scheme->prepare(p, dual, lambda_, stats_, step);
-  method_.scheme->slip_reference(p);  // into work_u
-  const auto targets = dual.targets(sts.u, stm.u, ss.work_u, sm.work_u);
+  const int dim = dual.dim();
+  method_.scheme->prepare(g, dual, lambda_, stats_, step);
+  method_.scheme->slip_reference(g);  // into work_u
+  const auto targets = dual.targets(g.state(&BodyState::u), g.field_in(&BodyField::work_u));
 
+  bool heating = false, expansion = false;
+  for (const auto* f : g.fields) {
+    heating = heating || f->heating;
+    expansion = expansion || f->expansion;
+  }
   TrescaIteration tresca;
-  tresca.relax = problem_.solver.friction.acceleration && laws_.frictional();
-  // u = u_free − A⁻¹Bᵀλ costs two solves; inside the fixed point only B u is needed (the
+  tresca.relax = problem_.solver.friction.acceleration && any_pair(&InterfaceLaws::frictional);
+  // u = u_free − A⁻¹Bᵀλ costs a solve per body; inside the fixed point only B u is needed (the
   // frictional heat's slip, = B u_free − Fλ) unless the thermoelastic term wants u̇ of the
   // whole body. Then u is formed once, after convergence. Combined, u comes with every QP.
-  tresca.defer = !enforcement.qp_gives_displacements() && !(ss.heating || sm.heating);
+  tresca.defer = !enforcement.qp_gives_displacements() && !heating;
   iterate_slip_.clear();
-  if (tresca.defer) tresca.bu_old = step_slip(rows, sts.u, stm.u);
+  if (tresca.defer) tresca.bu_old = dual.row_values(g.state(&BodyState::u));
   stats_.operator_applications += dual.setup_solves() / 2;
   core::Vector lambda_prev = lambda_.clone();
   const bool nested = problem_.solver.friction_loop == FrictionLoop::nested;
-  const bool one_way = !(ss.expansion || sm.expansion);
+  const bool one_way = !expansion;
   tresca.cut_short = nested && !one_way;
   const double tol = problem_.solver.coupling_tolerance;
+  const auto norm = [&](core::Vector BodyField::*v) {  // ‖·‖ over the group, as one vector
+    double sq = 0;
+    for (const auto* f : g.fields) sq = std::hypot(sq, (f->*v).norm());
+    return sq;
+  };
   int iteration = 1;
   double change = 0;
   double sweep_change = -1;  // ‖λ^p − λ^{p−1}‖/‖λ‖ of the previous iteration
   for (; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
     lambda_prev.copy_from(lambda_);
-    ss.theta_prev.copy_from(ss.theta_new);
-    sm.theta_prev.copy_from(sm.theta_new);
+    for (auto* f : g.fields) f->theta_prev.copy_from(f->theta_new);
     heat_step(step, iteration);
-    ss.theta_prev.axpy(-1.0, ss.theta_new);
-    sm.theta_prev.axpy(-1.0, sm.theta_new);
-    const double dth = std::hypot(ss.theta_prev.norm(), sm.theta_prev.norm());
-    const double thn = std::hypot(ss.theta_new.norm(), sm.theta_new.norm());
+    for (auto* f : g.fields) f->theta_prev.axpy(-1.0, f->theta_new);
+    const double dth = norm(&BodyField::theta_prev);
+    const double thn = norm(&BodyField::theta_new);
     // Without thermal expansion u_free does not depend on θ: λ of the last iteration (the
     // Coulomb solution to the tolerance) stays exact, and so is this heat step with it, unless
     // the conductance is lagged or depends on θ (then θ itself iterates); not when 𝔉 depends
     // on θ (then λ does).
-    const bool theta_iterates =
-        heat_.treatment() == ConductanceTreatment::lagged || laws_.conductance_varies();
-    if (one_way && tresca.converged && !laws_.friction_varies() &&
+    const bool theta_iterates = heat_.treatment() == ConductanceTreatment::lagged ||
+                                any_pair(&InterfaceLaws::conductance_varies);
+    if (one_way && tresca.converged && !any_pair(&InterfaceLaws::friction_varies) &&
         (!theta_iterates || dth <= tol * thn)) {
       change = thn > 0 ? dth / thn : dth;
       break;
     }
     if (enforcement.qp_gives_displacements()) {  // the loads only: the QP solves for u itself
       auto scope = timers_.scope("mechanical_solve");
-      steps_.mech_load(c.slave_body, step);
-      steps_.mech_load(c.master_body, step);
+      for (const int b : group_.members) steps_.mech_load(b, step);
     } else {
-      steps_.mech_step(c.slave_body, step, iteration);  // u_free = A⁻¹f with the Dirichlet data
-      steps_.mech_step(c.master_body, step, iteration);
+      // u_free = A⁻¹f with the Dirichlet data
+      for (const int b : group_.members) steps_.mech_step(b, step, iteration);
     }
     // Nested: γ = λ_n(γ) to convergence at this θ, Aitken restarted (the map changed with θ);
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.
@@ -223,39 +364,65 @@ int ContactCoupling::couple(int step) {
   qp_bound_ = std::move(tresca.qp_bound);  // empty without friction
   if (tresca.defer) {                      // u_new holds u_free of the last iteration
     auto scope = timers_.scope("qp");
-    dual.recover(lambda_, ss.u_new, sm.u_new);
+    dual.recover(lambda_, g.field(&BodyField::u_new));
   }
-  require_finite(ss.u_new, "displacement", step, iteration);
-  require_finite(sm.u_new, "displacement", step, iteration);
+  for (const auto* f : g.fields) require_finite(f->u_new, "displacement", step, iteration);
 
   // The slip increment B_τ(u^{k+1} − u^k) for the dissipation, before the state moves on.
-  ss.work_u.copy_from(ss.u_new);
-  ss.work_u.axpy(-1.0, sts.u);
-  sm.work_u.copy_from(sm.u_new);
-  sm.work_u.axpy(-1.0, stm.u);
-  slip_ = step_slip(rows, ss.work_u, sm.work_u);
+  for (int i = 0; i < g.size(); ++i) {
+    g.fields[i]->work_u.copy_from(g.fields[i]->u_new);
+    g.fields[i]->work_u.axpy(-1.0, g.states[i]->u);
+  }
+  slip_ = dual.row_values(g.field_in(&BodyField::work_u));
   // Heat through the interface in this step, with the L and d of the last heat step (those
-  // that produced θ^{k+1}): then the thermal energy balance of the pair closes to round-off.
-  heat_.account_step(p, problem_.time.step);
-  for (const int b : {c.slave_body, c.master_body})
-    end_step(problem_, *bodies_.systems[b], bodies_.states[b], *bodies_.fields[b]);
+  // that produced θ^{k+1}): then the thermal energy balance of the bodies closes to round-off.
+  heat_.account_step(g, problem_.time.step);
+  for (int i = 0; i < g.size(); ++i)
+    end_step(problem_, *g.systems[i], bodies_.states[g.index[i]], *g.fields[i]);
   return iteration;
 }
 
 void ContactCoupling::bookkeeping() {
-  const auto& rows = method_.enforcement->dual().rows();
+  const auto& dual = method_.enforcement->dual();
   const auto l = lambda_.to_std();
   const double unit = traction_per_multiplier();
-  stats_.record_step(rows, l, slip_, unit, qp_bound_, mortar_.get());
-  if (mortar_) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
-    const auto& c = problem_.contacts.at(0);
-    heat_flux_.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
-    if (c.heat_conduction && nodal_laws_.conducting &&
-        mortar_->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {
-      std::vector<double> scale(nodal_laws_.beta_c);
-      for (double& s : scale) s *= unit;
-      heat_flux_ = conduction_flux(*mortar_, rows, l, scale, bodies_.states[c.slave_body].theta,
-                                   bodies_.states[c.master_body].theta);
+  const int dim = dual.dim();
+  const int qp_iterations = stats_.qp_iterations;
+  const int applications = stats_.operator_applications;
+  const int friction_iterations = stats_.friction_iterations;
+  stats_ = {};
+  stats_.qp_iterations = qp_iterations;
+  stats_.operator_applications = applications;
+  stats_.friction_iterations = friction_iterations;
+  heat_flux_.clear();
+  for (int q = 0; q < n_pairs(); ++q) {
+    auto& pr = pairs_[q];
+    const PetscInt from = dual.pair_offset(q), to = dual.pair_offset(q + 1);
+    const auto& rows = dual.pair_rows(q);
+    const auto lq = nodes_of(l, dim, from, to);
+    const auto bound = qp_bound_.empty()
+                           ? std::vector<double>{}
+                           : std::vector<double>(qp_bound_.begin() + from, qp_bound_.begin() + to);
+    pr.stats.record_step(rows, lq, nodes_of(slip_, dim, from, to), unit, bound, pr.mortar.get());
+    // Summed over the pairs; the tangential force is the sum of the pairs' resultants' magnitudes.
+    stats_.normal_force += pr.stats.normal_force;
+    stats_.tangential_force += pr.stats.tangential_force;
+    stats_.tangential_force_sum += pr.stats.tangential_force_sum;
+    stats_.dissipation += pr.stats.dissipation;
+    stats_.active_nodes += pr.stats.active_nodes;
+    stats_.slip_nodes += pr.stats.slip_nodes;
+    if (pr.mortar) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
+      const auto& c = *pr.settings;
+      pr.heat_flux.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
+      if (c.heat_conduction && pr.nodal.conducting &&
+          pr.mortar->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {
+        std::vector<double> scale(pr.nodal.beta_c);
+        for (double& s : scale) s *= unit;
+        pr.heat_flux =
+            conduction_flux(*pr.mortar, rows, lq, scale, bodies_.states[c.slave_body].theta,
+                            bodies_.states[c.master_body].theta);
+      }
+      heat_flux_.insert(heat_flux_.end(), pr.heat_flux.begin(), pr.heat_flux.end());
     }
   }
   total_qp_ += stats_.qp_iterations;
@@ -264,7 +431,14 @@ void ContactCoupling::bookkeeping() {
 
 void ContactCoupling::save(Checkpoint& c) const {
   c.lambda = multipliers();
-  transfer_.save(c);
+  c.pairs.clear();
+  for (size_t q = 0; q < pairs_.size(); ++q) {
+    Checkpoint::Pair record;
+    pairs_[q].transfer.save(record);
+    record.contact = pairs_[q].stats;
+    if (q < heat_.pair_heat().size()) record.heat = heat_.pair_heat()[q];
+    c.pairs.push_back(std::move(record));
+  }
   if (enabled()) {
     method_.enforcement->save(c);
     method_.scheme->save(c);
@@ -273,16 +447,31 @@ void ContactCoupling::save(Checkpoint& c) const {
   c.heat_flux = heat_flux_;
   c.total_qp = total_qp_;
   c.total_applications = total_applications_;
-  c.contact = stats_;
-  c.heat = heat_.heat();
 }
 
 void ContactCoupling::restore(const Checkpoint& c) {
-  if (c.lambda.size() != c.lambda_nodes.size() * static_cast<size_t>(problem_.dimension) &&
-      !c.lambda_nodes.empty())
+  if (c.pairs.size() != pairs_.size())
+    throw Error("checkpoint: the contact pairs do not match the case's");
+  size_t nodes = 0;
+  bool named = true;
+  for (const auto& pr : c.pairs) {
+    nodes += pr.lambda_nodes.size();
+    named = named && !pr.lambda_nodes.empty();
+  }
+  if (named && c.lambda.size() != nodes * static_cast<size_t>(problem_.dimension))
     throw Error("checkpoint: the multipliers do not match their contact nodes");
   lambda_ = c.lambda.empty() ? core::Vector() : core::Vector::from(c.lambda);
-  transfer_.restore(c);
+  lambda_at_.assign(1, 0);
+  for (const auto& pr : c.pairs)
+    lambda_at_.push_back(lambda_at_.back() + static_cast<PetscInt>(pr.lambda_nodes.size()));
+  if (!named) lambda_at_.clear();  // a test's rows without nodes: by position, one pair
+  std::vector<ContactHeat> heat;
+  for (size_t q = 0; q < pairs_.size(); ++q) {
+    pairs_[q].transfer.restore(c.pairs[q]);
+    pairs_[q].stats = c.pairs[q].contact;
+    heat.push_back(c.pairs[q].heat);
+  }
+  heat_.set_pair_heat(std::move(heat));
   if (enabled()) {
     method_.enforcement->restore(c);
     method_.scheme->restore(c);
@@ -291,8 +480,15 @@ void ContactCoupling::restore(const Checkpoint& c) {
   heat_flux_ = c.heat_flux;
   total_qp_ = c.total_qp;
   total_applications_ = c.total_applications;
-  stats_ = c.contact;
-  heat_.heat() = c.heat;
+  stats_ = {};
+  for (const auto& pr : pairs_) {
+    stats_.normal_force += pr.stats.normal_force;
+    stats_.tangential_force += pr.stats.tangential_force;
+    stats_.tangential_force_sum += pr.stats.tangential_force_sum;
+    stats_.dissipation += pr.stats.dissipation;
+    stats_.active_nodes += pr.stats.active_nodes;
+    stats_.slip_nodes += pr.stats.slip_nodes;
+  }
 }
 
 }  // namespace tc::physics

@@ -1,6 +1,7 @@
 #pragma once
-// The step of the contact pair (6.3): the staggered fixed point between the pair's heat step
-// (ContactHeatCoupling: L_θγ, d_θγ) and its mechanical step, whose contact is enforced by a
+// The step of the contact pairs (6.3): the staggered fixed point between the heat step of their
+// bodies (ContactHeatCoupling: L_θγ, d_θγ of each pair) and their mechanical step, one QP for
+// all pairs, whose contact is enforced by a
 // ContactEnforcement inside the Tresca → Coulomb fixed point (coulomb_fixed_point), with the
 // ContactTimeScheme of the run around it; the multipliers carried from step to step
 // (MultiplierTransfer) and what the contact reports (ContactStatistics, heat flux).
@@ -23,76 +24,109 @@
 
 namespace tc::physics {
 
+/// One contact pair within the coupling: its rows, laws, warm start and ledger.
+struct ContactPairState {
+  const ContactSettings* settings = nullptr;
+  PairBodies bodies;  // its slave and master in the ContactGroup
+  ContactRowsBuilder rows;
+  std::unique_ptr<contact::MortarPair> mortar;
+  InterfaceLaws laws;           // 𝔉(θ), γ_C(θ)
+  NodalLaws nodal;              // …at its contact nodes of the last coupling iterate
+  MultiplierTransfer transfer;  // what its multipliers refer to, for the next warm start
+  ContactStatistics stats;      // its forces, node counts and dissipation
+  std::vector<double> heat_flux;
+  /// Slave nodes that also lie on the slave surface of an earlier pair with the same slave
+  /// body (crosspoints): their multipliers are the earlier pair's, this pair's are held at 0.
+  std::vector<char> crosspoint;
+};
+
 class ContactCoupling {
  public:
   ContactCoupling(const Problem& problem, Bodies& bodies, BodySteps& steps,
                   core::PhaseTimers& timers)
-      : problem_(problem), bodies_(bodies), steps_(steps), timers_(timers) {}
+      : problem_(problem), bodies_(bodies), steps_(steps), timers_(timers) {
+    add_pairs();
+  }
 
-  /// Contact of problem.contact with the rows of `builder` at each step; `step`: the number
-  /// of completed steps (for messages). Chooses the method (choose_contact_method).
+  /// Contact of the problem's one pair with the rows of `builder` at each step; `step`: the
+  /// number of completed steps (for messages). Chooses the method (choose_contact_method).
   void enable(ContactRowsBuilder builder, DualContactSettings settings, const int& step);
-  /// The same with the mortar pair of the contact's two surfaces (contact::MortarPair),
+  /// Contact of every pair with the mortar pair of its two surfaces (contact::MortarPair),
   /// evaluated in the configuration of t^k at every step.
   void enable_mortar(DualContactSettings settings, contact::MortarOptions options, const int& step);
   [[nodiscard]] bool enabled() const { return method_.enforcement != nullptr; }
 
-  /// The step k → `step` of the pair; returns its heat–mechanics iterations.
+  /// The step k → `step` of the contact bodies; returns its heat–mechanics iterations.
   int couple(int step);
   /// The step's contact statistics and heat flux, from the state after couple().
   void bookkeeping();
 
-  [[nodiscard]] const contact::MortarPair* mortar() const { return mortar_.get(); }
+  /// The bodies of the pairs (Problem::bodies indices).
+  [[nodiscard]] const std::vector<int>& members() const { return group_.members; }
+  [[nodiscard]] int n_pairs() const { return static_cast<int>(pairs_.size()); }
+  [[nodiscard]] const ContactPairState& pair(int q) const { return pairs_[q]; }
+  /// The first pair's mortar pair (null without one).
+  [[nodiscard]] const contact::MortarPair* mortar() const {
+    return pairs_.empty() ? nullptr : pairs_.front().mortar.get();
+  }
   [[nodiscard]] const DualContactSolver* dual() const {
     return enabled() ? &method_.enforcement->dual() : nullptr;
   }
   [[nodiscard]] const ContactEnforcement* enforcement() const { return method_.enforcement.get(); }
   [[nodiscard]] double traction_per_multiplier() const;
+  /// The multipliers of every pair (pair after pair), or of pair q.
   [[nodiscard]] std::vector<double> multipliers() const;
+  [[nodiscard]] std::vector<double> multipliers(int q) const;
+  /// B_τ Δu of the last step, every pair's rows (pair after pair), or pair q's.
   [[nodiscard]] const std::vector<double>& slip() const { return slip_; }
+  [[nodiscard]] std::vector<double> slip(int q) const;
   [[nodiscard]] const std::vector<double>& heat_flux() const { return heat_flux_; }
+  /// Summed over the pairs (the QP's counts are of the one QP of all pairs).
   [[nodiscard]] const ContactStatistics& statistics() const { return stats_; }
   [[nodiscard]] const ContactHeatCoupling& heat() const { return heat_; }
-  [[nodiscard]] const InterfaceLaws& laws() const { return laws_; }
+  [[nodiscard]] const InterfaceLaws& laws() const { return pairs_.front().laws; }
+  /// The laws at the contact nodes of every pair (pair after pair).
   [[nodiscard]] const NodalLaws& nodal_laws() const { return nodal_laws_; }
   [[nodiscard]] long total_qp_iterations() const { return total_qp_; }
   [[nodiscard]] long total_operator_applications() const { return total_applications_; }
 
-  /// Its history.csv columns: those of its statistics and of the interface heat.
-  void register_history(History& h) const {
-    stats_.register_history(h);
-    heat_.heat().register_history(h);
-  }
+  /// Its history.csv columns: those of its statistics and of the interface heat, summed over
+  /// the pairs, and with several pairs each pair's own, suffixed by its name.
+  void register_history(History& h) const;
 
   /// The contact's part of the restart record, and back.
   void save(Checkpoint& c) const;
   void restore(const Checkpoint& c);
 
  private:
-  [[nodiscard]] BodyPair pair();
-  // (4.3) for the pair: + L_θγ θ = … + d_θγ of the current iterate (ContactHeatCoupling).
+  void add_pairs();
+  [[nodiscard]] BodyGroup group();
+  // The contact rows of every pair in the configuration of t^k, λ of the last step moved onto
+  // them, the crosspoints' multipliers held at 0.
+  void set_rows(BodyGroup& g);
+  // (4.3) for the contact bodies: + L_θγ θ = … + d_θγ of the current iterate of each pair.
   void heat_step(int step, int iteration);
   // The mechanical half of (6.3) with u_free fixed: coulomb_fixed_point over the enforcement's
   // QPs, then u (or B u); returns ‖λ_n(γ) − γ‖ of the last update.
   double mech_step(TrescaIteration& t, std::span<const double> targets, int step, int outer,
                    int max_updates);
+  [[nodiscard]] bool any_pair(bool (InterfaceLaws::*law)() const) const;
 
   const Problem& problem_;
   Bodies& bodies_;
   BodySteps& steps_;
   core::PhaseTimers& timers_;
-  ContactRowsBuilder rows_;
-  std::unique_ptr<contact::MortarPair> mortar_;
+  ContactGroup group_;
+  std::vector<ContactPairState> pairs_;
   ContactMethod method_;
-  core::Vector lambda_;
-  MultiplierTransfer transfer_;  // what lambda_ refers to, for the next step's warm start
-  std::vector<double> slip_;     // B_τ Δu of the last step (node-major, normal rows unused)
+  core::Vector lambda_;              // every pair's multipliers, pair after pair
+  std::vector<PetscInt> lambda_at_;  // the first node of each pair in lambda_, then the total
+  std::vector<double> slip_;         // B_τ Δu of the last step (node-major, normal rows unused)
   // B(u − u^k) of the current iterate while the displacements are deferred (empty: from u)
   std::vector<double> iterate_slip_;
   ContactStatistics stats_;
   ContactHeatCoupling heat_;
-  InterfaceLaws laws_;            // the contact's 𝔉(θ), γ_C(θ)
-  NodalLaws nodal_laws_;          // …at the contact nodes of the last coupling iterate
+  NodalLaws nodal_laws_;          // every pair's, at the last coupling iterate
   std::vector<double> qp_bound_;  // the Tresca bounds 𝔉_kγ_k of the step's last QP
   std::vector<double> heat_flux_;
   long total_qp_ = 0, total_applications_ = 0;

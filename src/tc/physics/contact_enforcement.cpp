@@ -8,18 +8,19 @@
 namespace tc::physics {
 
 void ContactEnforcement::save(Checkpoint& c) const {
-  dual_->save_compliance(std::span<std::vector<int>, 4>(&c.compliance[0], 4));
+  c.compliance.clear();
+  dual_->save_compliance(c.compliance);
 }
 
 void ContactEnforcement::restore(const Checkpoint& c) {
-  dual_->replay_compliance(std::span<const std::vector<int>, 4>(&c.compliance[0], 4));
+  dual_->replay_compliance(c.compliance);
 }
 
-void NestedDualEnforcement::solve_qp(const BodyPair& pair, const TrescaQp& qp, core::Vector& lambda,
-                                     ContactStatistics& stats) {
+void NestedDualEnforcement::solve_qp(const BodyGroup& group, const TrescaQp& qp,
+                                     core::Vector& lambda, ContactStatistics& stats) {
   // u stays u_free here (recover = false): finish_qps forms it, or only B u, once per θ.
-  const auto r = dual().solve(pair.slave.u_prev, pair.master.u_prev, qp.targets, qp.bound, lambda,
-                              pair.slave.u_new, pair.master.u_new, false, qp.rtol);
+  const auto r = dual().solve(group.field_in(&BodyField::u_prev), qp.targets, qp.bound, lambda,
+                              group.field(&BodyField::u_new), false, qp.rtol);
   stats.qp_iterations += r.iterations;
   stats.operator_applications += r.operator_applications;
   ++stats.friction_iterations;
@@ -28,20 +29,17 @@ void NestedDualEnforcement::solve_qp(const BodyPair& pair, const TrescaQp& qp, c
                          qp.step, qp.outer, r.projected_gradient);
 }
 
-void NestedDualEnforcement::finish_qps(const BodyPair& pair, const core::Vector& lambda,
+void NestedDualEnforcement::finish_qps(const BodyGroup& group, const core::Vector& lambda,
                                        const TrescaIteration& t, std::vector<double>& iterate_slip,
                                        int step, int outer) {
-  auto& ss = pair.slave;
-  auto& sm = pair.master;
   if (t.defer) {  // B u = B u_free − Fλ: the frictional heat's slip without forming u
     core::Vector bu;
-    dual().constraint_values(ss.u_prev, sm.u_prev, lambda, bu);
+    dual().constraint_values(group.field_in(&BodyField::u_prev), lambda, bu);
     iterate_slip = bu.to_std();
     for (size_t i = 0; i < iterate_slip.size(); ++i) iterate_slip[i] -= t.bu_old[i];
   } else {
-    dual().recover(lambda, ss.u_new, sm.u_new);
-    require_finite(ss.u_new, "u = u_free − A⁻¹Bᵀλ", step, outer);
-    require_finite(sm.u_new, "u = u_free − A⁻¹Bᵀλ", step, outer);
+    dual().recover(lambda, group.field(&BodyField::u_new));
+    for (const auto* f : group.fields) require_finite(f->u_new, "u = u_free − A⁻¹Bᵀλ", step, outer);
   }
 }
 
@@ -53,13 +51,15 @@ CombinedTfetiEnforcement::CombinedTfetiEnforcement(std::unique_ptr<DualContactSo
       master_(master),
       max_qp_iterations_(max_qp_iterations) {}
 
-void CombinedTfetiEnforcement::set_rows(ContactRows rows) {
-  dual().set_rows(std::move(rows));
+void CombinedTfetiEnforcement::set_rows(std::vector<ContactRows> rows,
+                                        std::vector<PairBodies> bodies) {
+  if (rows.size() != 1) throw Error("the combined contact dual takes one contact pair");
+  dual().set_rows(std::move(rows), std::move(bodies));
   const auto& r = dual().rows();  // the combined B and G on this step's contact rows
   feti_ = std::make_unique<feti::ContactFeti>(slave_, master_, r.slave, r.master, r.dim);
 }
 
-void CombinedTfetiEnforcement::solve_qp(const BodyPair& pair, const TrescaQp& qp,
+void CombinedTfetiEnforcement::solve_qp(const BodyGroup& group, const TrescaQp& qp,
                                         core::Vector& lambda, ContactStatistics& stats) {
   // The whole mechanical step at this Tresca bound: one TFETI QP over the gluing, Dirichlet
   // and contact multipliers (6.4), SMALBE warm-started from the last one's λ and μ; u comes
@@ -68,8 +68,10 @@ void CombinedTfetiEnforcement::solve_qp(const BodyPair& pair, const TrescaQp& qp
   o.smalbe.rtol = qp.rtol;
   o.smalbe.equality_rtol = qp.rtol;
   o.smalbe.max_inner_iterations = max_qp_iterations_;
-  const auto r = feti_->solve(pair.slave.rhs_u, pair.master.rhs_u, qp.targets, qp.bound,
-                              pair.slave.u_new, pair.master.u_new, lambda, o, &state_);
+  auto& slave = *group.fields[0];  // the one pair: slave, master
+  auto& master = *group.fields[1];
+  const auto r = feti_->solve(slave.rhs_u, master.rhs_u, qp.targets, qp.bound, slave.u_new,
+                              master.u_new, lambda, o, &state_);
   stats.qp_iterations += r.inner_iterations;
   stats.operator_applications += r.operator_applications;
   outer_ += r.outer_iterations;
@@ -80,11 +82,10 @@ void CombinedTfetiEnforcement::solve_qp(const BodyPair& pair, const TrescaQp& qp
         qp.step, qp.outer, r.projected_gradient);
 }
 
-void CombinedTfetiEnforcement::finish_qps(const BodyPair& pair, const core::Vector&,
+void CombinedTfetiEnforcement::finish_qps(const BodyGroup& group, const core::Vector&,
                                           const TrescaIteration&, std::vector<double>&, int step,
                                           int outer) {
-  require_finite(pair.slave.u_new, "displacement", step, outer);  // u came with λ
-  require_finite(pair.master.u_new, "displacement", step, outer);
+  for (const auto* f : group.fields) require_finite(f->u_new, "displacement", step, outer);
 }
 
 void CombinedTfetiEnforcement::save(Checkpoint& c) const {

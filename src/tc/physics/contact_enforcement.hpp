@@ -39,25 +39,28 @@ class ContactEnforcement {
   /// "nested" or "combined" (summary.json).
   [[nodiscard]] virtual const char* name() const = 0;
 
-  /// The contact rows of the step (from the mortar pair at t^k); the operators they define.
-  virtual void set_rows(ContactRows rows) { dual_->set_rows(std::move(rows)); }
+  /// The contact rows of the step (from the mortar pairs at t^k, with each pair's bodies); the
+  /// operators they define.
+  virtual void set_rows(std::vector<ContactRows> rows, std::vector<PairBodies> bodies) {
+    dual_->set_rows(std::move(rows), std::move(bodies));
+  }
   /// True when each QP returns u as well: the bodies then need their loads (mech_load) and no
   /// free solve, and u is never deferred.
   [[nodiscard]] virtual bool qp_gives_displacements() const = 0;
   /// The QP at qp.bound into λ (warm-started from λ on entry); its iterations into `stats`.
   /// Nested: from u_free in each field's u_prev; combined: from the loads in rhs_u, and u into
   /// u_new. Throws NumericalError when it does not converge.
-  virtual void solve_qp(const BodyPair& pair, const TrescaQp& qp, core::Vector& lambda,
+  virtual void solve_qp(const BodyGroup& group, const TrescaQp& qp, core::Vector& lambda,
                         ContactStatistics& stats) = 0;
   /// After the QPs at one θ: u_new = u_free − A⁻¹Bᵀλ, or (t.defer) only B(u − u^k) into
   /// `iterate_slip`, or nothing more (the QP gave u).
-  virtual void finish_qps(const BodyPair& pair, const core::Vector& lambda,
+  virtual void finish_qps(const BodyGroup& group, const core::Vector& lambda,
                           const TrescaIteration& t, std::vector<double>& iterate_slip, int step,
                           int outer) = 0;
 
   /// SMALBE's outer iterations so far (combined; 0 otherwise).
   [[nodiscard]] virtual long outer_iterations() const { return 0; }
-  /// This enforcement's part of the restart record (the dual's compliance in slots 0–3).
+  /// This enforcement's part of the restart record (the dual's compliance).
   virtual void save(Checkpoint& c) const;
   virtual void restore(const Checkpoint& c);
 
@@ -71,26 +74,26 @@ class NestedDualEnforcement final : public ContactEnforcement {
   using ContactEnforcement::ContactEnforcement;
   [[nodiscard]] const char* name() const override { return "nested"; }
   [[nodiscard]] bool qp_gives_displacements() const override { return false; }
-  void solve_qp(const BodyPair& pair, const TrescaQp& qp, core::Vector& lambda,
+  void solve_qp(const BodyGroup& group, const TrescaQp& qp, core::Vector& lambda,
                 ContactStatistics& stats) override;
-  void finish_qps(const BodyPair& pair, const core::Vector& lambda, const TrescaIteration& t,
+  void finish_qps(const BodyGroup& group, const core::Vector& lambda, const TrescaIteration& t,
                   std::vector<double>& iterate_slip, int step, int outer) override;
 };
 
 /// One TFETI QP per Tresca bound over the gluing, Dirichlet and contact multipliers of both
-/// decomposed bodies (6.4), rebuilt on each step's rows; `dual()` keeps the rows and targets
-/// only (F never formed: explicit_limit 0).
+/// decomposed bodies of the one contact pair (6.4), rebuilt on each step's rows; `dual()` keeps the
+/// rows and targets only (F never formed: explicit_limit 0).
 class CombinedTfetiEnforcement final : public ContactEnforcement {
  public:
   /// `slave`, `master`: the contact bodies' mechanical solvers, both by FETI.
   CombinedTfetiEnforcement(std::unique_ptr<DualContactSolver> dual, const feti::Feti& slave,
                            const feti::Feti& master, int max_qp_iterations);
   [[nodiscard]] const char* name() const override { return "combined"; }
-  void set_rows(ContactRows rows) override;
+  void set_rows(std::vector<ContactRows> rows, std::vector<PairBodies> bodies) override;
   [[nodiscard]] bool qp_gives_displacements() const override { return true; }
-  void solve_qp(const BodyPair& pair, const TrescaQp& qp, core::Vector& lambda,
+  void solve_qp(const BodyGroup& group, const TrescaQp& qp, core::Vector& lambda,
                 ContactStatistics& stats) override;
-  void finish_qps(const BodyPair& pair, const core::Vector& lambda, const TrescaIteration& t,
+  void finish_qps(const BodyGroup& group, const core::Vector& lambda, const TrescaIteration& t,
                   std::vector<double>& iterate_slip, int step, int outer) override;
   [[nodiscard]] long outer_iterations() const override { return outer_; }
   void save(Checkpoint& c) const override;

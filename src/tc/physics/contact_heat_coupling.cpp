@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
 
 #include "tc/core/error.hpp"
 #include "tc/physics/boundary_heat.hpp"
@@ -10,142 +11,198 @@
 
 namespace tc::physics {
 
-void ContactHeatCoupling::heat_step(const Problem& p, const HeatPair& pair,
-                                    const ContactIterate& it, double t, int step, int iteration) {
-  // γ = λ_n of the current multiplier iterate (nodal pressures, ≥ 0), u̇ of the current
-  // displacement iterate; β_C and δ_C per contact node at the interface temperature of the last
-  // coupling iterate (it.laws). L on the left through the interface (InterfaceHeatSolver), or
-  // lagged.
-  const auto& c = p.contacts.at(0);
-  auto& ss = pair.slave;
-  auto& sm = pair.master;
-  frictional_heat_ = {};
-  conductance_.reset();
-  std::vector<double> gamma;
-  if (it.mortar) {
+void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
+                                    std::span<const ContactIterate> pairs, double t, int step,
+                                    int iteration) {
+  // Per pair: γ = λ_n of the current multiplier iterate (nodal pressures, ≥ 0), u̇ of the
+  // current displacement iterate; β_C and δ_C per contact node at the interface temperature of
+  // the last coupling iterate (it.laws). L on the left through the interface
+  // (InterfaceHeatSolver), or lagged.
+  const auto n_pairs = pairs.size();
+  frictional_heat_.assign(n_pairs, {});
+  conductance_.clear();
+  conductance_.resize(n_pairs);
+  bodies_.clear();
+  for (const auto& it : pairs) bodies_.push_back(it.bodies);
+  if (heat_.size() != n_pairs) heat_.resize(n_pairs);
+  std::vector<std::vector<double>> gamma(n_pairs);
+  bool any_frictional = false;
+  for (size_t q = 0; q < n_pairs; ++q) {
+    const auto& it = pairs[q];
+    any_frictional =
+        any_frictional || (it.mortar && it.settings.frictional_heating && it.laws.frictional);
+    if (!it.mortar) continue;
     const auto& rows = it.rows;
-    const auto lv = it.lambda.read();
-    gamma.resize(static_cast<size_t>(rows.n_nodes()));
-    const double unit = it.unit;
-    for (PetscInt k = 0; k < rows.n_nodes(); ++k) gamma[k] = unit * std::max(lv[rows.dim * k], 0.0);
+    gamma[q].resize(static_cast<size_t>(rows.n_nodes()));
+    for (PetscInt k = 0; k < rows.n_nodes(); ++k)
+      gamma[q][k] = it.unit * std::max(it.lambda[rows.dim * k], 0.0);
     if (static_cast<size_t>(rows.n_nodes()) != it.mortar->contact_nodes().size())
       throw Error("thermal contact: the multipliers do not match the mortar pair's nodes");
   }
-  if (it.mortar && c.frictional_heating && it.laws.frictional) {
+  if (any_frictional)
+    for (int i = 0; i < group.size(); ++i) {
+      auto& f = *group.fields[i];
+      f.velocity.copy_from(f.u_new);  // (the thermoelastic term of heat_rhs used it above)
+      f.velocity.axpy(-1.0, group.states[i]->u);
+    }
+  for (size_t q = 0; q < n_pairs; ++q) {
+    const auto& it = pairs[q];
+    if (!(it.mortar && it.settings.frictional_heating && it.laws.frictional)) continue;
     // d_θγ from the multipliers: the friction work of the step λ_τ,k·(B_τ(u − u^k))_k per
     // contact node over τ, δ_C of it to the slave through D, 1 − δ_C to the master through M;
     // ContactCoupling::bookkeeping sums the same work at u^{k+1}: heat = dissipation by
     // construction.
+    auto& ss = *group.fields[it.bodies.slave];
+    auto& sm = *group.fields[it.bodies.master];
     const double tau = p.time.step;
-    for (auto [s, st] : {std::pair{&ss, &pair.slave_state}, {&sm, &pair.master_state}}) {
-      s->velocity.copy_from(s->u_new);  // (the thermoelastic term of heat_rhs used it above)
-      s->velocity.axpy(-1.0, st->u);
-    }
     std::vector<double> power = nonnegative_heat(
-        friction_work(it.rows, it.lambda.to_std(),
+        friction_work(it.rows, it.lambda,
                       it.slip.empty() ? step_slip(it.rows, ss.velocity, sm.velocity)
                                       : std::vector<double>(it.slip.begin(), it.slip.end())));
-    for (double& q : power) q *= it.unit / tau;
-    for (const double q : power) frictional_heat_.total += q;
+    for (double& w : power) w *= it.unit / tau;
+    auto& fh = frictional_heat_[q];
+    for (const double w : power) fh.total += w;
     std::vector<double> master_share(it.laws.delta_c.size());
     for (size_t k = 0; k < master_share.size(); ++k) master_share[k] = 1.0 - it.laws.delta_c[k];
-    frictional_heat_.slave = distribute(power, it.laws.delta_c, it.mortar->d_matrix());
-    frictional_heat_.master = distribute(power, master_share, it.mortar->m_matrix());
-    for (auto [s, d] : {std::pair{&ss, &frictional_heat_.slave}, {&sm, &frictional_heat_.master}}) {
+    fh.slave = distribute(power, it.laws.delta_c, it.mortar->d_matrix());
+    fh.master = distribute(power, master_share, it.mortar->m_matrix());
+    for (auto [s, d] : {std::pair{&ss, &fh.slave}, {&sm, &fh.master}}) {
       auto rv = s->rhs_theta.view();
       for (size_t a = 0; a < d->size(); ++a) rv[static_cast<PetscInt>(a)] += (*d)[a];
     }
   }
-  const bool conduct = it.mortar && c.heat_conduction && it.laws.conducting;
-  if (conduct) {
+  std::vector<PairConductance> conducting;
+  for (size_t q = 0; q < n_pairs; ++q) {
+    const auto& it = pairs[q];
+    if (!(it.mortar && it.settings.heat_conduction && it.laws.conducting)) continue;
     // L_θγ = ∫β_Cγ[θ][χ] with β_Cγ = Σ_k β_C,k γ_k φ_k (the nodal product interpolated, as γ
     // is); β_C,kγ_k × 1 is the β_C × γ_k of a constant β_C to the bit.
-    for (size_t k = 0; k < gamma.size(); ++k) gamma[k] = it.laws.beta_c[k] * gamma[k];
-    conductance_ = it.mortar->thermal_conductance(gamma, 1.0);
+    auto& g = gamma[q];
+    for (size_t k = 0; k < g.size(); ++k) g[k] = it.laws.beta_c[k] * g[k];
+    conductance_[q] = it.mortar->thermal_conductance(g, 1.0);
+    conducting.push_back({&*conductance_[q], it.bodies.slave, it.bodies.master});
   }
-  if (conduct && treatment_ == ConductanceTreatment::lagged) {
-    // (6.2): L θ^p of the previous iterate to the right-hand side.
-    const auto& l = *conductance_;
-    l.ss.mult(ss.theta_new, ss.work_theta);
-    l.sm.mult_add(sm.theta_new, ss.work_theta);
-    l.ms.mult(ss.theta_new, sm.work_theta);
-    l.mm.mult_add(sm.theta_new, sm.work_theta);
-    ss.rhs_theta.axpy(-1.0, ss.work_theta);
-    sm.rhs_theta.axpy(-1.0, sm.work_theta);
-  }
-  pair.slave_system.prescribe_theta(t, ss.theta_new);
-  pair.master_system.prescribe_theta(t, sm.theta_new);
-  const bool implicit = conduct && treatment_ == ConductanceTreatment::implicit;
+  if (treatment_ == ConductanceTreatment::lagged)
+    for (const auto& c : conducting) {  // (6.2): L θ^p of the previous iterate to the right
+      auto& ss = *group.fields[c.slave];
+      auto& sm = *group.fields[c.master];
+      const auto& l = *c.l;
+      l.ss.mult(ss.theta_new, ss.work_theta);
+      l.sm.mult_add(sm.theta_new, ss.work_theta);
+      l.ms.mult(ss.theta_new, sm.work_theta);
+      l.mm.mult_add(sm.theta_new, sm.work_theta);
+      ss.rhs_theta.axpy(-1.0, ss.work_theta);
+      sm.rhs_theta.axpy(-1.0, sm.work_theta);
+    }
+  for (int i = 0; i < group.size(); ++i)
+    group.systems[i]->prescribe_theta(t, group.fields[i]->theta_new);
+  const bool implicit = !conducting.empty() && treatment_ == ConductanceTreatment::implicit;
   if (implicit) {
     if (!interface_heat_) {
-      interface_heat_ = std::make_unique<InterfaceHeatSolver>(
-          *ss.heat, pair.slave_system.n_theta(),
-          p.bodies[c.slave_body].mesh.boundary_nodes(c.slave_where), *sm.heat,
-          pair.master_system.n_theta(),
-          p.bodies[c.master_body].mesh.boundary_nodes(c.master_where));
+      // Γ of each body: the nodes of its contact surfaces in every pair.
+      std::vector<std::set<int>> nodes(static_cast<size_t>(group.size()));
+      for (const auto& c : p.contacts) {
+        const auto& members = group.index;
+        for (const auto& [b, where] :
+             {std::pair{c.slave_body, &c.slave_where}, {c.master_body, &c.master_where}}) {
+          const auto at = std::find(members.begin(), members.end(), b) - members.begin();
+          for (const int a : p.bodies[b].mesh.boundary_nodes(*where)) nodes[at].insert(a);
+        }
+      }
+      std::vector<const ConstrainedSolver*> solvers;
+      std::vector<PetscInt> n;
+      std::vector<std::vector<int>> gamma_nodes;
+      for (int i = 0; i < group.size(); ++i) {
+        solvers.push_back(group.fields[i]->heat.get());
+        n.push_back(group.systems[i]->n_theta());
+        gamma_nodes.emplace_back(nodes[i].begin(), nodes[i].end());
+      }
+      interface_heat_ = std::make_unique<InterfaceHeatSolver>(std::move(solvers), std::move(n),
+                                                              std::move(gamma_nodes));
     }
-    interface_heat_->set_conductance(*conductance_);
+    interface_heat_->set_conductance(conducting);
   }
-  if (pair.slave_system.has_boundary_term() || pair.master_system.has_boundary_term()) {
-    pair_boundary_heat(p, pair, implicit, t, step, iteration);
+  bool boundary_term = false;
+  for (const auto* sys : group.systems) boundary_term = boundary_term || sys->has_boundary_term();
+  if (boundary_term) {
+    group_boundary_heat(p, group, implicit, t, step, iteration);
   } else if (implicit) {
-    interface_heat_->solve(ss.rhs_theta, sm.rhs_theta, ss.theta_new, sm.theta_new);
+    interface_heat_->solve(group.field_in(&BodyField::rhs_theta),
+                           group.field(&BodyField::theta_new));
   } else {
-    ss.heat->solve(ss.rhs_theta, ss.theta_new);
-    sm.heat->solve(sm.rhs_theta, sm.theta_new);
+    for (auto* f : group.fields) f->heat->solve(f->rhs_theta, f->theta_new);
   }
 }
 
-void ContactHeatCoupling::pair_boundary_heat(const Problem& p, const HeatPair& pair, bool implicit,
-                                             double t, int step, int iteration) {
-  // The contact pair's heat step with radiation or an h(t) film on either body: Newton over
-  // both bodies (boundary_heat.hpp) on A = diag(A_s, A_m) (+ L_θγ when implicit), each
-  // correction preconditioned by the pair's exact linear solve.
-  auto& ss = pair.slave;
-  auto& sm = pair.master;
+void ContactHeatCoupling::group_boundary_heat(const Problem& p, const BodyGroup& group,
+                                              bool implicit, double t, int step, int iteration) {
+  // The heat step with radiation or an h(t) film on any body of the group: Newton over its
+  // bodies (boundary_heat.hpp) on A = diag(A_i) (+ Σ_pairs L_θγ when implicit), each correction
+  // preconditioned by the group's exact linear solve.
   HeatOperator op;
-  op.systems = {&pair.slave_system, &pair.master_system};
+  op.systems = group.systems;
   op.apply = [&](const auto& x, const auto& y) {
-    ss.a_theta.mult(*x[0], *y[0]);
-    sm.a_theta.mult(*x[1], *y[1]);
-    if (implicit) {
-      const auto& l = *conductance_;
-      l.ss.mult_add(*x[0], *y[0]);
-      l.sm.mult_add(*x[1], *y[0]);
-      l.ms.mult_add(*x[0], *y[1]);
-      l.mm.mult_add(*x[1], *y[1]);
-    }
+    for (int i = 0; i < group.size(); ++i) group.fields[i]->a_theta.mult(*x[i], *y[i]);
+    if (implicit)
+      for (size_t q = 0; q < conductance_.size(); ++q) {
+        if (!conductance_[q]) continue;
+        const auto& l = *conductance_[q];
+        const int s = bodies_[q].slave, m = bodies_[q].master;
+        l.ss.mult_add(*x[s], *y[s]);
+        l.sm.mult_add(*x[m], *y[s]);
+        l.ms.mult_add(*x[s], *y[m]);
+        l.mm.mult_add(*x[m], *y[m]);
+      }
   };
   op.solve = [&](const auto& r, const auto& z) {
     if (implicit) {
-      interface_heat_->solve(*r[0], *r[1], *z[0], *z[1]);
+      interface_heat_->solve(r, z);
     } else {
-      ss.heat->solve(*r[0], *z[0]);
-      sm.heat->solve(*r[1], *z[1]);
+      for (int i = 0; i < group.size(); ++i) group.fields[i]->heat->solve(*r[i], *z[i]);
     }
   };
   const auto& settings = p.solver;
-  const auto o =
-      solve_boundary_heat(op, t, {&ss.rhs_theta, &sm.rhs_theta}, {&ss.theta_new, &sm.theta_new},
-                          settings.newton_tolerance, settings.max_newton_iterations);
+  const auto o = solve_boundary_heat(op, t, group.field_in(&BodyField::rhs_theta),
+                                     group.field(&BodyField::theta_new), settings.newton_tolerance,
+                                     settings.max_newton_iterations);
   newton_ += o.iterations;
   newton_inner_ += o.inner_iterations;
-  require_converged(o,
-                    fmt::format("the contact pair '{}'–'{}'", p.bodies[p.contacts.at(0).slave_body].name,
-                                p.bodies[p.contacts.at(0).master_body].name),
-                    settings.newton_tolerance, step, iteration);
+  std::string names;
+  for (const int b : group.index)
+    names += fmt::format("{}'{}'", names.empty() ? "" : "–", p.bodies[b].name);
+  require_converged(o, "the contact bodies " + names, settings.newton_tolerance, step, iteration);
 }
 
-void ContactHeatCoupling::account_step(const HeatPair& pair, double tau) {
-  auto& ss = pair.slave;
-  const auto& sm = pair.master;
-  heat_.generated += tau * frictional_heat_.total;
-  for (const double q : frictional_heat_.slave) heat_.to_slave += tau * q;
-  for (const double q : frictional_heat_.master) heat_.to_master += tau * q;
-  if (conductance_) {  // 1ᵀ(L_ss θ_s + L_sm θ_m) = β_C ∫ γ (θ_s − θ_m) dS, slave → master
-    conductance_->ss.mult(ss.theta_new, ss.work_theta);
-    conductance_->sm.mult_add(sm.theta_new, ss.work_theta);
-    heat_.conducted += tau * ss.work_theta.sum();
+void ContactHeatCoupling::account_step(const BodyGroup& group, double tau) {
+  for (size_t q = 0; q < heat_.size() && q < frictional_heat_.size(); ++q) {
+    auto& h = heat_[q];
+    const auto& fh = frictional_heat_[q];
+    h.generated += tau * fh.total;
+    for (const double w : fh.slave) h.to_slave += tau * w;
+    for (const double w : fh.master) h.to_master += tau * w;
+    if (conductance_[q]) {  // 1ᵀ(L_ss θ_s + L_sm θ_m) = β_C ∫ γ (θ_s − θ_m) dS, slave → master
+      auto& ss = *group.fields[bodies_[q].slave];
+      const auto& sm = *group.fields[bodies_[q].master];
+      conductance_[q]->ss.mult(ss.theta_new, ss.work_theta);
+      conductance_[q]->sm.mult_add(sm.theta_new, ss.work_theta);
+      h.conducted += tau * ss.work_theta.sum();
+    }
+  }
+  sum_heat();
+}
+
+void ContactHeatCoupling::set_pair_heat(std::vector<ContactHeat> heat) {
+  heat_ = std::move(heat);
+  sum_heat();
+}
+
+void ContactHeatCoupling::sum_heat() {
+  total_ = {};
+  for (const auto& h : heat_) {
+    total_.generated += h.generated;
+    total_.to_slave += h.to_slave;
+    total_.to_master += h.to_master;
+    total_.conducted += h.conducted;
   }
 }
 

@@ -1,16 +1,18 @@
 #pragma once
-// The thermal coupling of the contact pair (2.13, §4.4): the heat step (4.3) of the two bodies
-// with the conductance L_θγ and the frictional heat d_θγ of the current multiplier iterate, and
-// the step's ledger of the heat that crossed the interface.
+// The thermal coupling of the contact pairs (2.13, §4.4): the heat step (4.3) of their bodies
+// with the conductance L_θγ and the frictional heat d_θγ of each pair's current multiplier
+// iterate, and the step's ledger of the heat that crossed each interface.
 #include <memory>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "tc/contact/contact_rows.hpp"
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/physics/bodies.hpp"
 #include "tc/physics/body_field.hpp"
 #include "tc/physics/body_system.hpp"
+#include "tc/physics/dual_contact.hpp"
 #include "tc/physics/interface_laws.hpp"
 #include "tc/physics/ledger.hpp"
 #include "tc/physics/problem.hpp"
@@ -18,17 +20,16 @@
 
 namespace tc::physics {
 
-/// The two bodies of the contact pair in the heat step.
-using HeatPair = BodyPair;
-
-/// The multipliers of the current iterate as the heat step reads them.
+/// One contact pair's multipliers of the current iterate as the heat step reads them.
 struct ContactIterate {
+  const ContactSettings& settings;
+  PairBodies bodies;                  // its slave and master in the group
   const contact::MortarPair* mortar;  // null for a test's rows: no thermal contact
   const contact::ContactRows& rows;
-  const core::Vector& lambda;
-  double unit;                   // traction per multiplier (traction_per_multiplier)
-  std::span<const double> slip;  // B(u − u^k) when the displacements are deferred, or empty
-  const NodalLaws& laws;         // β_C,k, δ_C,k of (2.13) at the last coupling iterate
+  std::span<const double> lambda;  // the pair's multipliers, node-major
+  double unit;                     // traction per multiplier (traction_per_multiplier)
+  std::span<const double> slip;    // B(u − u^k) when the displacements are deferred, or empty
+  const NodalLaws& laws;           // β_C,k, δ_C,k of (2.13) at the last coupling iterate
 };
 
 class ContactHeatCoupling {
@@ -36,36 +37,44 @@ class ContactHeatCoupling {
   [[nodiscard]] ConductanceTreatment treatment() const { return treatment_; }
   void set_treatment(ConductanceTreatment t) { treatment_ = t; }
 
-  /// (4.3) for the two bodies of the contact pair at t, backward Euler:
-  ///   (M_θ/τ + K_θ) θ + L_θγ θ = rhs + d_θγ(u̇),
-  /// rhs_theta of both fields holding the rest of the right-hand side on entry, θ into
+  /// (4.3) for the bodies of the contact pairs at t, backward Euler:
+  ///   (M_θ/τ + K_θ) θ + Σ_pairs L_θγ θ = rhs + Σ_pairs d_θγ(u̇),
+  /// rhs_theta of every field holding the rest of the right-hand side on entry, θ into
   /// theta_new. Throws NumericalError when the Newton of a radiating or h(t) film boundary
   /// fails (`step`, `iteration` for the message).
-  void heat_step(const Problem& p, const HeatPair& pair, const ContactIterate& it, double t,
-                 int step, int iteration);
-  /// Adds the heat of the step through the interface to the ledger, with the L and d of the
-  /// last heat step (those that produced θ^{k+1}); the slave's work_theta is scratch.
-  void account_step(const HeatPair& pair, double tau);
+  void heat_step(const Problem& p, const BodyGroup& group, std::span<const ContactIterate> pairs,
+                 double t, int step, int iteration);
+  /// Adds the heat of the step through each interface to its ledger, with the L and d of the
+  /// last heat step (those that produced θ^{k+1}); the fields' work_theta is scratch.
+  void account_step(const BodyGroup& group, double tau);
 
-  [[nodiscard]] const ContactHeat& heat() const { return heat_; }
-  [[nodiscard]] ContactHeat& heat() { return heat_; }
+  /// The heat through the interface of each pair, and summed over the pairs.
+  [[nodiscard]] const std::vector<ContactHeat>& pair_heat() const { return heat_; }
+  [[nodiscard]] std::vector<ContactHeat>& pair_heat() { return heat_; }
+  [[nodiscard]] const ContactHeat& heat() const { return total_; }
   [[nodiscard]] const InterfaceHeatSolver* interface_heat_solver() const {
     return interface_heat_.get();
   }
-  /// Newton corrections and their CG iterations of the pair's heat steps so far.
+  /// Newton corrections and their CG iterations of the pairs' heat steps so far.
   [[nodiscard]] long newton_iterations() const { return newton_; }
   [[nodiscard]] long newton_inner_iterations() const { return newton_inner_; }
+  /// The pairs' ledgers (from a checkpoint); the sum follows.
+  void set_pair_heat(std::vector<ContactHeat> heat);
 
  private:
-  // The pair's heat step with radiation or an h(t) film on either body.
-  void pair_boundary_heat(const Problem& p, const HeatPair& pair, bool implicit, double t, int step,
-                          int iteration);
+  // The heat step with radiation or an h(t) film on any body of the group.
+  void group_boundary_heat(const Problem& p, const BodyGroup& group, bool implicit, double t,
+                           int step, int iteration);
+  void sum_heat();
 
   ConductanceTreatment treatment_ = ConductanceTreatment::implicit;
   std::unique_ptr<InterfaceHeatSolver> interface_heat_;
-  std::optional<contact::ThermalContact> conductance_;  // L_θγ of the last heat step
-  contact::FrictionalHeat frictional_heat_;             // d_θγ of the last heat step
-  ContactHeat heat_;
+  // Per pair, of the last heat step: L_θγ (none when the pair does not conduct), d_θγ.
+  std::vector<std::optional<contact::ThermalContact>> conductance_;
+  std::vector<contact::FrictionalHeat> frictional_heat_;
+  std::vector<PairBodies> bodies_;  // each pair's slave and master in the group
+  std::vector<ContactHeat> heat_;   // per pair
+  ContactHeat total_;
   long newton_ = 0, newton_inner_ = 0;
 };
 

@@ -3,6 +3,7 @@
 // TFETI, [solver] contact_dual) and how the time scheme meets it (quasistatic, or [time]
 // contact_scheme of a dynamic run).
 #include <memory>
+#include <vector>
 
 #include "tc/core/timer.hpp"
 #include "tc/physics/bodies.hpp"
@@ -12,12 +13,22 @@
 
 namespace tc::physics {
 
+/// The bodies of the contact pairs, each once in the order they first appear in p.contacts
+/// (with one pair: slave, master), and each pair's slave and master among them.
+struct ContactGroup {
+  ContactGroup() = default;
+  explicit ContactGroup(const Problem& p);
+  std::vector<int> members;  // Problem::bodies indices
+  std::vector<PairBodies> pairs;
+};
+
 struct ContactMethod {
   std::unique_ptr<ContactEnforcement> enforcement;
   std::unique_ptr<ContactTimeScheme> scheme;
 };
 
-/// The enforcement and the contact time scheme of p.contact's pair. `settings`: the nested
+/// The enforcement and the contact time scheme of p.contacts' pairs (their bodies as in
+/// ContactGroup). `settings`: the nested
 /// dual's (its QP tolerance and iteration cap are p.solver's, and its explicit_limit when the
 /// case sets explicit_dual_limit). Factorises what the scheme needs
 /// (the stabilised scheme's M_u). Throws Error when contact_dual = "combined" cannot run.

@@ -13,68 +13,70 @@ double ContactTimeScheme::traction_per_multiplier() const {
   return physics::traction_per_multiplier(false);
 }
 
-void QuasistaticContact::slip_reference(const BodyPair& pair) const {
-  pair.slave.work_u.copy_from(pair.slave_state.u);
-  pair.master.work_u.copy_from(pair.master_state.u);
+void QuasistaticContact::slip_reference(const BodyGroup& group) const {
+  for (int i = 0; i < group.size(); ++i) group.fields[i]->work_u.copy_from(group.states[i]->u);
 }
 
-void PlainNewmarkContact::slip_reference(const BodyPair& pair) const {
+void PlainNewmarkContact::slip_reference(const BodyGroup& group) const {
   // u_pred − τ/2 u̇^k (= u^k + τ/2 u̇^k unless the predictor was projected), so that
   // B_τu − c_τ = τ/2 B_τu̇^{k+1} (5.4).
-  pair.slave.work_u.copy_from(pair.slave.u_pred);
-  pair.master.work_u.copy_from(pair.master.u_pred);
-  pair.slave.work_u.axpy(-0.5 * tau_, pair.slave_state.v);
-  pair.master.work_u.axpy(-0.5 * tau_, pair.master_state.v);
+  for (int i = 0; i < group.size(); ++i) {
+    auto& f = *group.fields[i];
+    f.work_u.copy_from(f.u_pred);
+    f.work_u.axpy(-0.5 * tau_, group.states[i]->v);
+  }
 }
 
-void ModifiedMassContact::prepare(const BodyPair&, DualContactSolver& dual,
+void ModifiedMassContact::prepare(const BodyGroup&, DualContactSolver& dual,
                                   const core::Vector& lambda, ContactStatistics&, int) {
-  dual.set_normal_floor(release_floor(lambda, dual.rows().dim));
+  dual.set_normal_floor(release_floor(lambda, dual.dim()));
 }
 
-void ModifiedMassContact::slip_reference(const BodyPair& pair) const {
+void ModifiedMassContact::slip_reference(const BodyGroup& group) const {
   // The contact nodes have no inertia (massless_rates): B_τu − c_τ = τ B_τu̇^{k+1}.
-  pair.slave.work_u.copy_from(pair.slave_state.u);
-  pair.master.work_u.copy_from(pair.master_state.u);
+  for (int i = 0; i < group.size(); ++i) group.fields[i]->work_u.copy_from(group.states[i]->u);
 }
 
-StabilisedNewmarkContact::StabilisedNewmarkContact(const Problem& p, Bodies& bodies, int slave,
-                                                   int master, const DualContactSettings& settings,
+StabilisedNewmarkContact::StabilisedNewmarkContact(const Problem& p, Bodies& bodies,
+                                                   const std::vector<int>& members,
+                                                   const DualContactSettings& settings,
                                                    core::PhaseTimers& timers)
     : PlainNewmarkContact(p.time.step), timers_(timers) {
   auto t = timers_.scope("factorization");
-  for (const int b : {slave, master}) {
+  std::vector<const ConstrainedSolver*> mass;
+  std::vector<PetscInt> n_u;
+  for (const int b : members) {
     auto& sv = *bodies.fields[b];
     sv.mass = sv.initial_mass
                   ? std::move(sv.initial_mass)
                   : body_solver(p, *bodies.systems[b], bodies.systems[b]->matrices().mass_u,
                                 BodyOperator::mass);
+    mass.push_back(sv.mass.get());
+    n_u.push_back(bodies.systems[b]->n_u());
   }
-  projection_ = std::make_unique<DualContactSolver>(
-      *bodies.fields[slave]->mass, *bodies.fields[master]->mass, bodies.systems[slave]->n_u(),
-      bodies.systems[master]->n_u(), settings);
+  projection_ = std::make_unique<DualContactSolver>(std::move(mass), std::move(n_u), settings);
 }
 
-void StabilisedNewmarkContact::prepare(const BodyPair& pair, DualContactSolver& dual,
+void StabilisedNewmarkContact::prepare(const BodyGroup& group, DualContactSolver& dual,
                                        const core::Vector&, ContactStatistics& stats, int step) {
   // Deuflhard–Krause–Ertel: u_pred ← argmin ½‖v − (u^k + τu̇^k)‖²_M over B_n(v − u^k) ≤ g
   // (frictionless: the projection only removes the normal approach), then the position update
   // M(u^{k+1} − u_pred) = τ²/4 (g^k + f^{k+1} − K u^{k+1} − … − Bᵀλ^{k+1}) drops the contact
   // force of step k, which is what made plain Newmark gain energy at the impact.
   auto scope = timers_.scope("qp");
-  const auto normal_targets = dual.targets(pair.slave_state.u, pair.master_state.u,
-                                           pair.slave_state.u, pair.master_state.u);
-  auto& ss = pair.slave;
-  auto& sm = pair.master;
-  const auto& rows = dual.rows();
-  projection_->set_rows(
-      {rows.dim, rows.slave.share(), rows.master.share(), rows.gap, rows.weights, rows.nodes});
-  core::Vector multipliers(rows.n_rows());
-  const std::vector<double> no_friction(static_cast<size_t>(rows.n_nodes()), 0.0);
-  ss.u_prev.copy_from(ss.u_pred);
-  sm.u_prev.copy_from(sm.u_pred);
-  const auto r = projection_->solve(ss.u_prev, sm.u_prev, normal_targets, no_friction, multipliers,
-                                    ss.u_pred, sm.u_pred);
+  const auto u_k = group.state(&BodyState::u);
+  const auto normal_targets = dual.targets(u_k, u_k);
+  std::vector<ContactRows> rows;
+  for (int q = 0; q < dual.n_pairs(); ++q) {
+    const auto& r = dual.pair_rows(q);
+    rows.push_back({r.dim, r.slave.share(), r.master.share(), r.gap, r.weights, r.nodes});
+  }
+  projection_->set_rows(std::move(rows), dual.pair_bodies());
+  core::Vector multipliers(dual.n_rows());
+  const std::vector<double> no_friction(static_cast<size_t>(dual.n_nodes()), 0.0);
+  for (auto* f : group.fields) f->u_prev.copy_from(f->u_pred);
+  const auto r = projection_->solve(group.field_in(&BodyField::u_prev), normal_targets, no_friction,
+                                    multipliers, group.field(&BodyField::u_pred));
   stats.qp_iterations += r.iterations;
   stats.operator_applications += r.operator_applications + projection_->setup_solves() / 2;
   if (!r.converged())
@@ -83,10 +85,11 @@ void StabilisedNewmarkContact::prepare(const BodyPair& pair, DualContactSolver& 
                     r.message),
         step, 0, r.projected_gradient);
   const double tau = tau_;
-  for (auto [s, sys] : {std::pair{&ss, &pair.slave_system}, {&sm, &pair.master_system}}) {
+  for (int i = 0; i < group.size(); ++i) {
+    auto* s = group.fields[i];
     s->rhs_u_base.copy_from(s->f_u);
     s->rhs_u_base.axpy(1.0, s->g_free);
-    sys->matrices().mass_u.mult(s->u_pred, s->work_u);
+    group.systems[i]->matrices().mass_u.mult(s->u_pred, s->work_u);
     s->rhs_u_base.axpy(newmark_mass_factor(tau), s->work_u);
     s->u_new.copy_from(s->u_pred);
   }
@@ -97,11 +100,12 @@ double StabilisedNewmarkContact::traction_per_multiplier() const {
 }
 
 void StabilisedNewmarkContact::save(Checkpoint& c) const {
-  projection_->save_compliance(std::span<std::vector<int>, 4>(&c.compliance[4], 4));
+  c.stabiliser_compliance.clear();
+  projection_->save_compliance(c.stabiliser_compliance);
 }
 
 void StabilisedNewmarkContact::restore(const Checkpoint& c) {
-  projection_->replay_compliance(std::span<const std::vector<int>, 4>(&c.compliance[4], 4));
+  projection_->replay_compliance(c.stabiliser_compliance);
 }
 
 }  // namespace tc::physics

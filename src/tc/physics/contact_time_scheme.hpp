@@ -17,15 +17,15 @@ class ContactTimeScheme {
  public:
   virtual ~ContactTimeScheme() = default;
   /// Before the QPs of the step, with its rows set and λ^k moved onto them (`lambda`).
-  virtual void prepare(const BodyPair& /*pair*/, DualContactSolver& /*dual*/,
+  virtual void prepare(const BodyGroup& /*group*/, DualContactSolver& /*dual*/,
                        const core::Vector& /*lambda*/, ContactStatistics& /*stats*/, int /*step*/) {
   }
   /// The displacement the slip is measured from, into each field's work_u: c_τ = B_τ of it.
-  virtual void slip_reference(const BodyPair& pair) const = 0;
+  virtual void slip_reference(const BodyGroup& group) const = 0;
   /// The mean contact traction of the step per unit of λ (traction_per_multiplier).
   [[nodiscard]] virtual double traction_per_multiplier() const;
-  /// The stabilised predictor's mass projection and its compliance (slots 4–7 of the
-  /// checkpoint); nothing for the other schemes.
+  /// The stabilised predictor's mass projection and its compliance (the checkpoint's
+  /// stabiliser_compliance); nothing for the other schemes.
   virtual void save(Checkpoint& /*c*/) const {}
   virtual void restore(const Checkpoint& /*c*/) {}
 };
@@ -33,14 +33,14 @@ class ContactTimeScheme {
 /// Quasistatic: slip from u^k, B_τu − c_τ = τ B_τu̇^{k+1}.
 class QuasistaticContact final : public ContactTimeScheme {
  public:
-  void slip_reference(const BodyPair& pair) const override;
+  void slip_reference(const BodyGroup& group) const override;
 };
 
 /// The thesis' Newmark (5.1–5.4): slip from u^k + τ/2 u̇^k, B_τu − c_τ = τ/2 B_τu̇^{k+1}.
 class PlainNewmarkContact : public ContactTimeScheme {
  public:
   explicit PlainNewmarkContact(double tau) : tau_(tau) {}
-  void slip_reference(const BodyPair& pair) const override;
+  void slip_reference(const BodyGroup& group) const override;
 
  protected:
   double tau_;
@@ -51,9 +51,9 @@ class PlainNewmarkContact : public ContactTimeScheme {
 /// λ_n^{k+1} ≥ −λ_n^k (release_floor), so the step's mean contact force does no work.
 class ModifiedMassContact final : public ContactTimeScheme {
  public:
-  void prepare(const BodyPair& pair, DualContactSolver& dual, const core::Vector& lambda,
+  void prepare(const BodyGroup& group, DualContactSolver& dual, const core::Vector& lambda,
                ContactStatistics& stats, int step) override;
-  void slip_reference(const BodyPair& pair) const override;
+  void slip_reference(const BodyGroup& group) const override;
 };
 
 /// The contact-stabilised Newmark of Deuflhard, Krause & Ertel: the predictor projected onto
@@ -61,10 +61,11 @@ class ModifiedMassContact final : public ContactTimeScheme {
 /// position update without the last step's contact force; λ is twice the mean traction.
 class StabilisedNewmarkContact final : public PlainNewmarkContact {
  public:
-  /// Factorises M_u of both bodies (taking the one of the initial acceleration when kept).
-  StabilisedNewmarkContact(const Problem& p, Bodies& bodies, int slave, int master,
+  /// Factorises M_u of the contact bodies `members` (taking the one of the initial
+  /// acceleration when kept).
+  StabilisedNewmarkContact(const Problem& p, Bodies& bodies, const std::vector<int>& members,
                            const DualContactSettings& settings, core::PhaseTimers& timers);
-  void prepare(const BodyPair& pair, DualContactSolver& dual, const core::Vector& lambda,
+  void prepare(const BodyGroup& group, DualContactSolver& dual, const core::Vector& lambda,
                ContactStatistics& stats, int step) override;
   [[nodiscard]] double traction_per_multiplier() const override;
   void save(Checkpoint& c) const override;

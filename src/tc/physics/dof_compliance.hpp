@@ -35,6 +35,8 @@ class DofCompliance {
   /// Position of `dof` in T, or −1.
   [[nodiscard]] PetscInt index(PetscInt dof) const { return index_[dof]; }
   [[nodiscard]] PetscInt size() const { return static_cast<PetscInt>(dofs_.size()); }
+  /// The body's dofs (the range of T).
+  [[nodiscard]] PetscInt n_dofs() const { return static_cast<PetscInt>(index_.size()); }
   [[nodiscard]] const Eigen::MatrixXd& matrix() const { return s_; }
   /// T in the order added, and the number of dofs each cover() added: enough to rebuild S
   /// with the same solves in the same blocks, hence the same bits (restart).

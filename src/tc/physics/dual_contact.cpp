@@ -14,41 +14,49 @@ const char* name(DualOperator k) {
   return k == DualOperator::explicit_schur ? "explicit" : "matrix-free";
 }
 
+DualContactSolver::DualContactSolver(std::vector<const ConstrainedSolver*> bodies,
+                                     std::vector<PetscInt> n_u, DualContactSettings settings)
+    : bodies_(std::move(bodies)), settings_(std::move(settings)) {
+  assert(bodies_.size() == n_u.size());
+  for (int i = 0; i < n_bodies(); ++i) {
+    compliance_.emplace_back(*bodies_[i], n_u[i]);
+    w_in_.emplace_back(n_u[i]);
+    y_.emplace_back(n_u[i]);
+  }
+  w_.resize(bodies_.size());
+}
+
 DualContactSolver::DualContactSolver(const ConstrainedSolver& slave,
                                      const ConstrainedSolver& master, PetscInt n_u_slave,
                                      PetscInt n_u_master, DualContactSettings settings)
-    : slave_(slave),
-      master_(master),
-      settings_(std::move(settings)),
-      compliance_{DofCompliance(slave, n_u_slave), DofCompliance(master, n_u_master)} {
-  ws_ = core::Vector(n_u_slave);
-  ys_ = core::Vector(n_u_slave);
-  zs_ = core::Vector(n_u_slave);
-  wm_ = core::Vector(n_u_master);
-  ym_ = core::Vector(n_u_master);
-  zm_ = core::Vector(n_u_master);
-}
-
-void DualContactSolver::solve_homogeneous(const ConstrainedSolver& s, const core::Vector& rhs,
-                                          core::Vector& x) const {
-  x.zero();  // zero Dirichlet values: A⁻¹ of the constrained operator
-  s.solve(rhs, x);
-}
+    : DualContactSolver({&slave, &master}, {n_u_slave, n_u_master}, std::move(settings)) {}
 
 void DualContactSolver::apply_f(const core::Vector& x, core::Vector& y) const {
-  rows_.slave.mult_transpose(x, ws_);
-  solve_homogeneous(slave_, ws_, ys_);
-  rows_.master.mult_transpose(x, wm_);
-  solve_homogeneous(master_, wm_, ym_);
-  rows_.slave.mult(ys_, y);
-  rows_.master.mult_add(ym_, y);
+  for (int i = 0; i < n_bodies(); ++i) {
+    b_[i].mult_transpose(x, w_in_[i]);
+    y_[i].zero();  // zero Dirichlet values: A⁻¹ of the constrained operator
+    bodies_[i]->solve(w_in_[i], y_[i]);
+    if (i == 0)
+      b_[i].mult(y_[i], y);
+    else
+      b_[i].mult_add(y_[i], y);
+  }
 }
 
 void DualContactSolver::set_rows(ContactRows rows) {
-  rows_ = std::move(rows);
+  std::vector<ContactRows> one;
+  one.push_back(std::move(rows));
+  set_rows(std::move(one), {{0, 1}});
+}
+
+void DualContactSolver::set_rows(std::vector<ContactRows> pairs, std::vector<PairBodies> bodies) {
+  assert(pairs.size() == bodies.size() && !pairs.empty());
+  pairs_ = std::move(pairs);
+  pair_bodies_ = std::move(bodies);
+  stack_rows();
   normal_floor_.clear();
-  assert(rows_.slave.rows() == rows_.n_rows() && rows_.master.rows() == rows_.n_rows());
-  const PetscInt m = rows_.n_rows();
+  held_.clear();
+  const PetscInt m = n_rows();
   setup_solves_ = 0;
   kind_ = DualOperator::matrix_free;
   // Explicit up to explicit_limit rows (from the compliance, else by solves), and up to
@@ -64,6 +72,55 @@ void DualContactSolver::set_rows(ContactRows rows) {
     if (kind_ == DualOperator::explicit_schur && settings_.scale) form_scaled();
   }
   if (kind_ == DualOperator::explicit_schur || m != lambda_max_rows_) lambda_max_ = 0;
+}
+
+void DualContactSolver::stack_rows() {
+  // B_i = the rows of every pair stacked, with pair p's slave (master) columns in B_i when body
+  // i is its slave (master) and zero rows otherwise. One pair: B_s and B_m themselves (shared,
+  // not copied), so the single-pair arithmetic is what it was.
+  dim_ = pairs_.front().dim;
+  offsets_.assign(1, 0);
+  gap_.clear();
+  for (const auto& r : pairs_) {
+    assert(r.dim == dim_ && r.slave.rows() == r.n_rows() && r.master.rows() == r.n_rows());
+    offsets_.push_back(offsets_.back() + r.n_nodes());
+    gap_.insert(gap_.end(), r.gap.begin(), r.gap.end());
+  }
+  b_.clear();
+  b_.resize(bodies_.size());
+  std::vector<std::vector<std::pair<int, const core::SparseMatrix*>>> parts(bodies_.size());
+  for (int p = 0; p < n_pairs(); ++p) {
+    parts[pair_bodies_[p].slave].emplace_back(p, &pairs_[p].slave);
+    parts[pair_bodies_[p].master].emplace_back(p, &pairs_[p].master);
+  }
+  const PetscInt m = n_rows();
+  for (int i = 0; i < n_bodies(); ++i) {
+    if (parts[i].size() == 1 && m == parts[i].front().second->rows()) {
+      b_[i] = parts[i].front().second->share();
+      continue;
+    }
+    const PetscInt n = compliance_[i].n_dofs();
+    std::vector<PetscInt> nnz(static_cast<size_t>(m), 0);
+    for (const auto& [p, part] : parts[i])
+      for (PetscInt r = 0; r < part->rows(); ++r) {
+        PetscInt nz = 0;
+        TC_PETSC(MatGetRow(part->get(), r, &nz, nullptr, nullptr));
+        nnz[static_cast<size_t>(dim_ * offsets_[p] + r)] = nz;
+        TC_PETSC(MatRestoreRow(part->get(), r, &nz, nullptr, nullptr));
+      }
+    b_[i] = core::SparseMatrix(m, n, nnz);
+    for (const auto& [p, part] : parts[i])
+      for (PetscInt r = 0; r < part->rows(); ++r) {
+        PetscInt nz = 0;
+        const PetscInt* cols = nullptr;
+        const PetscScalar* vals = nullptr;
+        TC_PETSC(MatGetRow(part->get(), r, &nz, &cols, &vals));
+        const PetscInt row = dim_ * offsets_[p] + r;
+        b_[i].add_values(std::span(&row, 1), std::span(cols, static_cast<size_t>(nz)), vals);
+        TC_PETSC(MatRestoreRow(part->get(), r, &nz, &cols, &vals));
+      }
+    b_[i].assemble();
+  }
 }
 
 namespace {
@@ -96,14 +153,14 @@ void DualContactSolver::form_scaled() {
   // compliances; the fixed-step projected gradient moves of MPGP (ᾱ = 1.9/λ_max) crawl on the
   // small-diagonal nodes, which scaling removes. A zero diagonal (a row on constrained dofs
   // only) keeps σ = 1.
-  const PetscInt m = rows_.n_rows();
-  const int dim = rows_.dim;
+  const PetscInt m = n_rows();
+  const int dim = dim_;
   const PetscScalar* f = nullptr;
   TC_PETSC(MatDenseGetArrayRead(f_dense_.get(), &f));
   PetscInt ld = m;
   TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ld));
   sigma_.assign(static_cast<size_t>(m), 1.0);
-  for (PetscInt k = 0; k < rows_.n_nodes(); ++k) {
+  for (PetscInt k = 0; k < n_nodes(); ++k) {
     const PetscInt n = dim * k;
     if (f[n * ld + n] > 0) sigma_[n] = 1.0 / std::sqrt(f[n * ld + n]);
     double t = 0;
@@ -123,16 +180,17 @@ void DualContactSolver::form_scaled() {
   assemble(f_scaled_.get());
 }
 
-void DualContactSolver::save_compliance(std::span<std::vector<int>, 4> record) const {
-  for (int i = 0; i < 2; ++i) {
-    const auto& comp = compliance_[i];
-    record[2 * i].assign(comp.dofs().begin(), comp.dofs().end());
-    record[2 * i + 1].assign(comp.chunks().begin(), comp.chunks().end());
+void DualContactSolver::save_compliance(std::vector<std::vector<int>>& record) const {
+  for (const auto& comp : compliance_) {
+    record.emplace_back(comp.dofs().begin(), comp.dofs().end());
+    record.emplace_back(comp.chunks().begin(), comp.chunks().end());
   }
 }
 
-void DualContactSolver::replay_compliance(std::span<const std::vector<int>, 4> record) {
-  for (int i = 0; i < 2; ++i) {
+void DualContactSolver::replay_compliance(std::span<const std::vector<int>> record) {
+  if (record.size() != 2 * compliance_.size())
+    throw Error("checkpoint: the compliance record does not match the contact bodies");
+  for (size_t i = 0; i < compliance_.size(); ++i) {
     const auto& dofs = record[2 * i];
     const auto& chunks = record[2 * i + 1];
     compliance_[i].replay(std::vector<PetscInt>(dofs.begin(), dofs.end()),
@@ -143,25 +201,26 @@ void DualContactSolver::replay_compliance(std::span<const std::vector<int>, 4> r
 bool DualContactSolver::form_from_compliance() {
   // F = Σ_i B_i,T S_i B_i,Tᵀ: W = B_i,T S_i (nnz(B_i)·|T| flops), then W B_i,Tᵀ
   // (m · nnz(B_i)); no solve unless the rows reach new dofs.
-  const PetscInt m = rows_.n_rows();
-  const core::SparseMatrix* b[2] = {&rows_.slave, &rows_.master};
-  std::vector<Eigen::Triplet<double, PetscInt>> entries[2];
-  std::vector<PetscInt> cols[2];
-  for (int i = 0; i < 2; ++i) {  // both bodies checked before either spends a solve
-    entries[i] = nonzeros(*b[i]);
+  const PetscInt m = n_rows();
+  const int nb = n_bodies();
+  std::vector<std::vector<Eigen::Triplet<double, PetscInt>>> entries(nb);
+  std::vector<std::vector<PetscInt>> cols(nb);
+  for (int i = 0; i < nb; ++i) {  // every body checked before any spends a solve
+    entries[i] = nonzeros(b_[i]);
     cols[i].reserve(entries[i].size());
     for (const auto& e : entries[i]) cols[i].push_back(e.col());
     if (compliance_[i].size() + compliance_[i].missing(cols[i]) > settings_.compliance_limit)
       return false;
   }
-  for (int i = 0; i < 2; ++i) setup_solves_ += static_cast<int>(compliance_[i].cover(cols[i]));
+  for (int i = 0; i < nb; ++i) setup_solves_ += static_cast<int>(compliance_[i].cover(cols[i]));
   // B_i,T row by row, T-positions ascending: the order in which the sparse products summed
   // before (Eigen's setFromTriplets sorts them), which keeps every entry of F to the bit.
   struct RowsT {
     std::vector<PetscInt> start, pos;
     std::vector<double> value;
-  } bt[2];
-  for (int i = 0; i < 2; ++i) {
+  };
+  std::vector<RowsT> bt(nb);
+  for (int i = 0; i < nb; ++i) {
     const auto& s = compliance_[i];
     auto& r = bt[i];
     r.start.assign(static_cast<size_t>(m) + 1, 0);
@@ -195,7 +254,7 @@ bool DualContactSolver::form_from_compliance() {
   std::vector<double> row_major;
   for (PetscInt r0 = 0; r0 < m; r0 += band) {
     const PetscInt nr = std::min(band, m - r0);
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < nb; ++i) {
       const auto& sm = compliance_[i].matrix();
       const auto t = static_cast<size_t>(compliance_[i].size());
       const auto& r = bt[i];
@@ -215,17 +274,19 @@ bool DualContactSolver::form_from_compliance() {
           w[q * band + static_cast<size_t>(k)] = row_major[static_cast<size_t>(k) * t + q];
     }
     for (PetscInt c = 0; c < m; ++c) {
-      double acc[2][band] = {};
-      for (int i = 0; i < 2; ++i) {
+      double sum[band] = {};  // Σ_i F_i(r, c), summed body by body
+      for (int i = 0; i < nb; ++i) {
         const auto& r = bt[i];
+        double acc[band] = {};
         for (PetscInt e = r.start[c]; e < r.start[c + 1]; ++e) {
           const double v = r.value[static_cast<size_t>(e)];
           const double* wq =
               w_[i].data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * band;
-          for (PetscInt k = 0; k < nr; ++k) acc[i][k] += v * wq[k];
+          for (PetscInt k = 0; k < nr; ++k) acc[k] += v * wq[k];
         }
+        for (PetscInt k = 0; k < nr; ++k) sum[k] = i == 0 ? acc[k] : sum[k] + acc[k];
       }
-      for (PetscInt k = 0; k < nr; ++k) fv[c * ldf + r0 + k] = acc[0][k] + acc[1][k];
+      for (PetscInt k = 0; k < nr; ++k) fv[c * ldf + r0 + k] = sum[k];
     }
   }
   constexpr PetscInt tile = 64;
@@ -247,16 +308,16 @@ void DualContactSolver::form_by_solves() {
   // dense right-hand side, one multi-right-hand-side solve per body (level-3 BLAS in the
   // factorisation package, several times faster than as many single solves), then B_i times
   // the solutions. Blocks bound the dense work space to n × block per body.
-  const PetscInt m = rows_.n_rows();
+  const PetscInt m = n_rows();
   constexpr PetscInt block = 64;
   f_dense_ = zero_dense(m, m);
   PetscScalar* f = nullptr;
   TC_PETSC(MatDenseGetArray(f_dense_.get(), &f));
   PetscInt ldf = m;
   TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ldf));
-  const std::pair<const core::SparseMatrix*, const ConstrainedSolver*> bodies[] = {
-      {&rows_.slave, &slave_}, {&rows_.master, &master_}};
-  for (const auto& [b, solver] : bodies) {
+  for (int i = 0; i < n_bodies(); ++i) {
+    const core::SparseMatrix* b = &b_[i];
+    const ConstrainedSolver* solver = bodies_[i];
     const PetscInt n = b->cols();
     for (PetscInt j0 = 0; j0 < m; j0 += block) {
       const PetscInt k = std::min(block, m - j0);
@@ -295,39 +356,37 @@ void DualContactSolver::form_by_solves() {
   TC_PETSC(MatDenseRestoreArray(f_dense_.get(), &f));
   TC_PETSC(MatAssemblyBegin(f_dense_.get(), MAT_FINAL_ASSEMBLY));
   TC_PETSC(MatAssemblyEnd(f_dense_.get(), MAT_FINAL_ASSEMBLY));
-  setup_solves_ = 2 * m;  // right-hand sides solved (in 2⌈m/block⌉ block solves)
+  setup_solves_ = n_bodies() * m;  // right-hand sides solved (in blocks of `block`)
 }
 
-std::vector<double> DualContactSolver::targets(const core::Vector& ref_slave,
-                                               const core::Vector& ref_master,
-                                               const core::Vector& slip_slave,
-                                               const core::Vector& slip_master) const {
-  const PetscInt m = rows_.n_rows();
-  core::Vector normal(m), slip(m);
-  rows_.slave.mult(ref_slave, normal);
-  rows_.master.mult_add(ref_master, normal);
-  rows_.slave.mult(slip_slave, slip);
-  rows_.master.mult_add(slip_master, slip);
-  const auto nv = normal.read();
-  const auto sv = slip.read();
-  std::vector<double> c(static_cast<size_t>(m));
-  const int dim = rows_.dim;
-  for (PetscInt k = 0; k < rows_.n_nodes(); ++k) {
-    c[dim * k] = rows_.gap[k] + nv[dim * k];
+std::vector<double> DualContactSolver::row_values(BodyVectors u) const {
+  core::Vector bu(n_rows());
+  for (int i = 0; i < n_bodies(); ++i)
+    if (i == 0)
+      b_[i].mult(*u[i], bu);
+    else
+      b_[i].mult_add(*u[i], bu);
+  return bu.to_std();
+}
+
+std::vector<double> DualContactSolver::targets(BodyVectors ref, BodyVectors slip) const {
+  const auto nv = row_values(ref);
+  const auto sv = row_values(slip);
+  std::vector<double> c(static_cast<size_t>(n_rows()));
+  const int dim = dim_;
+  for (PetscInt k = 0; k < n_nodes(); ++k) {
+    c[dim * k] = gap_[k] + nv[dim * k];
     for (int l = 1; l < dim; ++l) c[dim * k + l] = sv[dim * k + l];
   }
   return c;
 }
 
-qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
-                                      const core::Vector& u_free_master, std::span<const double> c,
+qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double> c,
                                       std::span<const double> friction_bound, core::Vector& lambda,
-                                      core::Vector& u_slave, core::Vector& u_master, bool recover,
-                                      double rtol) {
-  const PetscInt m = rows_.n_rows();
-  const int dim = rows_.dim;
-  u_slave.copy_from(u_free_slave);
-  u_master.copy_from(u_free_master);
+                                      BodyVectorsOut u, bool recover, double rtol) {
+  const PetscInt m = n_rows();
+  const int dim = dim_;
+  for (int i = 0; i < n_bodies(); ++i) u[i]->copy_from(*u_free[i]);
   if (m == 0) {
     qp::QpResult none;
     none.status = qp::QpStatus::converged;
@@ -336,13 +395,15 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
 
   // d = B u_free − c.
   core::Vector d(m);
-  rows_.slave.mult(u_free_slave, d);
-  rows_.master.mult_add(u_free_master, d);
+  for (int i = 0; i < n_bodies(); ++i)
+    if (i == 0)
+      b_[i].mult(*u_free[i], d);
+    else
+      b_[i].mult_add(*u_free[i], d);
   {
     auto dv = d.view();
     for (PetscInt i = 0; i < m; ++i) dv[i] -= c[i];
   }
-
   // With Σ: the QP in μ = Σ⁻¹λ, min ½μᵀ(ΣFΣ)μ − μᵀΣd over μ_n ≥ 0, ‖μ_τ‖ ≤ 𝔉γ/σ_τ.
   const bool scaled = kind_ == DualOperator::explicit_schur && settings_.scale;
   const auto sigma = [&](PetscInt i) { return scaled ? sigma_[i] : 1.0; };
@@ -355,10 +416,12 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
     }
   }
   qp::FeasibleSet set(d);
-  for (PetscInt k = 0; k < rows_.n_nodes(); ++k) {
-    const double floor = normal_floor_.empty() ? 0.0 : normal_floor_[k] / sigma(dim * k);
-    set.set_interval(dim * k, {floor, qp::infinity});  // λ_n ≥ 0 (or the release floor)
-    const double r = std::max(friction_bound[k], 0.0) / sigma(dim * k + 1);
+  for (PetscInt k = 0; k < n_nodes(); ++k) {
+    const bool held = held_at_zero(k);
+    const double floor = normal_floor_.empty() || held ? 0.0 : normal_floor_[k] / sigma(dim * k);
+    // λ_n ≥ 0 (or the release floor); 0 at a held crosspoint
+    set.set_interval(dim * k, {floor, held ? 0.0 : qp::infinity});
+    const double r = held ? 0.0 : std::max(friction_bound[k], 0.0) / sigma(dim * k + 1);
     if (dim == 2)
       set.set_interval(dim * k + 1, {-r, r});  // |λ_τ| ≤ 𝔉γ
     else
@@ -383,25 +446,23 @@ qp::QpResult DualContactSolver::solve(const core::Vector& u_free_slave,
   lambda_max_ = r.max_eigenvalue;
   lambda_max_rows_ = m;
 
-  if (recover) this->recover(lambda, u_slave, u_master);
+  if (recover) this->recover(lambda, u);
   return r;
 }
 
-void DualContactSolver::recover(const core::Vector& lambda, core::Vector& u_slave,
-                                core::Vector& u_master) const {
-  if (rows_.n_rows() == 0) return;
-  rows_.slave.mult_transpose(lambda, ws_);  // u_i −= A_i⁻¹ B_iᵀ λ
-  solve_homogeneous(slave_, ws_, zs_);
-  u_slave.axpy(-1.0, zs_);
-  rows_.master.mult_transpose(lambda, wm_);
-  solve_homogeneous(master_, wm_, zm_);
-  u_master.axpy(-1.0, zm_);
+void DualContactSolver::recover(const core::Vector& lambda, BodyVectorsOut u) const {
+  if (n_rows() == 0) return;
+  for (int i = 0; i < n_bodies(); ++i) {  // u_i −= A_i⁻¹ B_iᵀ λ
+    b_[i].mult_transpose(lambda, w_in_[i]);
+    y_[i].zero();
+    bodies_[i]->solve(w_in_[i], y_[i]);
+    u[i]->axpy(-1.0, y_[i]);
+  }
 }
 
-void DualContactSolver::constraint_values(const core::Vector& u_free_slave,
-                                          const core::Vector& u_free_master,
-                                          const core::Vector& lambda, core::Vector& bu) const {
-  const PetscInt m = rows_.n_rows();
+void DualContactSolver::constraint_values(BodyVectors u_free, const core::Vector& lambda,
+                                          core::Vector& bu) const {
+  const PetscInt m = n_rows();
   bu = core::Vector(m);
   if (m == 0) return;
   core::Vector f_lambda(m);
@@ -409,8 +470,11 @@ void DualContactSolver::constraint_values(const core::Vector& u_free_slave,
     TC_PETSC(MatMult(f_dense_.get(), lambda.get(), f_lambda.get()));
   else
     apply_f(lambda, f_lambda);
-  rows_.slave.mult(u_free_slave, bu);
-  rows_.master.mult_add(u_free_master, bu);
+  for (int i = 0; i < n_bodies(); ++i)
+    if (i == 0)
+      b_[i].mult(*u_free[i], bu);
+    else
+      b_[i].mult_add(*u_free[i], bu);
   bu.axpy(-1.0, f_lambda);
 }
 

@@ -2,8 +2,8 @@
 // The mechanical step with contact, dualised (6.9): for the slave and master bodies with
 // factorised A_i (4/τ²M_u + K_u, or K_u when quasistatic; Dirichlet data eliminated),
 //   A_i u_i + B_iᵀ λ = f_i,   λ ∈ M(γ),   (μ − λ)ᵀ(B u − c) ≤ 0  ∀μ ∈ M(γ),
-// where B = [B_s B_m] stacks, per contact node k, the normal row and the dim − 1 tangential
-// rows (5.3–5.4, 6.4). Eliminating u gives the QP in λ:
+// where B = [B_1 … B_N] (the bodies of every contact pair) stacks, per contact node k, the normal
+// row and the dim − 1 tangential rows (5.3–5.4, 6.4). Eliminating u gives the QP in λ:
 //   min ½λᵀFλ − λᵀd,  F = Σ_i B_i A_i⁻¹ B_iᵀ,  d = Σ_i B_i A_i⁻¹ f_i − c,
 // over λ_n,k ≥ 0 and ‖λ_τ,k‖ ≤ 𝔉γ_k (an interval in 2D, a disc in 3D), and then
 // u_i = A_i⁻¹(f_i − B_iᵀλ). F is applied matrix-free (two solves per application) or formed
@@ -11,6 +11,8 @@
 // each body's compliance on the dofs the rows touch (DofCompliance): no solve once the rows
 // stay on dofs seen before, whatever the geometry of the step.
 #include <Eigen/Dense>
+#include <array>
+#include <cassert>
 #include <span>
 #include <string>
 #include <vector>
@@ -48,14 +50,43 @@ struct DualContactSettings {
   bool scale = true;
 };
 
+/// The bodies of one contact pair among the bodies of a DualContactSolver.
+struct PairBodies {
+  int slave = 0, master = 1;
+};
+
+/// Body vectors of the dual solve, one per body of the solver, in its order.
+using BodyVectors = std::span<const core::Vector* const>;
+using BodyVectorsOut = std::span<core::Vector* const>;
+
 class DualContactSolver {
  public:
+  /// The bodies' factorised operators A_i and their displacement sizes (same order).
+  DualContactSolver(std::vector<const ConstrainedSolver*> bodies, std::vector<PetscInt> n_u,
+                    DualContactSettings settings);
+  /// One pair: the slave is body 0, the master body 1.
   DualContactSolver(const ConstrainedSolver& slave, const ConstrainedSolver& master,
                     PetscInt n_u_slave, PetscInt n_u_master, DualContactSettings settings);
 
-  /// New constraint rows (each step, from the mortar pair in the current configuration).
+  /// New constraint rows (each step, from the mortar pairs in the current configuration): the
+  /// rows of every pair, stacked in this order (pair p's contact nodes follow pair p − 1's),
+  /// with the bodies each pair's slave and master columns belong to.
+  void set_rows(std::vector<ContactRows> pairs, std::vector<PairBodies> bodies);
+  /// One pair on bodies 0 and 1.
   void set_rows(ContactRows rows);
-  [[nodiscard]] const ContactRows& rows() const { return rows_; }
+  [[nodiscard]] int n_pairs() const { return static_cast<int>(pairs_.size()); }
+  [[nodiscard]] const ContactRows& pair_rows(int p) const { return pairs_[p]; }
+  [[nodiscard]] const std::vector<PairBodies>& pair_bodies() const { return pair_bodies_; }
+  /// The first contact node of pair p in the stacked rows (p = n_pairs(): the total).
+  [[nodiscard]] PetscInt pair_offset(int p) const { return offsets_[p]; }
+  /// The rows of the one pair (set_rows with a single pair).
+  [[nodiscard]] const ContactRows& rows() const {
+    assert(pairs_.size() == 1);
+    return pairs_.front();
+  }
+  [[nodiscard]] int dim() const { return dim_; }
+  [[nodiscard]] PetscInt n_nodes() const { return offsets_.back(); }
+  [[nodiscard]] PetscInt n_rows() const { return dim_ * n_nodes(); }
   [[nodiscard]] DualOperator kind() const { return kind_; }
   /// The explicit F (dense m × m) of the last set_rows; null when matrix-free.
   [[nodiscard]] ::Mat explicit_matrix() const {
@@ -65,56 +96,82 @@ class DualContactSolver {
   /// the compliance, only the columns of newly touched dofs).
   [[nodiscard]] int setup_solves() const { return setup_solves_; }
 
+  /// B u of the stacked rows, one vector per body.
+  [[nodiscard]] std::vector<double> row_values(BodyVectors u) const;
   /// c of (5.4): c_n,k = g_k + (B u_ref)_n,k (non-penetration of the increment from the
   /// configuration of B) and c_τ = (B u_slip)_τ (the slip is measured from u_slip: u^k, or
   /// u^k + τ/2 u̇^k with Newmark, which makes B_τ u − c_τ = τ/2 B_τ u̇^{k+1}).
+  [[nodiscard]] std::vector<double> targets(BodyVectors ref, BodyVectors slip) const;
   [[nodiscard]] std::vector<double> targets(const core::Vector& ref_slave,
                                             const core::Vector& ref_master,
                                             const core::Vector& slip_slave,
-                                            const core::Vector& slip_master) const;
+                                            const core::Vector& slip_master) const {
+    return targets(std::array{&ref_slave, &ref_master}, std::array{&slip_slave, &slip_master});
+  }
 
   /// Given u_free,i = A_i⁻¹ f_i (with the Dirichlet values), the targets c and the friction
   /// bounds 𝔉γ_k per node, solves for λ (warm-started from its value on entry) and returns
   /// u_i = u_free,i − A_i⁻¹ B_iᵀ λ. With `recover` false u_i = u_free,i on return (two solves
   /// saved: see recover() and constraint_values()). `rtol` > 0 overrides the settings' QP
   /// tolerance (a looser one for the early updates of a fixed point).
+  qp::QpResult solve(BodyVectors u_free, std::span<const double> c,
+                     std::span<const double> friction_bound, core::Vector& lambda, BodyVectorsOut u,
+                     bool recover = true, double rtol = 0);
   qp::QpResult solve(const core::Vector& u_free_slave, const core::Vector& u_free_master,
                      std::span<const double> c, std::span<const double> friction_bound,
                      core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master,
-                     bool recover = true, double rtol = 0);
+                     bool recover = true, double rtol = 0) {
+    return solve(std::array{&u_free_slave, &u_free_master}, c, friction_bound, lambda,
+                 std::array{&u_slave, &u_master}, recover, rtol);
+  }
   /// λ_n,k ≥ floor_k ≤ 0 instead of λ_n,k ≥ 0 in the solves until the next set_rows (empty:
   /// all 0). The modified mass scheme lets a node release with λ_n^{k+1} ≥ −λ_n^k, so that
   /// the step's mean contact force does no work (release_floor, multiplier_transfer.hpp).
   void set_normal_floor(std::vector<double> floor) { normal_floor_ = std::move(floor); }
-  /// u_i −= A_i⁻¹ B_iᵀ λ (two solves): what solve() skips with recover = false.
-  void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const;
+  /// Nodes whose multipliers are held at 0 (λ_n ∈ [0, 0], λ_τ = 0) until the next set_rows:
+  /// the crosspoints of a later pair (ContactCoupling), whose rows repeat an earlier pair's.
+  void hold_at_zero(std::vector<char> held) { held_ = std::move(held); }
+  [[nodiscard]] bool held_at_zero(PetscInt k) const {
+    return !held_.empty() && held_[static_cast<size_t>(k)] != 0;
+  }
+  /// u_i −= A_i⁻¹ B_iᵀ λ (a solve per body): what solve() skips with recover = false.
+  void recover(const core::Vector& lambda, BodyVectorsOut u) const;
+  void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const {
+    recover(lambda, std::array{&u_slave, &u_master});
+  }
   /// B u = B u_free − F λ of u = u_free − A⁻¹Bᵀλ without forming u (explicit F: one dense
-  /// product; matrix-free: two solves).
+  /// product; matrix-free: a solve per body).
+  void constraint_values(BodyVectors u_free, const core::Vector& lambda, core::Vector& bu) const;
   void constraint_values(const core::Vector& u_free_slave, const core::Vector& u_free_master,
-                         const core::Vector& lambda, core::Vector& bu) const;
+                         const core::Vector& lambda, core::Vector& bu) const {
+    constraint_values(std::array{&u_free_slave, &u_free_master}, lambda, bu);
+  }
 
   /// y = Σ_i B_i A_i⁻¹ B_iᵀ x (matrix-free application; also used to form F).
   void apply_f(const core::Vector& x, core::Vector& y) const;
 
+  /// The checkpoint's part of the compliance: per body its dofs and chunks
+  /// (DofCompliance::dofs, chunks); replay_compliance rebuilds S from them with the same bits.
+  void save_compliance(std::vector<std::vector<int>>& record) const;
+  void replay_compliance(std::span<const std::vector<int>> record);
+
  private:
-  void solve_homogeneous(const ConstrainedSolver& s, const core::Vector& rhs,
-                         core::Vector& x) const;
+  [[nodiscard]] int n_bodies() const { return static_cast<int>(bodies_.size()); }
+  void stack_rows();            // b_ from pairs_
   void form_scaled();           // Σ and Σ F Σ from f_dense_
   void form_by_solves();        // F column blocks by multi-right-hand-side solves
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
 
- public:
-  /// The checkpoint's part of the compliance: the slave's dofs and chunks, then the master's
-  /// (DofCompliance::dofs, chunks); replay_compliance rebuilds S from them with the same bits.
-  void save_compliance(std::span<std::vector<int>, 4> record) const;
-  void replay_compliance(std::span<const std::vector<int>, 4> record);
-
- private:
-  const ConstrainedSolver& slave_;
-  const ConstrainedSolver& master_;
+  std::vector<const ConstrainedSolver*> bodies_;
   DualContactSettings settings_;
-  ContactRows rows_;
-  std::vector<double> normal_floor_;  // per node; empty: 0
+  std::vector<ContactRows> pairs_;
+  std::vector<PairBodies> pair_bodies_;
+  std::vector<PetscInt> offsets_{0};  // first contact node of each pair, then the total
+  int dim_ = 3;
+  std::vector<core::SparseMatrix> b_;  // B_i: the stacked rows' columns of body i
+  std::vector<double> gap_;            // the pairs' weighted gaps, stacked
+  std::vector<double> normal_floor_;   // per node; empty: 0
+  std::vector<char> held_;             // per node; empty: none held
   DualOperator kind_ = DualOperator::matrix_free;
   core::Handle<::Mat, MatDestroy> f_dense_;
   core::Handle<::Mat, MatDestroy> f_scaled_;  // Σ F Σ (explicit and settings_.scale)
@@ -122,9 +179,9 @@ class DualContactSolver {
   int setup_solves_ = 0;
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
-  DofCompliance compliance_[2];  // slave, master
-  std::vector<double> w_[2];     // form_from_compliance: a band of B_i,T S_i (work space)
-  mutable core::Vector ws_, wm_, ys_, ym_, zs_, zm_;
+  std::vector<DofCompliance> compliance_;  // per body
+  std::vector<std::vector<double>> w_;     // form_from_compliance: a band of B_i,T S_i per body
+  mutable std::vector<core::Vector> w_in_, y_;  // per body: B_iᵀx and A_i⁻¹B_iᵀx
 };
 
 }  // namespace tc::physics

@@ -56,6 +56,15 @@ void ContactStatistics::register_history(History& h) const {
   h.add("contact_tangential_force_sum", History::value_of(tangential_force_sum));
 }
 
+void ContactStatistics::register_pair_history(History& h, const std::string& suffix) const {
+  h.add("contact_normal_force" + suffix, History::value_of(normal_force));
+  h.add("contact_tangential_force" + suffix, History::value_of(tangential_force));
+  h.add("frictional_dissipation" + suffix, History::value_of(dissipation));
+  h.add("active_nodes" + suffix, History::value_of(active_nodes));
+  h.add("slip_nodes" + suffix, History::value_of(slip_nodes));
+  h.add("contact_tangential_force_sum" + suffix, History::value_of(tangential_force_sum));
+}
+
 void ContactHeat::register_history(History& h) const {
   h.add("heat_generated", History::value_of(generated));
   h.add("heat_to_slave", History::value_of(to_slave));

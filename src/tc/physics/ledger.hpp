@@ -2,6 +2,7 @@
 // The run's ledger: what the contact, the interface heat and the boundary heat did, step by
 // step and cumulatively (the history.csv columns, summary.json, checkpoints).
 #include <span>
+#include <string>
 
 #include "tc/contact/contact_rows.hpp"
 #include "tc/contact/mortar_pair.hpp"
@@ -39,6 +40,9 @@ struct ContactStatistics {
   /// Its history.csv columns (qp_iterations, operator_applications, the forces, the
   /// dissipation, the node counts, friction_iterations).
   void register_history(History& h) const;
+  /// The columns of one pair among several: its forces, dissipation and node counts, each
+  /// name followed by `suffix`.
+  void register_pair_history(History& h, const std::string& suffix) const;
 };
 
 /// Heat through the contact interface, cumulative from t = 0 [J] (history.csv):

@@ -39,13 +39,13 @@ void MultiplierTransfer::warm_start(const contact::ContactRows& rows,
     for (int l = 0; l < 2; ++l) tangents_[l] = mortar->tangents(l);
 }
 
-void MultiplierTransfer::save(Checkpoint& c) const {
+void MultiplierTransfer::save(Checkpoint::Pair& c) const {
   c.lambda_nodes = nodes_;
   for (const auto& tl : tangents_)
     for (const auto& t : tl) c.lambda_tangents.insert(c.lambda_tangents.end(), t.begin(), t.end());
 }
 
-void MultiplierTransfer::restore(const Checkpoint& c) {
+void MultiplierTransfer::restore(const Checkpoint::Pair& c) {
   nodes_ = c.lambda_nodes;
   const size_t per_basis = c.lambda_tangents.size() / 6;  // nodes with two tangents of 3
   for (int l = 0; l < 2; ++l) {

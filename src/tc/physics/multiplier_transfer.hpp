@@ -23,9 +23,11 @@ class MultiplierTransfer {
   void warm_start(const contact::ContactRows& rows, const contact::MortarPair* mortar,
                   core::Vector& lambda);
 
-  /// The checkpoint's lambda_nodes and lambda_tangents, and back.
-  void save(Checkpoint& c) const;
-  void restore(const Checkpoint& c);
+  /// The pair's lambda_nodes and lambda_tangents in the checkpoint, and back.
+  void save(Checkpoint::Pair& c) const;
+  void restore(const Checkpoint::Pair& c);
+  /// The contact nodes the last warm start left λ on.
+  [[nodiscard]] size_t n_nodes() const { return nodes_.size(); }
 
  private:
   std::vector<int> nodes_;                          // slave mesh node of each contact node

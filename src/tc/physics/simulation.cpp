@@ -134,10 +134,11 @@ void Simulation::advance() {
   if (!problem_.contacts.empty()) {
     if (!contact_.enabled())
       throw Error("the problem has contact but no contact rows (enable_contact)");
-    const auto& c = problem_.contacts.at(0);
     coupling = contact_.couple(step_ + 1);
-    for (int b = 0; b < n_bodies(); ++b)  // the bodies outside the pair
-      if (b != c.slave_body && b != c.master_body) steps_.couple(b, step_ + 1);
+    const auto& members = contact_.members();
+    for (int b = 0; b < n_bodies(); ++b)  // the bodies in no pair
+      if (std::find(members.begin(), members.end(), b) == members.end())
+        steps_.couple(b, step_ + 1);
     contact_.bookkeeping();
   } else {
     for (int b = 0; b < n_bodies(); ++b) coupling = std::max(coupling, steps_.couple(b, step_ + 1));

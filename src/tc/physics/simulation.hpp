@@ -61,7 +61,9 @@ class Simulation {
   /// (contact::MortarPair), evaluated in the configuration of t^k at every step.
   void enable_mortar_contact(DualContactSettings settings = {},
                              contact::MortarOptions options = {});
-  /// The mortar pair (null unless enable_mortar_contact was called).
+  /// The contact pairs: their mortar pairs, multipliers, statistics (contact_coupling.hpp).
+  [[nodiscard]] const ContactCoupling& contact() const { return contact_; }
+  /// The first pair's mortar pair (null unless enable_mortar_contact was called).
   [[nodiscard]] const contact::MortarPair* mortar() const { return contact_.mortar(); }
   /// B_τ(u^{k+1} − u^k) of the last step, node-major like the multipliers (normal rows 0).
   [[nodiscard]] const std::vector<double>& contact_slip() const { return contact_.slip(); }

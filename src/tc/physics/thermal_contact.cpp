@@ -2,38 +2,44 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "tc/core/error.hpp"
 
 namespace tc::physics {
 
-InterfaceHeatSolver::InterfaceHeatSolver(const ConstrainedSolver& slave, PetscInt n_slave,
-                                         const std::vector<int>& slave_nodes,
-                                         const ConstrainedSolver& master, PetscInt n_master,
-                                         const std::vector<int>& master_nodes)
-    : solver_{&slave, &master}, n_{n_slave, n_master}, nodes_{slave_nodes, master_nodes} {
-  for (int i = 0; i < 2; ++i) {
-    index_[i].assign(static_cast<size_t>(n_[i]), -1);
+InterfaceHeatSolver::InterfaceHeatSolver(std::vector<const ConstrainedSolver*> solvers,
+                                         std::vector<PetscInt> n,
+                                         std::vector<std::vector<int>> nodes)
+    : solver_(std::move(solvers)), n_(std::move(n)), nodes_(std::move(nodes)) {
+  offset_.push_back(0);
+  for (int i = 0; i < n_bodies(); ++i) {
+    index_.emplace_back(static_cast<size_t>(n_[i]), -1);
     for (size_t a = 0; a < nodes_[i].size(); ++a) {
       const int node = nodes_[i][a];
       if (node < 0 || node >= n_[i])
         throw Error("InterfaceHeatSolver: interface node out of range");
-      index_[i][node] = n_gamma_ + static_cast<int>(a);
+      index_[i][node] = offset_.back() + static_cast<int>(a);
     }
-    n_gamma_ += static_cast<int>(nodes_[i].size());
-    rhs_[i] = core::Vector(n_[i]);
+    offset_.push_back(offset_.back() + static_cast<int>(nodes_[i].size()));
+    rhs_.emplace_back(n_[i]);
   }
-  columns_.resize(static_cast<size_t>(n_gamma_));
+  columns_.resize(static_cast<size_t>(offset_.back()));
+}
+
+int InterfaceHeatSolver::body_of(int g) const {
+  return static_cast<int>(std::upper_bound(offset_.begin(), offset_.end(), g) - offset_.begin()) -
+         1;
 }
 
 const std::vector<double>& InterfaceHeatSolver::column(int g) {
   auto& col = columns_[g];
   if (!col.empty()) return col;
-  const int body = g < static_cast<int>(nodes_[0].size()) ? 0 : 1;
-  const int offset = body == 0 ? 0 : static_cast<int>(nodes_[0].size());
+  const int body = body_of(g);
   core::Vector e(n_[body]), x(n_[body]);  // x = 0 on the constrained dofs: homogeneous data
   {
     auto ev = e.view();
-    ev[nodes_[body][g - offset]] = 1.0;
+    ev[nodes_[body][g - offset_[body]]] = 1.0;
   }
   solver_[body]->solve(e, x);
   ++setup_solves_;
@@ -43,45 +49,51 @@ const std::vector<double>& InterfaceHeatSolver::column(int g) {
   return col;
 }
 
-void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
-  // L_Γ entries (global interface indices) from the four blocks, rows of Γ only. The blocks
-  // cover disjoint (row, column) pairs and a row lists a column once: no entry repeats.
+void InterfaceHeatSolver::set_conductance(std::span<const PairConductance> pairs) {
+  // L_Γ entries (global interface indices) from the four blocks of each pair, rows of Γ only.
+  // Within a pair the blocks cover disjoint (row, column) pairs and a row lists a column once;
+  // two pairs on one body may add to the same entry (setFromTriplets sums them).
   struct Entry {
     int row, col;
     double value;
   };
   std::vector<Entry> entries;
-  const core::SparseMatrix* blocks[2][2] = {{&l.ss, &l.sm}, {&l.ms, &l.mm}};
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j) {
-      const auto& m = *blocks[i][j];
-      if (m.rows() != n_[i] || m.cols() != n_[j])
-        throw Error("InterfaceHeatSolver: L_θγ block sizes do not match the bodies");
-      for (const int r : nodes_[i]) {
-        PetscInt n = 0;
-        const PetscInt* cols = nullptr;
-        const PetscScalar* vals = nullptr;
-        TC_PETSC(MatGetRow(m.get(), r, &n, &cols, &vals));
-        for (PetscInt k = 0; k < n; ++k) {
-          if (vals[k] == 0.0) continue;
-          const int gc = index_[j][cols[k]];
-          if (gc < 0) {
-            TC_PETSC(MatRestoreRow(m.get(), r, &n, &cols, &vals));
-            throw Error(fmt::format(
-                "InterfaceHeatSolver: L_θγ couples interface node {} to node {} off the "
-                "contact surface",
-                r, cols[k]));
+  for (const auto& pair : pairs) {
+    const auto& l = *pair.l;
+    const core::SparseMatrix* blocks[2][2] = {{&l.ss, &l.sm}, {&l.ms, &l.mm}};
+    const int body[2] = {pair.slave, pair.master};
+    for (int bi = 0; bi < 2; ++bi)
+      for (int bj = 0; bj < 2; ++bj) {
+        const int i = body[bi], j = body[bj];
+        const auto& m = *blocks[bi][bj];
+        if (m.rows() != n_[i] || m.cols() != n_[j])
+          throw Error("InterfaceHeatSolver: L_θγ block sizes do not match the bodies");
+        for (const int r : nodes_[i]) {
+          PetscInt n = 0;
+          const PetscInt* cols = nullptr;
+          const PetscScalar* vals = nullptr;
+          TC_PETSC(MatGetRow(m.get(), r, &n, &cols, &vals));
+          for (PetscInt k = 0; k < n; ++k) {
+            if (vals[k] == 0.0) continue;
+            const int gc = index_[j][cols[k]];
+            if (gc < 0) {
+              TC_PETSC(MatRestoreRow(m.get(), r, &n, &cols, &vals));
+              throw Error(fmt::format(
+                  "InterfaceHeatSolver: L_θγ couples interface node {} to node {} off the "
+                  "contact surface",
+                  r, cols[k]));
+            }
+            entries.push_back({index_[i][r], gc, vals[k]});
           }
-          entries.push_back({index_[i][r], gc, vals[k]});
+          TC_PETSC(MatRestoreRow(m.get(), r, &n, &cols, &vals));
         }
-        TC_PETSC(MatRestoreRow(m.get(), r, &n, &cols, &vals));
       }
-    }
+  }
   // The active set J: interface nodes with a row or a column of L.
-  std::vector<int> position(static_cast<size_t>(n_gamma_), -1);
+  std::vector<int> position(static_cast<size_t>(offset_.back()), -1);
   for (const auto& e : entries) position[e.row] = position[e.col] = 0;
   active_.clear();
-  for (int g = 0; g < n_gamma_; ++g)
+  for (int g = 0; g < offset_.back(); ++g)
     if (position[g] == 0) {
       position[g] = static_cast<int>(active_.size());
       active_.push_back(g);
@@ -95,15 +107,14 @@ void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
   l_active_.setFromTriplets(triplets.begin(), triplets.end());
   if (na == 0) return;
   // I + S_JJ L_JJ, S block diagonal (the bodies do not see each other through A).
-  const int n_s = static_cast<int>(nodes_[0].size());
   Eigen::MatrixXd s = Eigen::MatrixXd::Zero(na, na);
   for (Eigen::Index b = 0; b < na; ++b) {
     const int gb = active_[b];
+    const int body = body_of(gb);
     const auto& col = column(gb);
-    const bool slave_b = gb < n_s;
     for (Eigen::Index a = 0; a < na; ++a) {
       const int ga = active_[a];
-      if ((ga < n_s) == slave_b) s(a, b) = col[slave_b ? ga : ga - n_s];
+      if (ga >= offset_[body] && ga < offset_[body + 1]) s(a, b) = col[ga - offset_[body]];
     }
   }
   Eigen::MatrixXd k = s * l_active_;
@@ -111,42 +122,34 @@ void InterfaceHeatSolver::set_conductance(const contact::ThermalContact& l) {
   lu_.compute(k);
 }
 
-void InterfaceHeatSolver::solve(const core::Vector& b_slave, const core::Vector& b_master,
-                                core::Vector& x_slave, core::Vector& x_master) const {
-  const core::Vector* b[2] = {&b_slave, &b_master};
-  core::Vector* x[2] = {&x_slave, &x_master};
-  for (int i = 0; i < 2; ++i) solver_[i]->solve(*b[i], *x[i]);  // x = G(b): P x = y₀
+void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
+                                std::span<core::Vector* const> x) const {
+  for (int i = 0; i < n_bodies(); ++i) solver_[i]->solve(*b[i], *x[i]);  // x = G(b): P x = y₀
   if (active_.empty()) return;
-  const int n_s = static_cast<int>(nodes_[0].size());
   const auto na = static_cast<Eigen::Index>(active_.size());
   Eigen::VectorXd y0(na);
   {
-    const auto xs = x_slave.read();
-    const auto xm = x_master.read();
+    std::vector<std::vector<double>> xs;
+    for (int i = 0; i < n_bodies(); ++i) xs.push_back(x[i]->to_std());
     for (Eigen::Index a = 0; a < na; ++a) {
       const int g = active_[a];
-      y0(a) = g < n_s ? xs[nodes_[0][g]] : xm[nodes_[1][g - n_s]];
+      const int body = body_of(g);
+      y0(a) = xs[body][nodes_[body][g - offset_[body]]];
     }
   }
   const Eigen::VectorXd c = l_active_ * lu_.solve(y0);  // L_Γ y
-  bool touched[2] = {false, false};
-  for (int i = 0; i < 2; ++i) rhs_[i].copy_from(*b[i]);
-  {
-    auto rs = rhs_[0].view();
-    auto rm = rhs_[1].view();
+  std::vector<char> touched(static_cast<size_t>(n_bodies()), 0);
+  for (int i = 0; i < n_bodies(); ++i) rhs_[i].copy_from(*b[i]);
+  for (int i = 0; i < n_bodies(); ++i) {
+    auto rv = rhs_[i].view();
     for (Eigen::Index a = 0; a < na; ++a) {
       const int g = active_[a];
-      if (c(a) == 0.0) continue;
-      if (g < n_s) {
-        rs[nodes_[0][g]] -= c(a);
-        touched[0] = true;
-      } else {
-        rm[nodes_[1][g - n_s]] -= c(a);
-        touched[1] = true;
-      }
+      if (c(a) == 0.0 || g < offset_[i] || g >= offset_[i + 1]) continue;
+      rv[nodes_[i][g - offset_[i]]] -= c(a);
+      touched[i] = 1;
     }
   }
-  for (int i = 0; i < 2; ++i)
+  for (int i = 0; i < n_bodies(); ++i)
     if (touched[i]) solver_[i]->solve(rhs_[i], *x[i]);  // θ = G(b − Pᵀ L_Γ y)
 }
 

@@ -1,12 +1,13 @@
 #pragma once
 // The heat step of a contact pair with the conductance L_θγ of §4.4 on the left (implicit):
 //
-//   (A + L) θ = b,   A = diag(A_s, A_m),  A_i = M_θ^i/τ + K_θ^i  (factorised once, Dirichlet
+//   (A + L) θ = b,   A = diag(A_1, …, A_N) over the bodies of the contact pairs,  A_i = M_θ^i/τ +
+//   K_θ^i  (factorised once, Dirichlet
 //                                                                  data eliminated),
 //
 // where L = β_C ∫ γ [θ][χ] changes with γ = λ_n at every iteration of the fixed point (6.3).
 // L lives on the interface only: L = Pᵀ L_Γ P with P the restriction to Γ, the nodes of the
-// two contact surfaces (a fixed set). With G the solve with A (Dirichlet values θ_D kept) and
+// contact surfaces (a fixed set). With G the solve with A (Dirichlet values θ_D kept) and
 // S = P G₀ Pᵀ (G₀: the same solve with homogeneous data; S is symmetric positive semidefinite,
 // zero on constrained nodes), the interface values y = Pθ solve
 //
@@ -20,6 +21,8 @@
 // conductance and kept for the run (the matrices do not change while τ does not).
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <array>
+#include <span>
 #include <vector>
 
 #include "tc/contact/mortar_pair.hpp"
@@ -28,23 +31,41 @@
 
 namespace tc::physics {
 
+/// L_θγ of one contact pair between two bodies of an InterfaceHeatSolver.
+struct PairConductance {
+  const contact::ThermalContact* l;
+  int slave, master;  // the solver's bodies
+};
+
 class InterfaceHeatSolver {
  public:
-  /// `slave_nodes` / `master_nodes`: the nodes of each contact surface (each body's node
-  /// numbering = its temperature dofs); `n_slave` / `n_master`: the bodies' node counts. The
-  /// solvers must outlive this object.
+  /// Per body (the bodies of the contact pairs): its solver, its node count and the nodes of its
+  /// contact surfaces, of every pair (its node numbering = its temperature dofs). The solvers
+  /// must outlive this object.
+  InterfaceHeatSolver(std::vector<const ConstrainedSolver*> solvers, std::vector<PetscInt> n,
+                      std::vector<std::vector<int>> nodes);
+  /// One pair: the slave is body 0, the master body 1.
   InterfaceHeatSolver(const ConstrainedSolver& slave, PetscInt n_slave,
                       const std::vector<int>& slave_nodes, const ConstrainedSolver& master,
-                      PetscInt n_master, const std::vector<int>& master_nodes);
+                      PetscInt n_master, const std::vector<int>& master_nodes)
+      : InterfaceHeatSolver({&slave, &master}, {n_slave, n_master}, {slave_nodes, master_nodes}) {}
 
-  /// Takes L_θγ (blocks over the full node numbering, as MortarPair::thermal_conductance
-  /// returns them) for the following solves; throws Error when L has an entry off Γ.
-  void set_conductance(const contact::ThermalContact& l);
+  /// Takes L_θγ of every pair (blocks over the full node numbering, as
+  /// MortarPair::thermal_conductance returns them) for the following solves; throws Error when L
+  /// has an entry off Γ.
+  void set_conductance(std::span<const PairConductance> pairs);
+  void set_conductance(const contact::ThermalContact& l) {
+    const PairConductance one{&l, 0, 1};
+    set_conductance(std::span(&one, 1));
+  }
 
-  /// Solves (A + L) θ = b for both bodies. On entry x_* hold the Dirichlet values at their
+  /// Solves (A + L) θ = b for every body. On entry x_i hold the Dirichlet values at their
   /// constrained dofs (other entries are ignored), as for ConstrainedSolver::solve.
+  void solve(std::span<const core::Vector* const> b, std::span<core::Vector* const> x) const;
   void solve(const core::Vector& b_slave, const core::Vector& b_master, core::Vector& x_slave,
-             core::Vector& x_master) const;
+             core::Vector& x_master) const {
+    solve(std::array{&b_slave, &b_master}, std::array{&x_slave, &x_master});
+  }
 
   /// Number of interface nodes L currently couples (the size of the dense system).
   [[nodiscard]] int active_nodes() const { return static_cast<int>(active_.size()); }
@@ -53,20 +74,22 @@ class InterfaceHeatSolver {
   [[nodiscard]] long setup_solves() const { return setup_solves_; }
 
  private:
+  [[nodiscard]] int n_bodies() const { return static_cast<int>(solver_.size()); }
+  [[nodiscard]] int body_of(int g) const;    // the body of global interface index g
   const std::vector<double>& column(int g);  // S e_g over the interface of g's body
 
-  const ConstrainedSolver* solver_[2];
-  PetscInt n_[2];
-  std::vector<int> nodes_[2];  // interface nodes of each body (sorted)
-  std::vector<int> index_[2];  // body node → interface index (global: slave first), or −1
-  int n_gamma_ = 0;
+  std::vector<const ConstrainedSolver*> solver_;
+  std::vector<PetscInt> n_;
+  std::vector<std::vector<int>> nodes_;  // interface nodes of each body (sorted)
+  std::vector<std::vector<int>> index_;  // body node → global interface index, or −1
+  std::vector<int> offset_;              // first global interface index of each body, then n_Γ
   std::vector<std::vector<double>> columns_;  // S columns, by global interface index (lazy)
   long setup_solves_ = 0;
 
   std::vector<int> active_;                  // global interface indices with a row of L
   Eigen::SparseMatrix<double> l_active_;     // L_Γ on the active nodes
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  // of I + S_JJ L_JJ
-  mutable core::Vector rhs_[2];
+  mutable std::vector<core::Vector> rhs_;
 };
 
 }  // namespace tc::physics
