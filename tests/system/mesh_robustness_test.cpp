@@ -4,6 +4,7 @@
 // is wrong) or a warning, never a crash; checked through the command line.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <regex>
 
 #include "support/cli.hpp"
@@ -182,6 +183,46 @@ TEST(MeshRobustness, ContactSurfacesThatDoNotFaceEachOtherAreAWarning) {
   const auto r = thermocontact("check " + (dir / "case.toml").string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("do not face each other"), std::string::npos) << r.output;
+}
+
+TEST(MeshRobustness, EveryContactPairIsCheckedAndNamedWhenThereAreSeveral) {
+  // tests/cases/several-pairs/three-blocks-2d.toml: top on middle ("upper"), middle on base
+  // ("lower"), all touching: valid, no warning. Checked only: `run` takes one pair so far.
+  const auto valid = fs::path(TC_SOURCE_DIR) / "tests/cases/several-pairs/three-blocks-2d.toml";
+  auto r = thermocontact("check " + valid.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("valid (2D, 3 bodies"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+  const auto p = tc::io::read_case(valid);
+  for (size_t i = 0; i < 2; ++i) {
+    const auto ic = tc::io::initial_contact(p, i);
+    EXPECT_GT(ic.contact_nodes, 0) << i;
+    EXPECT_NEAR(ic.smallest_gap, 0.0, 1e-12) << i;
+  }
+  const auto text = tc::test::read_file(valid);
+  const auto variant = [&](const std::string& name, const std::string& from,
+                           const std::string& to) {
+    const auto dir = tc::test::fresh_dir(name);
+    auto t = text;
+    t.replace(t.find(from), from.size(), to);
+    std::ofstream(dir / "case.toml") << t;
+    return thermocontact("check " + (dir / "case.toml").string());
+  };
+  // The base 0.5 m lower: the lower pair does not face, the upper one does.
+  r = variant("pairs-apart", "min = [0.0, 0.0], max = [1.0, 1.0]",
+              "min = [0.0, -0.5], max = [1.0, 0.5]");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("contact 'lower': the slave surface 'ymin' of body 'middle'"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("contact 'upper'"), std::string::npos) << r.output;
+  // The top block 0.3 m into the middle one: the upper pair overlaps, an error naming it.
+  r = variant("pairs-overlap", "min = [0.0, 2.0], max = [1.0, 2.5]",
+              "min = [0.0, 1.7], max = [1.0, 2.2]");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("contact 'upper': body 'top' and body 'middle' overlap at t = 0"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(MeshRobustness, AnEmptyContactSurfaceIsAnErrorNamingFileLineAndKey) {

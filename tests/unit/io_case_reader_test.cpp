@@ -89,6 +89,7 @@ TEST(CaseReader, TwoBlocks3dFillsEverySection) {
   EXPECT_DOUBLE_EQ((*pushed.traction[2])(0.0), -1.0e6);
 
   ASSERT_EQ(p.contacts.size(), 1u);
+  EXPECT_EQ(p.contacts.at(0).name, "contact");  // a lone [contact] without a name
   EXPECT_EQ(p.contacts.at(0).slave_body, 1);
   EXPECT_EQ(p.contacts.at(0).master_body, 0);
   EXPECT_EQ(p.contacts.at(0).slave_where, "zmin");
@@ -322,6 +323,64 @@ TEST(CaseReader, InterfaceLawsTakeNumbersAndTablesInTheInterfaceTemperature) {
   EXPECT_TRUE(p.contacts.at(0).conductance_slave.is_constant());  // a one-point table
   EXPECT_EQ(p.contacts.at(0).conductance_slave(1.0), 2e-3);
   EXPECT_EQ(p.contacts.at(0).conductance_master(1.0), 1e-3);
+  fs::remove_all(dir);
+}
+
+TEST(CaseReader, SeveralContactPairsAsAnArrayOfTables) {
+  const auto file = fs::path(TC_SOURCE_DIR) / "tests/cases/several-pairs/three-blocks-2d.toml";
+  const Problem p = read_case(file);
+  ASSERT_EQ(p.bodies.size(), 3u);
+  ASSERT_EQ(p.contacts.size(), 2u);
+  const auto& upper = p.contacts[0];  // in the order of the file
+  EXPECT_EQ(upper.name, "upper");
+  EXPECT_EQ(upper.slave_body, 0);  // top
+  EXPECT_EQ(upper.slave_where, "ymin");
+  EXPECT_EQ(upper.master_body, 1);  // middle
+  EXPECT_EQ(upper.master_where, "ymax");
+  EXPECT_TRUE(upper.friction.is_constant());
+  EXPECT_DOUBLE_EQ(upper.friction(500.0), 0.3);
+  EXPECT_DOUBLE_EQ(upper.conductance_slave(300.0), 2e-3);
+  EXPECT_DOUBLE_EQ(upper.conductance_master(300.0), 1e-3);
+  EXPECT_TRUE(upper.heat_conduction);
+  EXPECT_TRUE(upper.frictional_heating);
+  const auto& lower = p.contacts[1];
+  EXPECT_EQ(lower.name, "lower");
+  EXPECT_EQ(lower.slave_body, 1);  // middle
+  EXPECT_EQ(lower.slave_where, "ymin");
+  EXPECT_EQ(lower.master_body, 2);  // base
+  EXPECT_EQ(lower.master_where, "ymax");
+  EXPECT_FALSE(lower.friction.is_constant());
+  EXPECT_DOUBLE_EQ(lower.friction(293.15), 0.5);
+  EXPECT_DOUBLE_EQ(lower.friction(400.0), 0.2);
+  EXPECT_DOUBLE_EQ(lower.conductance_slave(300.0), 1e-3);
+  EXPECT_TRUE(lower.heat_conduction);
+  EXPECT_FALSE(lower.frictional_heating);
+}
+
+TEST(CaseReader, OneContactPairMayBeATableOrAnArrayOfOneWithOrWithoutAName) {
+  const auto dir = fs::temp_directory_path() / ("tc-one-pair-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string head =
+      "dimension = 2\n[time]\nstep = 0.1\nend = 0.1\n[materials.m]\ndensity = 1.0\n"
+      "young_modulus = 1.0\npoisson_ratio = 0.3\nthermal_expansion = 0.0\n"
+      "specific_heat = 1.0\nthermal_conductivity = 1.0\n"
+      "[[bodies]]\nname = \"b\"\nmaterial = \"m\"\n"
+      "mesh = { box = { min = [0.0, 0.0], max = [1.0, 1.0], cells = [2, 2] } }\n"
+      "[[bodies]]\nname = \"c\"\nmaterial = \"m\"\n"
+      "mesh = { box = { min = [0.0, 1.0], max = [1.0, 2.0], cells = [2, 2] } }\n";
+  const std::string pair =
+      "slave = { body = \"c\", where = \"ymin\" }\nmaster = { body = \"b\", where = \"ymax\" }\n"
+      "heat_conduction = false\nfrictional_heating = false\n";
+  const auto name_of = [&](const std::string& file, const std::string& text) {
+    std::ofstream(dir / file) << head << text;
+    const Problem p = read_case(dir / file);
+    EXPECT_EQ(p.contacts.size(), 1u) << file;
+    return p.contacts.empty() ? std::string() : p.contacts[0].name;
+  };
+  EXPECT_EQ(name_of("table.toml", "[contact]\n" + pair), "contact");
+  EXPECT_EQ(name_of("named-table.toml", "[contact]\nname = \"Pad_1\"\n" + pair), "Pad_1");
+  EXPECT_EQ(name_of("array.toml", "[[contact]]\n" + pair), "contact");
+  EXPECT_EQ(name_of("named-array.toml", "[[contact]]\nname = \"pad\"\n" + pair), "pad");
   fs::remove_all(dir);
 }
 

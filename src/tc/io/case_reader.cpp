@@ -78,6 +78,26 @@ void check_name(const TableReader& t, std::string_view k, const std::string& nam
                            printable(name), why, kMaxNameLength, used_in));
 }
 
+/// An issue at a contact pair's `name` when it is not 1 to kMaxNameLength letters,
+/// digits or '_': it becomes the suffix of history.csv columns (contact_normal_force_<name>).
+void check_pair_name(const TableReader& t, const std::string& name) {
+  std::string why;
+  if (name.empty())
+    why = "an empty name";
+  else if (name.size() > kMaxNameLength)
+    why = fmt::format("a name of {} characters, more than {}", name.size(), kMaxNameLength);
+  for (const char c : name) {
+    if (!why.empty()) break;
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'))
+      why = fmt::format("a name with the character '{}'", printable({&c, 1}));
+  }
+  if (!why.empty())
+    t.issue("name", fmt::format("found \"{}\", {}; expected 1 to {} letters, digits or '_': it "
+                                "is the suffix of the pair's history.csv columns "
+                                "(contact_normal_force_<name>)",
+                                printable(name), why, kMaxNameLength));
+}
+
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
 /// A lower bound of the memory a box body takes before any factorisation [bytes]: its mesh
@@ -137,7 +157,13 @@ class CaseReader {
   void read_boundary(const toml::table& t, size_t index);
   /// film = { coefficient, ambient } and radiation = { emissivity, ambient } of a [[boundary]].
   void read_boundary_heat(const TableReader& b, physics::BoundaryCondition& bc);
-  void read_contact(const TableReader& root);
+  /// `contact`: one [contact] table or an array of [[contact]] tables, one pair each.
+  void read_contacts(const TableReader& root);
+  /// One pair at `path` ("contact" or "contact[i]"), appended to p_.contacts.
+  TableReader read_contact(const toml::table& t, std::string path);
+  /// Names (a default for a lone pair, required for several, unique) and slave surfaces (one
+  /// pair each) across the pairs; `pairs[i]` is the table of p_.contacts[i].
+  void check_contact_pairs(const std::vector<TableReader>& pairs);
   void read_conductance(const TableReader& contact, physics::ContactSettings& c);
   void read_solver(const TableReader& root);
   void read_output(const TableReader& root);
@@ -177,7 +203,7 @@ Problem CaseReader::read() {
   read_materials(root);
   read_bodies(root);
   read_boundaries(root);
-  read_contact(root);
+  read_contacts(root);
   read_solver(root);
   read_output(root);
   if (issues_.empty()) check_boundary_conflicts();
@@ -596,14 +622,35 @@ void CaseReader::read_boundary_heat(const TableReader& b, physics::BoundaryCondi
   }
 }
 
-void CaseReader::read_contact(const TableReader& root) {
-  const auto t = root.sub_table(
-      "contact", Need::optional,
-      {"slave", "master", "friction", "conductance", "heat_conduction", "frictional_heating"});
-  if (!t) return;
+void CaseReader::read_contacts(const TableReader& root) {
+  const auto* n = root.get("contact", Need::optional, "");
+  if (!n) return;
+  std::vector<TableReader> pairs;
+  if (const auto* t = n->as_table()) {
+    pairs.push_back(read_contact(*t, "contact"));
+  } else if (const auto* a = n->as_array(); a && a->is_array_of_tables()) {
+    for (size_t i = 0; i < a->size(); ++i)
+      pairs.push_back(read_contact(*a->get(i)->as_table(), detail::at("contact", i)));
+  } else {
+    root.issue("contact", fmt::format("found {}, expected a [contact] table (one pair) or one or "
+                                      "more [[contact]] tables",
+                                      detail::describe(*n)));
+    return;
+  }
+  check_contact_pairs(pairs);
+}
+
+TableReader CaseReader::read_contact(const toml::table& table, std::string path) {
+  const TableReader t(table, std::move(path), issues_,
+                      {"name", "slave", "master", "friction", "conductance", "heat_conduction",
+                       "frictional_heating"});
   physics::ContactSettings c;
+  if (const auto name = t.string("name", Need::optional)) {
+    check_pair_name(t, *name);
+    c.name = *name;
+  }
   auto side = [&](std::string_view key, int& body, std::string& where) -> bool {
-    const auto s = t->sub_table(key, Need::required, {"body", "where"});
+    const auto s = t.sub_table(key, Need::required, {"body", "where"});
     if (!s) return false;
     const auto b = body_index(*s, "body");
     const auto w = s->string("where", Need::required);
@@ -615,17 +662,52 @@ void CaseReader::read_contact(const TableReader& root) {
   const bool slave_ok = side("slave", c.slave_body, c.slave_where);
   const bool master_ok = side("master", c.master_body, c.master_where);
   if (slave_ok && master_ok && c.slave_body == c.master_body)
-    issues_.add(t->line("master"), "contact.master.body",
+    issues_.add(t.line("master"), detail::join(t.key("master"), "body"),
                 fmt::format("found the slave's body \"{}\", expected a different body",
                             p_.bodies[c.master_body].name));
-  if (const auto* n = t->get("friction", Need::optional, ""))
-    if (const auto f = detail::read_temperature_table(*n, t->key("friction"), issues_,
+  if (const auto* n = t.get("friction", Need::optional, ""))
+    if (const auto f = detail::read_temperature_table(*n, t.key("friction"), issues_,
                                                       non_negative("a coefficient")))
       c.friction = *f;
-  if (const auto v = t->boolean("heat_conduction")) c.heat_conduction = *v;
-  if (const auto v = t->boolean("frictional_heating")) c.frictional_heating = *v;
-  read_conductance(*t, c);
-  p_.contacts = {c};
+  if (const auto v = t.boolean("heat_conduction")) c.heat_conduction = *v;
+  if (const auto v = t.boolean("frictional_heating")) c.frictional_heating = *v;
+  read_conductance(t, c);
+  p_.contacts.push_back(std::move(c));
+  return t;
+}
+
+void CaseReader::check_contact_pairs(const std::vector<TableReader>& pairs) {
+  auto& cs = p_.contacts;
+  if (cs.size() == 1 && !pairs[0].has("name")) cs[0].name = "contact";
+  for (size_t j = 0; j < cs.size(); ++j) {
+    const auto& t = pairs[j];
+    if (cs.size() > 1 && !t.has("name"))
+      t.issue("name", fmt::format("missing; expected a name (letters, digits, '_') for each of "
+                                  "the {} [[contact]] pairs: it is the suffix of their "
+                                  "history.csv columns (contact_normal_force_<name>)",
+                                  cs.size()));
+    // Each against the first earlier pair with the same name or slave surface.
+    const auto earlier = [&](auto same) -> std::optional<std::string> {
+      for (size_t i = 0; i < j; ++i)
+        if (same(cs[i])) return fmt::format("{} (line {})", pairs[i].path(), pairs[i].line());
+      return std::nullopt;
+    };
+    const auto& c = cs[j];
+    if (!c.name.empty())
+      if (const auto other = earlier([&](const auto& d) { return d.name == c.name; }))
+        t.issue("name", fmt::format("found \"{}\", the name of {} too; expected a unique name "
+                                    "per contact pair (it names their history.csv columns)",
+                                    printable(c.name), *other));
+    if (c.slave_body >= 0 && !c.slave_where.empty())
+      if (const auto other = earlier([&](const auto& d) {
+            return d.slave_body == c.slave_body && d.slave_where == c.slave_where;
+          }))
+        t.issue("slave",
+                fmt::format("found the slave surface \"{}\" of body \"{}\", the slave surface "
+                            "of {} too; expected each slave surface in one pair only (a "
+                            "surface that touches two bodies: split it into two boundaries)",
+                            c.slave_where, p_.bodies[c.slave_body].name, *other));
+  }
 }
 
 namespace {
@@ -738,12 +820,12 @@ void CaseReader::read_solver(const TableReader& root) {
     settings.contact_dual = *v == "auto"     ? physics::ContactDual::automatic
                             : *v == "nested" ? physics::ContactDual::nested
                                              : physics::ContactDual::combined;
-    // A cross-key check: read after [time], [[bodies]] and [contact].
+    // A cross-key check: read after [time], [[bodies]] and the contact pairs.
     if (settings.contact_dual == physics::ContactDual::combined && issues_.empty())
       if (const auto why = physics::combined_contact_dual_unavailable(p_); !why.empty())
         s->issue("contact_dual",
                  fmt::format("found \"combined\" but {}; expected \"combined\" only with "
-                             "[contact], scheme = \"quasistatic\" and both contact bodies "
+                             "one [contact] pair, scheme = \"quasistatic\" and both contact bodies "
                              "decomposed (subdomains > 1), or \"auto\"/\"nested\"",
                              why));
   }

@@ -1,7 +1,9 @@
 #pragma once
 // Geometric checks of a read case that need more than one mesh or PETSc (the case reader does
 // without both): coincident nodes inside a body, and the contact pair in the initial
-// configuration: surfaces that overlap (an error), or that do not face each other (a warning).
+// configuration, pair by pair: surfaces that overlap (an error), or that do not face each other
+// (a warning).
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,12 +21,14 @@ struct InitialContact {
   double tolerance = 0;  // 1e-6 × the largest facet of the two surfaces
 };
 
-/// The contact pair at t = 0 (needs PETSc: the mortar rows are PETSc matrices).
-[[nodiscard]] InitialContact initial_contact(const physics::Problem& p);
+/// Contact pair p.contacts[index] at t = 0 (needs PETSc: the mortar rows are PETSc
+/// matrices).
+[[nodiscard]] InitialContact initial_contact(const physics::Problem& p, size_t index = 0);
 
-/// Throws MeshError (exit code 2) naming the case file when the contact surfaces overlap at
-/// t = 0 deeper than the tolerance; returns the warnings: coincident nodes in a body, contact
-/// surfaces that do not face each other at t = 0. Needs PETSc when the case has contact.
+/// Throws MeshError (exit code 2) naming the case file (and the pair, when there are several)
+/// when the surfaces of a contact pair overlap at t = 0 deeper than the tolerance; returns the
+/// warnings: coincident nodes in a body, contact surfaces that do not face each other at t = 0.
+/// Needs PETSc when the case has contact.
 [[nodiscard]] std::vector<std::string> check_geometry(const physics::Problem& p);
 
 }  // namespace tc::io
