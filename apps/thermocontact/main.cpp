@@ -168,16 +168,6 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   }
   try {
     auto problem = tc::io::read_case(case_file);
-    if (problem.contacts.size() > 1) {
-      // The case format takes several pairs and `check` validates them (issue 21), but the
-      // time loop solves the first pair only so far: it would leave the others out unsaid.
-      if (input_reporter())
-        fmt::print(stderr,
-                   "error: {}: {} contact pairs, but `run` solves one pair so far; nothing was "
-                   "run.\n",
-                   case_file, problem.contacts.size());
-      return 2;
-    }
     if (!output.empty()) problem.output.directory = output;
     if (!restart.empty()) problem.output.directory = restart;  // continued where it stopped
     const auto warnings = tc::io::check_geometry(problem);

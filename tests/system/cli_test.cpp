@@ -223,16 +223,3 @@ TEST(Cli, AContactQpThatDoesNotConvergeStopsTheRunWithExitOne) {
   const auto summary = tc::test::read_file(dir / "out/summary.json");
   EXPECT_NE(summary.find("\"status\": \"stopped\""), std::string::npos) << summary;
 }
-
-TEST(Cli, RunRefusesSeveralContactPairsUntilThePhysicsSolvesThem) {
-  // The reader and `check` take [[contact]] pairs (issue 21); the time loop solves the first
-  // pair only so far, and ran such a case with the others left out and exit code 0. Drop this
-  // test with the guard in apps/thermocontact/main.cpp once the physics solves every pair.
-  const auto c = fs::path(TC_SOURCE_DIR) / "tests/cases/several-pairs/three-blocks-2d.toml";
-  const auto out = tc::test::fresh_dir("several-pairs");
-  const auto r = thermocontact("run " + c.string() + " --output " + out.string());
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("2 contact pairs, but `run` solves one pair so far"), std::string::npos)
-      << r.output;
-  EXPECT_FALSE(fs::exists(out / "history.csv"));
-}
