@@ -78,6 +78,14 @@ TEST(Restart, FilmAndRadiationLedgerContinues) {
                             "restart-film-radiation");
 }
 
+TEST(Restart, SeveralContactPairsContinueWithTheirOwnLedgers) {
+  // Three blocks, two pairs (one with 𝔉(θ)): each pair's warm start and cumulative columns
+  // (dissipation, heat) restored from its own record (checkpoint format 6).
+  expect_restart_reproduces(
+      fs::path(TC_SOURCE_DIR) / "tests/cases/several-pairs/three-blocks-2d.toml", 2,
+      "restart-several-pairs");
+}
+
 TEST(Restart, InterfaceLawsInTheTemperatureAddNoState) {
   // 𝔉(θ) and γ_C^s(θ) as tables: evaluated from θ at every coupling iterate, nothing of
   // them is in the checkpoint (format unchanged), and the restart still gives the same bits.

@@ -252,16 +252,31 @@ void ContactCoupling::set_rows(BodyGroup& g) {
   }
   lambda_at_.clear();
   for (int q = 0; q <= n_pairs(); ++q) lambda_at_.push_back(dual.pair_offset(q));
-  // Crosspoints: the later pair's multipliers there held at 0 (λ_n ∈ [0, 0], no friction).
+  // Crosspoints: a later pair's multipliers held at 0 (λ_n ∈ [0, 0], no friction) where an
+  // earlier pair with the same slave body has the node too and their normals there are less than
+  // 60° apart (docs/choices.md, "Crosspoints"): the two rows would be (nearly) dependent.
   std::vector<char> held(static_cast<size_t>(dual.n_nodes()), 0);
   bool any = false;
-  for (int q = 0; q < n_pairs(); ++q) {
+  for (int q = 1; q < n_pairs(); ++q) {
+    const auto& pr = pairs_[q];
     const auto& nodes = dual.pair_rows(q).nodes;
-    for (size_t k = 0; k < nodes.size(); ++k)
-      if (pairs_[q].crosspoint[nodes[k]]) {
+    for (size_t k = 0; k < nodes.size(); ++k) {
+      if (!pr.crosspoint[nodes[k]]) continue;
+      bool hold = !pr.mortar;  // a test's rows: no normals to compare
+      for (int e = 0; e < q && !hold; ++e) {
+        const auto& earlier = pairs_[e];
+        if (earlier.settings->slave_body != pr.settings->slave_body || !earlier.mortar) continue;
+        const int at = earlier.mortar->contact_index(nodes[k]);
+        if (at < 0) continue;
+        const auto& a = earlier.mortar->normals()[at];
+        const auto& b = pr.mortar->normals()[k];
+        hold = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] >= 0.5;
+      }
+      if (hold) {
         held[static_cast<size_t>(dual.pair_offset(q)) + k] = 1;
         any = true;
       }
+    }
   }
   if (any) {
     dual.hold_at_zero(std::move(held));
