@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <regex>
 #include <sstream>
 
@@ -203,6 +205,39 @@ TEST(Cli, AContactCaseRunsWithTheMortarPairAndWritesContactOutput) {
   for (const char* field :
        {"contact_pressure", "tangential_traction", "slip_velocity", "contact_heat_flux"})
     EXPECT_NE(vtu.find(field), std::string::npos) << field;
+}
+
+TEST(Cli, SeveralContactPairsWriteTheirColumnsAndTheirFieldsOnEverySlave) {
+  // tests/cases/several-pairs/three-blocks-2d.toml: "upper" (top on middle), "lower" (middle on
+  // base). The middle block is the master of one pair and the slave of the other: its .vtu
+  // carry the contact fields of "lower", the top's those of "upper", the base's none.
+  const auto out = tc::test::fresh_dir("several-pairs");
+  const auto c = fs::path(TC_SOURCE_DIR) / "tests/cases/several-pairs/three-blocks-2d.toml";
+  const auto r = thermocontact("run " + c.string() + " --output " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto h = tc::test::read_history(out / "history.csv");
+  ASSERT_TRUE(h.whole);
+  const auto at = [&](const std::string& name) {
+    const auto it = std::find(h.columns.begin(), h.columns.end(), name);
+    EXPECT_NE(it, h.columns.end()) << name;
+    return it == h.columns.end() ? 0.0 : h.rows.back()[it - h.columns.begin()];
+  };
+  for (const char* column : {"contact_normal_force", "heat_generated", "heat_conducted"}) {
+    const std::string base = column;
+    // The unsuffixed column is the sum of the pairs' (round-off of one addition).
+    EXPECT_NEAR(at(base), at(base + "_upper") + at(base + "_lower"),
+                1e-12 * std::abs(at(base)) + 1e-300)
+        << column;
+  }
+  EXPECT_GT(at("contact_normal_force_upper"), 0);
+  EXPECT_GT(at("contact_normal_force_lower"), 0);
+  EXPECT_EQ(at("heat_generated_lower"), 0.0);  // frictional_heating = false in that pair
+  const auto pressure = [&](const std::string& vtu) {
+    return tc::test::read_file(out / vtu).find("contact_pressure") != std::string::npos;
+  };
+  EXPECT_TRUE(pressure("top_000005.vtu"));
+  EXPECT_TRUE(pressure("middle_000005.vtu"));
+  EXPECT_FALSE(pressure("base_000005.vtu"));
 }
 
 TEST(Cli, AContactQpThatDoesNotConvergeStopsTheRunWithExitOne) {
