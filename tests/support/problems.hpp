@@ -93,6 +93,19 @@ inline physics::ContactSettings contact_pair(int slave, std::string slave_where,
   return c;
 }
 
+/// A 3D quasistatic problem of `steps` steps of τ at reference temperature θ₀, without
+/// thermoelastic heating; the caller adds bodies, supports and contact.
+inline physics::Problem quasistatic_3d(double tau, int steps, double theta0) {
+  physics::Problem p;
+  p.dimension = 3;
+  p.time.scheme = physics::Scheme::quasistatic;
+  p.time.step = tau;
+  p.time.end = tau * steps;
+  p.physics.reference_temperature = theta0;
+  p.physics.thermoelastic_heating = false;
+  return p;
+}
+
 /// A slider [0,1]²×[1,1.5] (4×4×2 cells, at `slider_theta`) pressed 10 µm in the first step of τ
 /// onto a base [−0.25,1.25]²×[0,1] (5×5×3, at θ₀, bottom held) and dragged along x by its top
 /// at v for `slide_steps` more steps; quasistatic, no thermoelastic heating. The contact: the
@@ -102,13 +115,7 @@ inline physics::ContactSettings contact_pair(int slave, std::string slave_where,
 inline physics::Problem slider_on_base(const fem::Material& mat, double tau, double v,
                                        int slide_steps, double theta0, double slider_theta,
                                        double friction) {
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme = physics::Scheme::quasistatic;
-  p.time.step = tau;
-  p.time.end = tau * (slide_steps + 1);
-  p.physics.reference_temperature = theta0;
-  p.physics.thermoelastic_heating = false;
+  auto p = quasistatic_3d(tau, slide_steps + 1, theta0);
   p.bodies.push_back(box_body("slider", mat, {0, 0, 1}, {1, 1, 1.5}, {4, 4, 2}, slider_theta));
   p.bodies.push_back(box_body("base", mat, {-0.25, -0.25, 0}, {1.25, 1.25, 1}, {5, 5, 3}, theta0));
   const core::TimeTable press({0, tau}, {0, -1e-5});

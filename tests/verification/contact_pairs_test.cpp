@@ -12,6 +12,7 @@
 #include <iostream>
 #include <string>
 
+#include "support/body_energy.hpp"
 #include "support/problems.hpp"
 #include "tc/physics/simulation.hpp"
 
@@ -22,15 +23,6 @@ constexpr double kTheta0 = 293.15;
 constexpr double kV = 0.01, kTau = 0.1;
 constexpr int kSlideSteps = 8;
 constexpr double kUpperFriction = 0.3, kLowerFriction = 0.5;
-
-double body_energy(const physics::Simulation& sim, int b) {
-  const auto& vol = sim.system(b).node_volumes();
-  const auto theta = sim.state(b).theta.to_std();
-  const double c = sim.system(b).body().material.heat_capacity();
-  double e = 0;
-  for (size_t a = 0; a < vol.size(); ++a) e += c * vol[a] * (theta[a] - kTheta0);
-  return e;
-}
 
 enum class Roles {
   blocks_slave,  // the blocks are the slaves of both pairs, the plate the master
@@ -48,13 +40,7 @@ physics::Problem sandwich(Roles roles, double gamma_slave = 1e-4, double gamma_m
                           int refine = 1) {
   auto mat = steel();
   mat.thermal_expansion = 0;
-  physics::Problem p;
-  p.dimension = 3;
-  p.time.scheme = physics::Scheme::quasistatic;
-  p.time.step = kTau;
-  p.time.end = kTau * (kSlideSteps + 1);
-  p.physics.reference_temperature = kTheta0;
-  p.physics.thermoelastic_heating = false;
+  auto p = quasistatic_3d(kTau, kSlideSteps + 1, kTheta0);
   p.bodies.push_back(box_body("cap", mat, {0, 0, 1.5}, {1, 1, 2},
                               {4 * refine, 4 * refine, 2 * refine}, kTheta0 + 5));
   p.bodies.push_back(box_body("plate", mat, {-0.25, -0.25, 1}, {1.25, 1.25, 1.5},
@@ -99,7 +85,7 @@ constexpr double kFriction[2] = {kUpperFriction, kLowerFriction};
 Slide slide(physics::Simulation& sim) {
   Slide r;
   double e0[3];
-  for (int b = 0; b < 3; ++b) e0[b] = body_energy(sim, b);
+  for (int b = 0; b < 3; ++b) e0[b] = body_energy(sim, b, kTheta0);
   sim.advance();  // the press
   for (int s = 0; s < kSlideSteps; ++s) {
     sim.advance();
@@ -111,7 +97,7 @@ Slide slide(physics::Simulation& sim) {
       r.worst_ratio_error[q] = std::max(r.worst_ratio_error[q], std::abs(t / n - kFriction[q]));
     }
   }
-  for (int b = 0; b < 3; ++b) r.energy[b] = body_energy(sim, b) - e0[b];
+  for (int b = 0; b < 3; ++b) r.energy[b] = body_energy(sim, b, kTheta0) - e0[b];
   return r;
 }
 

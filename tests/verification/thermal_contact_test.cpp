@@ -20,6 +20,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "support/body_energy.hpp"
 #include "support/problems.hpp"
 #include "tc/physics/simulation.hpp"
 
@@ -30,15 +31,6 @@ constexpr double kTheta0 = 293.15;
 constexpr double kAnyTheta = kTheta0;  // the conductances and 𝔉 here are constants
 
 /// Σ ∫ ρc_p(θ − θ₀) of one body (history's thermal_energy per body).
-double body_energy(const physics::Simulation& sim, int b) {
-  const auto& vol = sim.system(b).node_volumes();
-  const auto theta = sim.state(b).theta.to_std();
-  const double c = sim.system(b).body().material.heat_capacity();
-  double e = 0;
-  for (size_t a = 0; a < vol.size(); ++a) e += c * vol[a] * (theta[a] - kTheta0);
-  return e;
-}
-
 /// A dense n×m matrix as a PETSc matrix (all entries stored).
 core::SparseMatrix sparse(const Eigen::MatrixXd& d) {
   const std::vector<PetscInt> nnz(static_cast<size_t>(d.rows()), static_cast<PetscInt>(d.cols()));
@@ -243,15 +235,15 @@ struct SlideResult {
 
 SlideResult slide(physics::Simulation& sim) {
   SlideResult r;
-  const double e_s0 = body_energy(sim, 0), e_m0 = body_energy(sim, 1);
+  const double e_s0 = body_energy(sim, 0, kTheta0), e_m0 = body_energy(sim, 1, kTheta0);
   sim.advance();  // the press
   for (int s = 0; s < kSlideSteps; ++s) {
     sim.advance();
     r.expected += kTau * sim.problem().contacts.at(0).friction(kAnyTheta) *
                   sim.history("contact_normal_force") * kV;
   }
-  r.slave_energy = body_energy(sim, 0) - e_s0;
-  r.master_energy = body_energy(sim, 1) - e_m0;
+  r.slave_energy = body_energy(sim, 0, kTheta0) - e_s0;
+  r.master_energy = body_energy(sim, 1, kTheta0) - e_m0;
   return r;
 }
 

@@ -316,7 +316,8 @@ int ContactCoupling::couple(int step) {
   tresca.defer = !enforcement.qp_gives_displacements() && !heating;
   iterate_slip_.clear();
   if (tresca.defer) tresca.bu_old = dual.row_values(g.state(&BodyState::u));
-  stats_.operator_applications += dual.setup_solves() / 2;
+  // An application of F is a solve per body: the set-up's solves in those units.
+  stats_.operator_applications += dual.setup_solves() / g.size();
   core::Vector lambda_prev = lambda_.clone();
   const bool nested = problem_.solver.friction_loop == FrictionLoop::nested;
   const bool one_way = !expansion;
@@ -419,13 +420,6 @@ void ContactCoupling::bookkeeping() {
                            ? std::vector<double>{}
                            : std::vector<double>(qp_bound_.begin() + from, qp_bound_.begin() + to);
     pr.stats.record_step(rows, lq, nodes_of(slip_, dim, from, to), unit, bound, pr.mortar.get());
-    // Summed over the pairs; the tangential force is the sum of the pairs' resultants' magnitudes.
-    stats_.normal_force += pr.stats.normal_force;
-    stats_.tangential_force += pr.stats.tangential_force;
-    stats_.tangential_force_sum += pr.stats.tangential_force_sum;
-    stats_.dissipation += pr.stats.dissipation;
-    stats_.active_nodes += pr.stats.active_nodes;
-    stats_.slip_nodes += pr.stats.slip_nodes;
     if (pr.mortar) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
       const auto& c = *pr.settings;
       pr.heat_flux.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
@@ -440,6 +434,7 @@ void ContactCoupling::bookkeeping() {
       heat_flux_.insert(heat_flux_.end(), pr.heat_flux.begin(), pr.heat_flux.end());
     }
   }
+  sum_pair_statistics();
   total_qp_ += stats_.qp_iterations;
   total_applications_ += stats_.operator_applications;
 }
@@ -496,6 +491,11 @@ void ContactCoupling::restore(const Checkpoint& c) {
   total_qp_ = c.total_qp;
   total_applications_ = c.total_applications;
   stats_ = {};
+  sum_pair_statistics();
+}
+
+void ContactCoupling::sum_pair_statistics() {
+  // The tangential force is the sum of the pairs' resultants' magnitudes (docs/choices.md).
   for (const auto& pr : pairs_) {
     stats_.normal_force += pr.stats.normal_force;
     stats_.tangential_force += pr.stats.tangential_force;

@@ -111,6 +111,7 @@ class ContactCoupling {
   double mech_step(TrescaIteration& t, std::span<const double> targets, int step, int outer,
                    int max_updates);
   [[nodiscard]] bool any_pair(bool (InterfaceLaws::*law)() const) const;
+  void sum_pair_statistics();  // the pairs' forces, counts and dissipation into stats_
 
   const Problem& problem_;
   Bodies& bodies_;

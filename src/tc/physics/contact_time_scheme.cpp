@@ -78,7 +78,8 @@ void StabilisedNewmarkContact::prepare(const BodyGroup& group, DualContactSolver
   const auto r = projection_->solve(group.field_in(&BodyField::u_prev), normal_targets, no_friction,
                                     multipliers, group.field(&BodyField::u_pred));
   stats.qp_iterations += r.iterations;
-  stats.operator_applications += r.operator_applications + projection_->setup_solves() / 2;
+  stats.operator_applications +=
+      r.operator_applications + projection_->setup_solves() / group.size();
   if (!r.converged())
     throw NumericalError(
         fmt::format("the contact-stabilised predictor (mass projection) did not converge: {}",
