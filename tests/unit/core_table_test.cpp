@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/core/table.hpp"
@@ -148,5 +151,75 @@ TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
       TC_PETSC(MatDestroy(&b));
       TC_PETSC(MatDestroy(&x));
     }
+  }
+}
+
+TEST(Petsc, CholeskyForwardComplianceIsTheRestrictedSolveToRoundOff) {
+  // S = (A⁻¹)_TT by forward solves alone (S = YᵀY, kept Y for later columns) against
+  // unit_solve_rows (forward and backward): the same to round-off, exactly symmetric, zero on a
+  // constrained (−1) dof; grown by a second set of dofs, the new columns on all of T.
+  const PetscInt g = 14, n = g * g * g;
+  std::vector<PetscInt> nnz(n, 7);
+  tc::core::SparseMatrix a(n, n, nnz);
+  const auto id = [&](PetscInt x, PetscInt y, PetscInt z) { return x + g * (y + g * z); };
+  for (PetscInt z = 0; z < g; ++z)
+    for (PetscInt y = 0; y < g; ++y)
+      for (PetscInt x = 0; x < g; ++x) {
+        const PetscInt i = id(x, y, z);
+        const double d = 6.5, o = -1.0;
+        a.add_values(std::span(&i, 1), std::span(&i, 1), &d);
+        for (const PetscInt j : {x + 1 < g ? id(x + 1, y, z) : -1, y + 1 < g ? id(x, y + 1, z) : -1,
+                                 z + 1 < g ? id(x, y, z + 1) : -1})
+          if (j >= 0) {
+            a.add_values(std::span(&i, 1), std::span(&j, 1), &o);
+            a.add_values(std::span(&j, 1), std::span(&i, 1), &o);
+          }
+      }
+  a.assemble();
+  std::vector<PetscInt> first, more;  // a face patch, then a strip beside it (the slide)
+  for (PetscInt y = 0; y < g; ++y)
+    for (PetscInt x = 0; x < g; ++x) (x < 9 ? first : more).push_back(id(x, y, g - 1));
+  first[5] = -1;  // constrained
+  std::vector<PetscInt> all(first);
+  all.insert(all.end(), more.begin(), more.end());
+  for (const auto& package : tc::core::available_cholesky_packages()) {
+    tc::core::CholeskySolver solver(a, package);
+    EXPECT_FALSE(solver.forward_compliance_pays(first, 64)) << "below the floor: " << package;
+    tc::core::ForwardColumnsPtr kept;
+    const auto nf = first.size(), na = all.size(), nm = more.size();
+    std::vector<double> s1(nf * nf, -7.0), s2(na * nm, -7.0);
+    const bool done = solver.forward_compliance(kept, first, s1.data());
+#if PETSC_VERSION_GE(3, 14, 0) && PETSC_VERSION_LT(3, 19, 0)  // where the path is compiled
+    const bool expected = package == MATSOLVERCHOLMOD;
+#else
+    const bool expected = false;
+#endif
+    ASSERT_EQ(done, expected) << package;
+    if (!expected) {
+      EXPECT_EQ(s1[0], -7.0) << package;
+      continue;
+    }
+    ASSERT_TRUE(solver.forward_compliance(kept, more, s2.data()));
+    std::vector<double> r1(nf * nf), r2(na * nm);
+    ASSERT_TRUE(solver.unit_solve_rows(first, first, r1.data()));
+    ASSERT_TRUE(solver.unit_solve_rows(more, all, r2.data()));
+    double scale = 0;
+    for (const double v : r1) scale = std::max(scale, std::abs(v));
+    for (size_t j = 0; j < nf; ++j)
+      for (size_t i = 0; i < nf; ++i) {
+        ASSERT_EQ(s1[i + j * nf], s1[j + i * nf]) << "not symmetric at " << i << ", " << j;
+        if (first[i] < 0 || first[j] < 0) {
+          ASSERT_EQ(s1[i + j * nf], 0.0);
+        } else {
+          EXPECT_NEAR(s1[i + j * nf], r1[i + j * nf], 1e-13 * scale) << i << ", " << j;
+        }
+      }
+    for (size_t j = 0; j < nm; ++j)
+      for (size_t i = 0; i < na; ++i)
+        if (all[i] < 0) {
+          ASSERT_EQ(s2[i + j * na], 0.0);
+        } else {
+          EXPECT_NEAR(s2[i + j * na], r2[i + j * na], 1e-13 * scale) << i << ", " << j;
+        }
   }
 }

@@ -1,5 +1,6 @@
 // Columns of A⁻¹ on a few rows, for unit right-hand sides, from CHOLMOD's supernodal factor
-// (CholeskySolver::unit_solve_rows). PETSc keeps the factor inside its CHOLMOD matrix type,
+// (CholeskySolver::unit_solve_rows), and (A⁻¹)_TT by forward solves alone
+// (CholeskySolver::forward_compliance). PETSc keeps the factor inside its CHOLMOD matrix type,
 // whose layout is private: it is reached through the PETSc 3.14–3.18 layout and every field
 // used is checked against the matrix before use; anything unexpected returns false and the
 // caller solves with the dense right-hand sides instead.
@@ -7,6 +8,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -32,6 +34,8 @@ void dtrsm_(const char* side, const char* uplo, const char* transa, const char* 
 void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
             const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
             const double* beta, double* c, const int* ldc);
+void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
+            const double* a, const int* lda, const double* beta, double* c, const int* ldc);
 void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a,
             const int* lda, double* x, const int* incx);
 void dgemv_(const char* trans, const int* m, const int* n, const double* alpha, const double* a,
@@ -211,9 +215,302 @@ bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<c
   return true;
 }
 
+namespace {
+
+/// A postorder of the supernodal tree: post[s] is s's position, first[s] the first position
+/// of its subtree, so the subtree of s is the range [first[s], post[s]]. Parents come after
+/// their children in CHOLMOD's numbering (checked in columns_of), which gives the subtree
+/// sizes in one ascending pass and the ranges in one descending pass.
+void postorder(const std::vector<int>& parent, std::vector<int>& post, std::vector<int>& first) {
+  const auto ns = parent.size();
+  std::vector<int> size(ns, 1), cursor(ns, 0);
+  for (size_t s = 0; s < ns; ++s)
+    if (parent[s] >= 0) size[static_cast<size_t>(parent[s])] += size[s];
+  post.assign(ns, 0);
+  first.assign(ns, 0);
+  int roots = 0;
+  for (size_t s = ns; s-- > 0;) {
+    int& at = parent[s] >= 0 ? cursor[static_cast<size_t>(parent[s])] : roots;
+    first[s] = at;
+    at += size[s];
+    cursor[s] = first[s];
+    post[s] = first[s] + size[s] - 1;
+  }
+}
+
+/// Reorders the rows and the columns of the symmetric nt × nt matrix `a` (column-major) in
+/// place: a'(i, j) = a(pos[i], pos[j]).
+void permute_symmetric(double* a, const std::vector<int>& pos) {
+  const auto nt = pos.size();
+  std::vector<double> tmp(nt);
+  for (size_t j = 0; j < nt; ++j) {  // the rows, column by column
+    double* col = a + j * nt;
+    for (size_t i = 0; i < nt; ++i) tmp[i] = col[pos[i]];
+    std::copy(tmp.begin(), tmp.end(), col);
+  }
+  std::vector<char> done(nt, 0);
+  for (size_t j0 = 0; j0 < nt; ++j0) {  // the columns, by the cycles of j ← pos[j]
+    if (done[j0]) continue;
+    std::copy(a + j0 * nt, a + (j0 + 1) * nt, tmp.begin());
+    size_t j = j0;
+    for (auto from = static_cast<size_t>(pos[j]); from != j0; from = static_cast<size_t>(pos[j])) {
+      std::copy(a + from * nt, a + (from + 1) * nt, a + j * nt);
+      done[j] = 1;
+      j = from;
+    }
+    std::copy(tmp.begin(), tmp.end(), a + j * nt);
+    done[j] = 1;
+  }
+}
+
+/// One cover's columns in the order of the postorder position of the supernode where their unit
+/// entry lies: the columns that reach supernode s (those starting in its subtree) are then one
+/// contiguous range [lo[s], hi[s]) of the sorted ones. A constrained dof (−1) reaches nothing.
+struct SortedColumns {
+  std::vector<int> order;   // sorted position → position among the cover's columns
+  std::vector<int> lo, hi;  // per supernode
+  SortedColumns(const CholeskyColumns& c, const std::vector<int>& post,
+                const std::vector<int>& first, std::span<const PetscInt> dofs) {
+    constexpr int none = std::numeric_limits<int>::max();
+    const auto nt = dofs.size();
+    std::vector<int> key(nt);
+    order.resize(nt);
+    for (size_t j = 0; j < nt; ++j) {
+      const PetscInt d = dofs[j];
+      key[j] = d < 0 ? none
+                     : post[static_cast<size_t>(
+                           c.super_of[static_cast<size_t>(c.pinv[static_cast<size_t>(d)])])];
+      order[j] = static_cast<int>(j);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return key[static_cast<size_t>(a)] < key[static_cast<size_t>(b)];
+    });
+    std::vector<int> sorted(nt);
+    for (size_t q = 0; q < nt; ++q) sorted[q] = key[static_cast<size_t>(order[q])];
+    lo.resize(post.size());
+    hi.resize(post.size());
+    for (size_t s = 0; s < post.size(); ++s) {
+      lo[s] = static_cast<int>(std::lower_bound(sorted.begin(), sorted.end(), first[s]) -
+                               sorted.begin());
+      hi[s] = static_cast<int>(std::upper_bound(sorted.begin(), sorted.end(), post[s]) -
+                               sorted.begin());
+    }
+  }
+  [[nodiscard]] int count(size_t s) const { return hi[s] - lo[s]; }
+};
+
+}  // namespace
+
+/// Y = L⁻¹P E_T of the covers so far, cover by cover, on the supernodes each reaches: block
+/// (s) is nscol(s) × count(s), the cover's sorted columns of that range.
+struct ForwardColumns {
+  const cholmod_factor* factor = nullptr;  // the factor Y belongs to
+  std::vector<int> post, first;
+  struct Cover {
+    SortedColumns columns;
+    size_t offset;  // position of the cover's first dof in T
+    std::vector<std::vector<double>> y;
+  };
+  std::vector<Cover> covers;
+  size_t size = 0;  // |T|
+};
+
+namespace {
+
+/// Flops of one supernode's forward step with k right-hand sides (dtrsm, then dgemm below).
+double forward_flops(int nscol, int nsrow, double k) {
+  return k * (static_cast<double>(nscol) * nscol + 2.0 * nscol * (nsrow - nscol));
+}
+
+}  // namespace
+
+bool CholeskySolver::forward_compliance_pays(std::span<const PetscInt> dofs, int block) const {
+  CholeskyColumns* c = columns_of(ksp_.get(), columns_);
+  if (!c || dofs.empty()) return false;
+  const cholmod_factor& l = *c->factor;
+  const auto* super = static_cast<const int*>(l.super);
+  const auto* lpi = static_cast<const int*>(l.pi);
+  const auto ns = static_cast<size_t>(l.nsuper);
+  std::vector<int> post, first;
+  postorder(c->parent, post, first);
+  const SortedColumns sorted(*c, post, first, dofs);
+  double factorisation = 0, forward = 0, restricted = 0, back = 0;
+  for (size_t s = 0; s < ns; ++s) {
+    const int nscol = super[s + 1] - super[s], nsrow = lpi[s + 1] - lpi[s];
+    const double c1 = nscol, c2 = nsrow - nscol;
+    factorisation += c1 * c1 * c1 / 3 + c1 * c1 * c2 + c1 * c2 * c2;
+    const double k = sorted.count(s);
+    forward += forward_flops(nscol, nsrow, k) + c1 * k * k;  // the solve, then S += Y_sᵀY_s
+    if (k > 0) back += forward_flops(nscol, nsrow, 1);
+  }
+  for (size_t j0 = 0; j0 < dofs.size(); j0 += static_cast<size_t>(block)) {
+    const auto part = dofs.subspan(j0, std::min(static_cast<size_t>(block), dofs.size() - j0));
+    restricted += back * static_cast<double>(part.size());
+    for (const int s : reach(*c, part))
+      restricted += forward_flops(super[s + 1] - super[s], lpi[s + 1] - lpi[s],
+                                  static_cast<double>(part.size()));
+  }
+  // Below `negligible` (a third of a second at the 30 GFlop/s of one core here) the restricted
+  // solves cost next to nothing whatever their ratio to a small factorisation, and a switch
+  // would change the set-up's rounding for no measurable time: they are kept there.
+  constexpr double negligible = 1e10;
+  return restricted > std::max(factorisation, negligible) && forward < restricted;
+}
+
+void ForwardColumnsDeleter::operator()(ForwardColumns* y) const {
+  delete y;
+}
+
+bool CholeskySolver::forward_compliance(ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
+                                        double* out) const {
+  CholeskyColumns* c = columns_of(ksp_.get(), columns_);
+  if (!c || (kept && kept->factor != c->factor)) return false;
+  if (!kept) {
+    kept.reset(new ForwardColumns);
+    kept->factor = c->factor;
+    postorder(c->parent, kept->post, kept->first);
+  }
+  auto& f = *kept;
+  const cholmod_factor& l = *c->factor;
+  const auto* super = static_cast<const int*>(l.super);
+  const auto* lpi = static_cast<const int*>(l.pi);
+  const auto* lpx = static_cast<const int*>(l.px);
+  const auto* ls = static_cast<const int*>(l.s);
+  const auto* lx = static_cast<const double*>(l.x);
+  const auto ns = static_cast<size_t>(l.nsuper);
+  const size_t old = f.size, nt = old + fresh.size();
+  f.covers.push_back({SortedColumns(*c, f.post, f.first, fresh), old, {}});
+  f.size = nt;
+  auto& cover = f.covers.back();
+  const auto& cols = cover.columns;
+  const int k = static_cast<int>(fresh.size());
+  auto& y = cover.y;
+  y.resize(ns);
+  const auto block = [&](size_t s) -> double* {
+    if (y[s].empty())
+      y[s].assign(static_cast<size_t>(super[s + 1] - super[s]) * static_cast<size_t>(cols.count(s)),
+                  0.0);
+    return y[s].data();
+  };
+  for (size_t q = 0; q < fresh.size(); ++q) {  // Y = P E before the solve
+    const PetscInt d = fresh[static_cast<size_t>(cols.order[q])];
+    if (d < 0) continue;
+    const int r = c->pinv[static_cast<size_t>(d)];
+    const auto s = static_cast<size_t>(c->super_of[static_cast<size_t>(r)]);
+    block(s)[static_cast<size_t>(r - super[s]) +
+             (q - static_cast<size_t>(cols.lo[s])) * static_cast<size_t>(super[s + 1] - super[s])] =
+        1.0;
+  }
+  // S(T, fresh) in sorted order: the fresh columns with themselves (k × k, lower triangle by
+  // dsyrk), and with each earlier cover's columns (|cover| × k by dgemm); on the first cover
+  // the former is `out` itself.
+  std::vector<double> own, with_old;
+  double* ss = out;
+  if (old > 0) {
+    own.assign(static_cast<size_t>(k) * static_cast<size_t>(k), 0.0);
+    with_old.assign(old * static_cast<size_t>(k), 0.0);
+    ss = own.data();
+  } else {
+    std::fill(out, out + nt * nt, 0.0);
+  }
+  const double one = 1.0, zero = 0.0;
+  constexpr int chunk = 256;  // columns per update: bounds E to (rows below) × chunk
+  std::vector<double> e;
+  std::vector<double*> dst;
+  std::vector<int> ld;
+  // Forward, Y = L⁻¹Y, supernode by supernode in CHOLMOD's (topological) order, each with all
+  // the columns that reach it at once (the rows below its diagonal block are its ancestors',
+  // whose ranges contain its own); once Y_s is final, its products with Y_s of every cover.
+  for (size_t s = 0; s < ns; ++s) {
+    const int cnt = cols.count(s);
+    if (cnt == 0) continue;
+    const int k1 = super[s], nscol = super[s + 1] - k1;
+    const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
+    const double* l1 = lx + lpx[s];
+    double* ys = block(s);
+    dtrsm_("L", "L", "N", "N", &nscol, &cnt, &one, l1, &nsrow, ys, &nscol);
+    if (nsrow2 > 0) {
+      dst.resize(static_cast<size_t>(nsrow2));
+      ld.resize(static_cast<size_t>(nsrow2));
+      for (int ii = 0; ii < nsrow2; ++ii) {
+        const int r = ls[ps2 + ii];
+        const auto a = static_cast<size_t>(c->super_of[static_cast<size_t>(r)]);
+        ld[static_cast<size_t>(ii)] = super[a + 1] - super[a];
+        dst[static_cast<size_t>(ii)] =
+            block(a) + (r - super[a]) +
+            static_cast<ptrdiff_t>(cols.lo[s] - cols.lo[a]) * (super[a + 1] - super[a]);
+      }
+      e.resize(static_cast<size_t>(nsrow2) * static_cast<size_t>(std::min(cnt, chunk)));
+      for (int j0 = 0; j0 < cnt; j0 += chunk) {
+        const int kc = std::min(chunk, cnt - j0);
+        dgemm_("N", "N", &nsrow2, &kc, &nscol, &one, l1 + nscol, &nsrow,
+               ys + static_cast<ptrdiff_t>(j0) * nscol, &nscol, &zero, e.data(), &nsrow2);
+        for (int j = 0; j < kc; ++j)
+          for (int ii = 0; ii < nsrow2; ++ii)
+            dst[static_cast<size_t>(ii)]
+               [static_cast<ptrdiff_t>(j0 + j) * ld[static_cast<size_t>(ii)]] -=
+                e[static_cast<size_t>(ii) + static_cast<size_t>(j) * static_cast<size_t>(nsrow2)];
+      }
+    }
+    const int lds = old > 0 ? k : static_cast<int>(nt);
+    dsyrk_("L", "T", &cnt, &nscol, &one, ys, &nscol, &one,
+           ss + cols.lo[s] + static_cast<ptrdiff_t>(cols.lo[s]) * lds, &lds);
+    for (size_t g = 0; g + 1 < f.covers.size(); ++g) {
+      const auto& earlier = f.covers[g];
+      const int cg = earlier.columns.count(s);
+      if (cg == 0) continue;
+      const int ldw = static_cast<int>(old);
+      dgemm_("T", "N", &cg, &cnt, &nscol, &one, earlier.y[s].data(), &nscol, ys, &nscol, &one,
+             with_old.data() + earlier.offset + static_cast<size_t>(earlier.columns.lo[s]) +
+                 static_cast<size_t>(cols.lo[s]) * old,
+             &ldw);
+    }
+  }
+  // Back to T's order: out(i, j) = S(T_i, fresh_j); with_old's rows are each cover's sorted
+  // columns after its offset.
+  const auto uk = static_cast<size_t>(k);
+  std::vector<size_t> pos(uk);  // fresh column → sorted position
+  for (size_t q = 0; q < uk; ++q) pos[static_cast<size_t>(cols.order[q])] = q;
+  const auto lower = [&](size_t i, size_t j) {  // the fresh block, sorted, from its lower half
+    return i >= j ? own[i + j * uk] : own[j + i * uk];
+  };
+  if (old == 0) {
+    for (size_t j = 0; j < nt; ++j)  // the upper triangle from the lower: S exactly symmetric
+      for (size_t i = j + 1; i < nt; ++i) out[j + i * nt] = out[i + j * nt];
+    std::vector<int> p(nt);
+    for (size_t i = 0; i < nt; ++i) p[i] = static_cast<int>(pos[i]);
+    permute_symmetric(out, p);
+    return true;
+  }
+  for (size_t j = 0; j < uk; ++j) {
+    double* o = out + j * nt;
+    for (const auto& earlier : f.covers) {
+      if (&earlier == &cover) break;
+      const auto& eo = earlier.columns.order;
+      for (size_t q = 0; q < eo.size(); ++q)
+        o[earlier.offset + static_cast<size_t>(eo[q])] =
+            with_old[earlier.offset + q + pos[j] * old];
+    }
+    for (size_t i = 0; i < uk; ++i) o[old + i] = lower(pos[i], pos[j]);
+  }
+  return true;
+}
+
 #else
 
 struct CholeskyColumns {};
+
+struct ForwardColumns {};
+void ForwardColumnsDeleter::operator()(ForwardColumns* y) const {
+  delete y;
+}
+bool CholeskySolver::forward_compliance_pays(std::span<const PetscInt>, int) const {
+  return false;
+}
+bool CholeskySolver::forward_compliance(ForwardColumnsPtr&, std::span<const PetscInt>,
+                                        double*) const {
+  return false;
+}
 
 bool CholeskySolver::unit_solve_rows(std::span<const PetscInt>, std::span<const PetscInt>,
                                      double*) const {

@@ -164,10 +164,16 @@ class SparseMatrix {
 /// dofs, so that a matrix with them replaced by a scaled identity keeps its conditioning.
 [[nodiscard]] double mean_diagonal(const SparseMatrix& a);
 
+struct CholeskyColumns;  // cholmod_columns.cpp
+struct ForwardColumns;  // cholmod_columns.cpp: Y = L⁻¹P E_T kept between forward_compliance calls
+struct ForwardColumnsDeleter {
+  void operator()(ForwardColumns* y) const;
+};
+using ForwardColumnsPtr = std::unique_ptr<ForwardColumns, ForwardColumnsDeleter>;
+
 /// A direct Cholesky factorisation of an SPD SparseMatrix, done once, solved many times.
 /// The package is "mumps" or "cholmod" (PETSc's MatSolverType); it may be overridden with the
 /// PETSc option -tc_factor_package.
-struct CholeskyColumns;  // cholmod_columns.cpp
 
 class CholeskySolver {
  public:
@@ -186,6 +192,21 @@ class CholeskySolver {
   /// package (the caller then uses solve_many).
   bool unit_solve_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
                        double* out) const;
+  /// Whether forward_compliance is worth it for a first cover of `dofs`: with CHOLMOD's
+  /// supernodal factor, when unit_solve_rows in blocks of `block` columns would cost more flops
+  /// than this factorisation did (issue 22's bound on the set-up) and more than the forward
+  /// solves. Below that, the restricted solves keep the set-up's bits as they were.
+  [[nodiscard]] bool forward_compliance_pays(std::span<const PetscInt> dofs, int block) const;
+  /// Grows S = (A⁻¹)_TT by the forward solve alone: S = YᵀY with Y = L⁻¹P E_T (A = PᵀLLᵀP,
+  /// E_T the unit columns of T), each supernode once with all the columns that reach it, and
+  /// no backward solve. T is the dofs of the earlier calls with `kept`, then `fresh`; out is
+  /// S(T, fresh), column-major |T| × |fresh| (on the first call |fresh| × |fresh|, exactly
+  /// symmetric). A dof −1 gives a zero row and column. `kept` holds Y for later calls (on the
+  /// supernodes each column reaches; about as large as S). The entries agree with
+  /// unit_solve_rows to round-off, not to the bit (other sums). Returns false, writing
+  /// nothing, with another package or another factor than kept's.
+  bool forward_compliance(ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
+                          double* out) const;
   [[nodiscard]] const std::string& package() const { return package_; }
 
  private:

@@ -4,6 +4,20 @@
 
 namespace tc::physics {
 
+namespace {
+
+/// `dofs` with the constrained ones (sorted `constrained`) replaced by −1: the elimination
+/// decouples them, their rows and columns of A⁻¹ are zero.
+std::vector<PetscInt> free_or_none(std::span<const PetscInt> dofs,
+                                   const std::vector<PetscInt>& constrained) {
+  std::vector<PetscInt> out(dofs.begin(), dofs.end());
+  for (auto& d : out)
+    if (std::binary_search(constrained.begin(), constrained.end(), d)) d = -1;
+  return out;
+}
+
+}  // namespace
+
 ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
                                      const std::string& package)
     : dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)), reduced_(a.copy()) {
@@ -56,10 +70,17 @@ void ConstrainedSolver::solve_homogeneous_many(::Mat b, ::Mat x) const {
 bool ConstrainedSolver::solve_unit_rows(std::span<const PetscInt> cols,
                                         std::span<const PetscInt> rows, double* out) const {
   if (feti_) return false;
-  std::vector<PetscInt> c(cols.begin(), cols.end());
-  for (auto& d : c)  // the block solve zeroes the constrained rows of its right-hand side
-    if (std::binary_search(dofs_.begin(), dofs_.end(), d)) d = -1;
-  return factor_.unit_solve_rows(c, rows, out);
+  // The block solve zeroes the constrained rows of its right-hand side.
+  return factor_.unit_solve_rows(free_or_none(cols, dofs_), rows, out);
+}
+
+bool ConstrainedSolver::forward_compliance_pays(std::span<const PetscInt> dofs, int block) const {
+  return !feti_ && factor_.forward_compliance_pays(free_or_none(dofs, dofs_), block);
+}
+
+bool ConstrainedSolver::forward_compliance(core::ForwardColumnsPtr& kept,
+                                           std::span<const PetscInt> fresh, double* out) const {
+  return !feti_ && factor_.forward_compliance(kept, free_or_none(fresh, dofs_), out);
 }
 
 void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {

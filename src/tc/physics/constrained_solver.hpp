@@ -35,6 +35,15 @@ class ConstrainedSolver {
   /// block. False (nothing written) when the factorisation cannot (FETI, MUMPS).
   bool solve_unit_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
                        double* out) const;
+  /// Whether forward_compliance pays for a first set of `dofs` (blocks of `block` columns
+  /// otherwise): core::CholeskySolver::forward_compliance_pays. False with FETI or MUMPS.
+  [[nodiscard]] bool forward_compliance_pays(std::span<const PetscInt> dofs, int block) const;
+  /// S(T, fresh) of S = (A⁻¹)_TT with zero prescribed values, T the dofs of the earlier calls
+  /// with `kept` then `fresh` (a constrained dof gives a zero row and column), by forward solves
+  /// only: core::CholeskySolver::forward_compliance. Equal to solve_unit_rows to round-off.
+  /// False (nothing written) when the factorisation cannot.
+  bool forward_compliance(core::ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
+                          double* out) const;
   [[nodiscard]] const std::string& package() const {
     return feti_ ? feti_->package() : factor_.package();
   }

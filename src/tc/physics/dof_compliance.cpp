@@ -53,9 +53,33 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
   if (t == old) return 0;
   chunks_.push_back(static_cast<PetscInt>(t - old));
   s_.conservativeResize(t, t);
-  const auto n = static_cast<PetscInt>(index_.size());
   constexpr Eigen::Index block = 64;  // bounds the dense work space to n × block
   std::vector<double> part;           // the new columns on T, when the factor gives them directly
+  // The restricted solves' backward pass visits every supernode of T for each block of new
+  // columns; when that would cost more than the factorisation (decided once, at the first
+  // cover), S is grown by the forward solve alone, S = YᵀY, for this and every later cover.
+  if (old == 0) {
+    forward_.reset();
+    by_forward_ = solver_.forward_compliance_pays(dofs_, static_cast<int>(block));
+  }
+  if (by_forward_) {
+    const auto fresh = std::span(dofs_).subspan(static_cast<size_t>(old));
+    if (old == 0 && solver_.forward_compliance(forward_, fresh, s_.data()))
+      return static_cast<PetscInt>(t);  // S(T, T), exactly symmetric
+    part.resize(static_cast<size_t>(t * (t - old)));
+    if (old > 0 && solver_.forward_compliance(forward_, fresh, part.data())) {
+      for (Eigen::Index c = 0; c < t - old; ++c)
+        for (Eigen::Index a = 0; a < t; ++a) {
+          const double v = part[static_cast<size_t>(a + c * t)];
+          s_(a, old + c) = v;
+          if (a < old) s_(old + c, a) = v;
+        }
+      return static_cast<PetscInt>(t - old);  // the fresh block exactly symmetric already
+    }
+    by_forward_ = false;  // the factor cannot (not expected after a first success)
+    forward_.reset();
+  }
+  const auto n = static_cast<PetscInt>(index_.size());
   for (Eigen::Index j0 = old; j0 < t; j0 += block) {
     const auto k = std::min(block, t - j0);
     part.resize(static_cast<size_t>(t * k));

@@ -24,7 +24,10 @@ void assemble(::Mat a);
 /// costs sparse-dense products and no solve for rows on dofs seen before. A new dof costs one
 /// solve (in blocks of right-hand sides, restricted to the supernodes they reach when the
 /// factor allows: ConstrainedSolver::solve_unit_rows); its column's entries on the old T give
-/// the new row too, by the symmetry of A.
+/// the new row too, by the symmetry of A. When those solves would cost more than the
+/// factorisation (ConstrainedSolver::forward_compliance_pays, at the first cover), S is grown
+/// by forward solves alone instead (S = YᵀY, ConstrainedSolver::forward_compliance), keeping
+/// Y: fewer flops, the same S to round-off but not to the bit.
 class DofCompliance {
  public:
   DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs);
@@ -48,6 +51,10 @@ class DofCompliance {
 
  private:
   const ConstrainedSolver& solver_;
+  // Whether S is grown by forward solves alone (decided at the first cover, by its cost), and
+  // their Y for the columns added later.
+  bool by_forward_ = false;
+  core::ForwardColumnsPtr forward_;
   std::vector<PetscInt> chunks_;
   std::vector<PetscInt> index_;  // dof → position in T, or −1
   std::vector<PetscInt> dofs_;   // T in the order added
