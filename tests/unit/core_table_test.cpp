@@ -86,11 +86,10 @@ TEST(Petsc, CholeskySolvesAnSpdSystem) {
   }
 }
 
-TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
-  // A 3D Laplacian (7 points, shifted) large enough for CHOLMOD's supernodal factor: the rows
-  // of A⁻¹[e_c] from unit_solve_rows, which visits only the supernodes they need, against the
-  // dense block solve: the same bits (CHOLMOD), or false and nothing written (other packages).
-  const PetscInt g = 14, n = g * g * g;
+/// A 3D Laplacian on a g³ grid (7 points, diagonal shifted to 6.5: SPD), large enough at g = 14
+/// for CHOLMOD's supernodal factor.
+tc::core::SparseMatrix shifted_laplacian(PetscInt g) {
+  const PetscInt n = g * g * g;
   std::vector<PetscInt> nnz(n, 7);
   tc::core::SparseMatrix a(n, n, nnz);
   const auto id = [&](PetscInt x, PetscInt y, PetscInt z) { return x + g * (y + g * z); };
@@ -108,6 +107,16 @@ TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
           }
       }
   a.assemble();
+  return a;
+}
+
+TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
+  // A 3D Laplacian (7 points, shifted) large enough for CHOLMOD's supernodal factor: the rows
+  // of A⁻¹[e_c] from unit_solve_rows, which visits only the supernodes they need, against the
+  // dense block solve: the same bits (CHOLMOD), or false and nothing written (other packages).
+  const PetscInt g = 14, n = g * g * g;
+  const auto a = shifted_laplacian(g);
+  const auto id = [&](PetscInt x, PetscInt y, PetscInt z) { return x + g * (y + g * z); };
   std::vector<PetscInt> rows;  // a face, as the contact dofs are
   for (PetscInt y = 0; y < g; ++y)
     for (PetscInt x = 0; x < g; ++x) rows.push_back(id(x, y, g - 1));
@@ -158,24 +167,9 @@ TEST(Petsc, CholeskyForwardComplianceIsTheRestrictedSolveToRoundOff) {
   // S = (A⁻¹)_TT by forward solves alone (S = YᵀY, kept Y for later columns) against
   // unit_solve_rows (forward and backward): the same to round-off, exactly symmetric, zero on a
   // constrained (−1) dof; grown by a second set of dofs, the new columns on all of T.
-  const PetscInt g = 14, n = g * g * g;
-  std::vector<PetscInt> nnz(n, 7);
-  tc::core::SparseMatrix a(n, n, nnz);
+  const PetscInt g = 14;
+  const auto a = shifted_laplacian(g);
   const auto id = [&](PetscInt x, PetscInt y, PetscInt z) { return x + g * (y + g * z); };
-  for (PetscInt z = 0; z < g; ++z)
-    for (PetscInt y = 0; y < g; ++y)
-      for (PetscInt x = 0; x < g; ++x) {
-        const PetscInt i = id(x, y, z);
-        const double d = 6.5, o = -1.0;
-        a.add_values(std::span(&i, 1), std::span(&i, 1), &d);
-        for (const PetscInt j : {x + 1 < g ? id(x + 1, y, z) : -1, y + 1 < g ? id(x, y + 1, z) : -1,
-                                 z + 1 < g ? id(x, y, z + 1) : -1})
-          if (j >= 0) {
-            a.add_values(std::span(&i, 1), std::span(&j, 1), &o);
-            a.add_values(std::span(&j, 1), std::span(&i, 1), &o);
-          }
-      }
-  a.assemble();
   std::vector<PetscInt> first, more;  // a face patch, then a strip beside it (the slide)
   for (PetscInt y = 0; y < g; ++y)
     for (PetscInt x = 0; x < g; ++x) (x < 9 ? first : more).push_back(id(x, y, g - 1));

@@ -1,6 +1,6 @@
 #pragma once
 // The heat and mechanical steps of one body within a time step (6.1, 6.3), and the staggered
-// fixed point of 6.3 for a body outside contact. The contact pair's loop (ContactCoupling)
+// fixed point of 6.3 for a body outside contact. The contact pairs' loop (ContactCoupling)
 // takes the body steps from here and adds the interface.
 #include "tc/core/timer.hpp"
 #include "tc/physics/bodies.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // The time loop of chapters 5–6: it builds the bodies (constant matrices factorised once at
 // construction, never inside the loop), wires the components of a step — BodySteps (heat and
-// mechanical steps, the staggered loop 6.3 of a body), ContactCoupling (the contact pair's loop,
+// mechanical steps, the staggered loop 6.3 of a body), ContactCoupling (the contact pairs' loop,
 // with the enforcement and contact time scheme of choose_contact_method), the time scheme
 // (time_scheme.hpp: Newmark, quasistatic, backward Euler) — and keeps the run's ledger.
 //
@@ -54,11 +54,11 @@ class Simulation {
   explicit Simulation(const Problem& problem);
   ~Simulation();
 
-  /// Turns on the contact of problem().contact, with the rows built by `builder` each step;
+  /// Turns on the contact of the problem's one pair, with the rows built by `builder` each step;
   /// the enforcement and the contact time scheme follow the settings (choose_contact_method).
   void enable_contact(ContactRowsBuilder builder, DualContactSettings settings = {});
-  /// Turns on the contact of problem().contact with the mortar pair of its two surfaces
-  /// (contact::MortarPair), evaluated in the configuration of t^k at every step.
+  /// Turns on the contact of every pair of problem().contacts, each with the mortar pair of its
+  /// two surfaces (contact::MortarPair), evaluated in the configuration of t^k at every step.
   void enable_mortar_contact(DualContactSettings settings = {},
                              contact::MortarOptions options = {});
   /// The contact pairs: their mortar pairs, multipliers, statistics (contact_coupling.hpp).
@@ -169,7 +169,7 @@ class Simulation {
   core::PhaseTimers timers_;
   Bodies bodies_;
   BodySteps steps_;          // the heat and mechanical steps of one body, its loop (6.3)
-  ContactCoupling contact_;  // the contact pair's loop (6.3) and its enforcement
+  ContactCoupling contact_;  // the contact pairs' loop (6.3) and their enforcement
   EnergyBalance energy_;     // support forces and external work
   int step_ = 0;
   long total_coupling_ = 0;
