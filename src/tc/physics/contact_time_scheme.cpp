@@ -72,6 +72,7 @@ void StabilisedNewmarkContact::prepare(const BodyGroup& group, DualContactSolver
     rows.push_back({r.dim, r.slave.share(), r.master.share(), r.gap, r.weights, r.nodes});
   }
   projection_->set_rows(std::move(rows), dual.pair_bodies());
+  projection_->hold_at_zero(dual.held());  // the crosspoints of the contact QP here too
   core::Vector multipliers(dual.n_rows());
   const std::vector<double> no_friction(static_cast<size_t>(dual.n_nodes()), 0.0);
   for (auto* f : group.fields) f->u_prev.copy_from(f->u_pred);

@@ -131,6 +131,7 @@ class DualContactSolver {
   /// Nodes whose multipliers are held at 0 (λ_n ∈ [0, 0], λ_τ = 0) until the next set_rows:
   /// the crosspoints of a later pair (ContactCoupling), whose rows repeat an earlier pair's.
   void hold_at_zero(std::vector<char> held) { held_ = std::move(held); }
+  [[nodiscard]] const std::vector<char>& held() const { return held_; }
   [[nodiscard]] bool held_at_zero(PetscInt k) const {
     return !held_.empty() && held_[static_cast<size_t>(k)] != 0;
   }
