@@ -23,30 +23,13 @@ InterfaceHeatSolver::InterfaceHeatSolver(std::vector<const ConstrainedSolver*> s
     }
     offset_.push_back(offset_.back() + static_cast<int>(nodes_[i].size()));
     rhs_.emplace_back(n_[i]);
+    compliance_.emplace_back(*solver_[i], n_[i]);
   }
-  columns_.resize(static_cast<size_t>(offset_.back()));
 }
 
 int InterfaceHeatSolver::body_of(int g) const {
   return static_cast<int>(std::upper_bound(offset_.begin(), offset_.end(), g) - offset_.begin()) -
          1;
-}
-
-const std::vector<double>& InterfaceHeatSolver::column(int g) {
-  auto& col = columns_[g];
-  if (!col.empty()) return col;
-  const int body = body_of(g);
-  core::Vector e(n_[body]), x(n_[body]);  // x = 0 on the constrained dofs: homogeneous data
-  {
-    auto ev = e.view();
-    ev[nodes_[body][g - offset_[body]]] = 1.0;
-  }
-  solver_[body]->solve(e, x);
-  ++setup_solves_;
-  const auto xs = x.to_std();
-  col.resize(nodes_[body].size());
-  for (size_t a = 0; a < nodes_[body].size(); ++a) col[a] = xs[nodes_[body][a]];
-  return col;
 }
 
 void InterfaceHeatSolver::set_conductance(std::span<const PairConductance> pairs) {
@@ -106,16 +89,23 @@ void InterfaceHeatSolver::set_conductance(std::span<const PairConductance> pairs
   l_active_.resize(na, na);
   l_active_.setFromTriplets(triplets.begin(), triplets.end());
   if (na == 0) return;
-  // I + S_JJ L_JJ, S block diagonal (the bodies do not see each other through A).
+  // I + S_JJ L_JJ, S block diagonal (the bodies do not see each other through A); the columns of
+  // the nodes new to J first, body by body.
+  std::vector<std::vector<PetscInt>> nodes(static_cast<size_t>(n_bodies()));
+  std::vector<PetscInt> node(static_cast<size_t>(na));
+  std::vector<int> body(static_cast<size_t>(na));
+  for (Eigen::Index a = 0; a < na; ++a) {
+    body[a] = body_of(active_[a]);
+    node[a] = nodes_[body[a]][active_[a] - offset_[body[a]]];
+    nodes[body[a]].push_back(node[a]);
+  }
+  for (int i = 0; i < n_bodies(); ++i) setup_solves_ += compliance_[i].cover(nodes[i]);
   Eigen::MatrixXd s = Eigen::MatrixXd::Zero(na, na);
   for (Eigen::Index b = 0; b < na; ++b) {
-    const int gb = active_[b];
-    const int body = body_of(gb);
-    const auto& col = column(gb);
-    for (Eigen::Index a = 0; a < na; ++a) {
-      const int ga = active_[a];
-      if (ga >= offset_[body] && ga < offset_[body + 1]) s(a, b) = col[ga - offset_[body]];
-    }
+    const auto& comp = compliance_[body[b]];
+    const PetscInt cb = comp.index(node[b]);
+    for (Eigen::Index a = 0; a < na; ++a)
+      if (body[a] == body[b]) s(a, b) = comp.matrix()(comp.index(node[a]), cb);
   }
   Eigen::MatrixXd k = s * l_active_;
   k.diagonal().array() += 1.0;

@@ -18,7 +18,8 @@
 // I + S L_Γ is similar to I + S^½ L_Γ S^½ (on the free nodes), so its eigenvalues are ≥ 1.
 //
 // A column of S costs one solve with A_i; columns are computed when their node first carries
-// conductance and kept for the run (the matrices do not change while τ does not).
+// conductance, all the new ones of a body together, and kept for the run (the matrices do not
+// change while τ does not).
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <array>
@@ -28,6 +29,7 @@
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/physics/constrained_solver.hpp"
+#include "tc/physics/dof_compliance.hpp"
 
 namespace tc::physics {
 
@@ -75,15 +77,17 @@ class InterfaceHeatSolver {
 
  private:
   [[nodiscard]] int n_bodies() const { return static_cast<int>(solver_.size()); }
-  [[nodiscard]] int body_of(int g) const;    // the body of global interface index g
-  const std::vector<double>& column(int g);  // S e_g over the interface of g's body
+  [[nodiscard]] int body_of(int g) const;  // the body of global interface index g
 
   std::vector<const ConstrainedSolver*> solver_;
   std::vector<PetscInt> n_;
   std::vector<std::vector<int>> nodes_;  // interface nodes of each body (sorted)
   std::vector<std::vector<int>> index_;  // body node → global interface index, or −1
   std::vector<int> offset_;              // first global interface index of each body, then n_Γ
-  std::vector<std::vector<double>> columns_;  // S columns, by global interface index (lazy)
+  // S_i = (A_i⁻¹) on the interface nodes of body i that have carried conductance, grown as
+  // nodes first do: their columns in blocks of right-hand sides (restricted to the supernodes
+  // they reach when the factor allows), not one solve each (DofCompliance).
+  std::vector<DofCompliance> compliance_;
   long setup_solves_ = 0;
 
   std::vector<int> active_;                  // global interface indices with a row of L
