@@ -54,6 +54,7 @@ void ContactCoupling::add_pairs() {
         if (on[a]) pr.crosspoint[a] = 1;
     }
   }
+  heat_.set_pairs(pairs_.size());
   heat_.set_treatment(problem_.solver.conductance_treatment);
 }
 
@@ -121,6 +122,12 @@ std::vector<double> ContactCoupling::multipliers(int q) const {
   return nodes_of(multipliers(), problem_.dimension, lambda_at_[q], lambda_at_[q + 1]);
 }
 
+std::vector<double> ContactCoupling::heat_flux() const {
+  std::vector<double> all;
+  for (const auto& pr : pairs_) all.insert(all.end(), pr.heat_flux.begin(), pr.heat_flux.end());
+  return all;
+}
+
 std::vector<double> ContactCoupling::slip(int q) const {
   if (lambda_at_.size() < pairs_.size() + 1) return {};
   return nodes_of(slip_, problem_.dimension, lambda_at_[q], lambda_at_[q + 1]);
@@ -133,16 +140,7 @@ void ContactCoupling::register_history(History& h) const {
   for (size_t q = 0; q < pairs_.size(); ++q) {
     const std::string suffix = "_" + pairs_[q].settings->name;
     pairs_[q].stats.register_pair_history(h, suffix);
-    // The ledgers are kept by the heat coupling, which may resize them on restore: read them
-    // there at each record.
-    const auto& heat = heat_;
-    const auto column = [&heat, q](double ContactHeat::*x) -> History::Value {
-      return [&heat, q, x] { return q < heat.pair_heat().size() ? heat.pair_heat()[q].*x : 0.0; };
-    };
-    h.add("heat_generated" + suffix, column(&ContactHeat::generated));
-    h.add("heat_to_slave" + suffix, column(&ContactHeat::to_slave));
-    h.add("heat_to_master" + suffix, column(&ContactHeat::to_master));
-    h.add("heat_conducted" + suffix, column(&ContactHeat::conducted));
+    heat_.pair_heat()[q].register_history(h, suffix);
   }
 }
 
@@ -232,24 +230,23 @@ void ContactCoupling::set_rows(BodyGroup& g) {
   }
   auto& dual = enforcement.dual();
   const int dim = dual.dim();
-  // λ of the last step on these rows, pair by pair (each pair's nodes where they were).
-  if (n_pairs() == 1) {
-    pairs_.front().transfer.warm_start(dual.pair_rows(0), pairs_.front().mortar.get(), lambda_);
-  } else {
-    const auto previous = multipliers();
-    std::vector<double> next;
-    for (int q = 0; q < n_pairs(); ++q) {
-      auto& pr = pairs_[q];
-      const bool known = lambda_at_.size() == pairs_.size() + 1;
-      core::Vector lq =
-          known ? core::Vector::from(nodes_of(previous, dim, lambda_at_[q], lambda_at_[q + 1]))
-                : core::Vector();
-      pr.transfer.warm_start(dual.pair_rows(q), pr.mortar.get(), lq);
-      const auto v = lq.to_std();
-      next.insert(next.end(), v.begin(), v.end());
-    }
-    lambda_ = core::Vector::from(next);
+  // λ of the last step on these rows, pair by pair (each pair's nodes where they were; one pair
+  // without the last step's node counts, from a test's rows: all of λ, by position).
+  const auto previous = multipliers();
+  const bool known = lambda_at_.size() == pairs_.size() + 1;
+  std::vector<double> next;
+  for (int q = 0; q < n_pairs(); ++q) {
+    auto& pr = pairs_[q];
+    core::Vector lq;
+    if (known)
+      lq = core::Vector::from(nodes_of(previous, dim, lambda_at_[q], lambda_at_[q + 1]));
+    else if (n_pairs() == 1 && !previous.empty())
+      lq = core::Vector::from(previous);
+    pr.transfer.warm_start(dual.pair_rows(q), pr.mortar.get(), lq);
+    const auto v = lq.to_std();
+    next.insert(next.end(), v.begin(), v.end());
   }
+  lambda_ = core::Vector::from(next);
   lambda_at_.clear();
   for (int q = 0; q <= n_pairs(); ++q) lambda_at_.push_back(dual.pair_offset(q));
   // Crosspoints: a later pair's multipliers held at 0 (λ_n ∈ [0, 0], no friction) where an
@@ -403,14 +400,6 @@ void ContactCoupling::bookkeeping() {
   const auto l = lambda_.to_std();
   const double unit = traction_per_multiplier();
   const int dim = dual.dim();
-  const int qp_iterations = stats_.qp_iterations;
-  const int applications = stats_.operator_applications;
-  const int friction_iterations = stats_.friction_iterations;
-  stats_ = {};
-  stats_.qp_iterations = qp_iterations;
-  stats_.operator_applications = applications;
-  stats_.friction_iterations = friction_iterations;
-  heat_flux_.clear();
   for (int q = 0; q < n_pairs(); ++q) {
     auto& pr = pairs_[q];
     const PetscInt from = dual.pair_offset(q), to = dual.pair_offset(q + 1);
@@ -431,7 +420,6 @@ void ContactCoupling::bookkeeping() {
             conduction_flux(*pr.mortar, rows, lq, scale, bodies_.states[c.slave_body].theta,
                             bodies_.states[c.master_body].theta);
       }
-      heat_flux_.insert(heat_flux_.end(), pr.heat_flux.begin(), pr.heat_flux.end());
     }
   }
   sum_pair_statistics();
@@ -454,7 +442,7 @@ void ContactCoupling::save(Checkpoint& c) const {
     method_.scheme->save(c);
   }
   c.slip = slip_;
-  c.heat_flux = heat_flux_;
+  c.heat_flux = heat_flux();
   c.total_qp = total_qp_;
   c.total_applications = total_applications_;
 }
@@ -477,17 +465,24 @@ void ContactCoupling::restore(const Checkpoint& c) {
   if (!named) lambda_at_.clear();  // a test's rows without nodes: by position, one pair
   std::vector<ContactHeat> heat;
   for (size_t q = 0; q < pairs_.size(); ++q) {
-    pairs_[q].transfer.restore(c.pairs[q]);
-    pairs_[q].stats = c.pairs[q].contact;
+    auto& pr = pairs_[q];
+    pr.transfer.restore(c.pairs[q]);
+    pr.stats = c.pairs[q].contact;
     heat.push_back(c.pairs[q].heat);
+    // The flux is written per contact node of the pairs with a mortar pair, pair after pair.
+    pr.heat_flux.clear();
+    if (named && pr.mortar && c.heat_flux.size() >= static_cast<size_t>(lambda_at_.back()))
+      pr.heat_flux.assign(c.heat_flux.begin() + lambda_at_[q],
+                          c.heat_flux.begin() + lambda_at_[q + 1]);
+    else if (pr.mortar && pairs_.size() == 1)
+      pr.heat_flux = c.heat_flux;
   }
-  heat_.set_pair_heat(std::move(heat));
+  heat_.set_pair_heat(heat);
   if (enabled()) {
     method_.enforcement->restore(c);
     method_.scheme->restore(c);
   }
   slip_ = c.slip;
-  heat_flux_ = c.heat_flux;
   total_qp_ = c.total_qp;
   total_applications_ = c.total_applications;
   stats_ = {};
@@ -496,6 +491,9 @@ void ContactCoupling::restore(const Checkpoint& c) {
 
 void ContactCoupling::sum_pair_statistics() {
   // The tangential force is the sum of the pairs' resultants' magnitudes (docs/choices.md).
+  stats_.normal_force = stats_.tangential_force = stats_.tangential_force_sum = 0;
+  stats_.dissipation = 0;
+  stats_.active_nodes = stats_.slip_nodes = 0;
   for (const auto& pr : pairs_) {
     stats_.normal_force += pr.stats.normal_force;
     stats_.tangential_force += pr.stats.tangential_force;

@@ -80,7 +80,8 @@ class ContactCoupling {
   /// B_τ Δu of the last step, every pair's rows (pair after pair), or pair q's.
   [[nodiscard]] const std::vector<double>& slip() const { return slip_; }
   [[nodiscard]] std::vector<double> slip(int q) const;
-  [[nodiscard]] const std::vector<double>& heat_flux() const { return heat_flux_; }
+  /// The conducted heat flux per contact node of every pair (pair after pair).
+  [[nodiscard]] std::vector<double> heat_flux() const;
   /// Summed over the pairs (the QP's counts are of the one QP of all pairs).
   [[nodiscard]] const ContactStatistics& statistics() const { return stats_; }
   [[nodiscard]] const ContactHeatCoupling& heat() const { return heat_; }
@@ -129,7 +130,6 @@ class ContactCoupling {
   ContactHeatCoupling heat_;
   NodalLaws nodal_laws_;          // every pair's, at the last coupling iterate
   std::vector<double> qp_bound_;  // the Tresca bounds 𝔉_kγ_k of the step's last QP
-  std::vector<double> heat_flux_;
   long total_qp_ = 0, total_applications_ = 0;
 };
 

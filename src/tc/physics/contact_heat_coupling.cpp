@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 #include <set>
 
 #include "tc/core/error.hpp"
@@ -24,7 +25,7 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
   conductance_.resize(n_pairs);
   bodies_.clear();
   for (const auto& it : pairs) bodies_.push_back(it.bodies);
-  if (heat_.size() != n_pairs) heat_.resize(n_pairs);
+  assert(heat_.size() == n_pairs);  // set_pairs
   std::vector<std::vector<double>> gamma(n_pairs);
   bool any_frictional = false;
   for (size_t q = 0; q < n_pairs; ++q) {
@@ -174,7 +175,7 @@ void ContactHeatCoupling::group_boundary_heat(const Problem& p, const BodyGroup&
 }
 
 void ContactHeatCoupling::account_step(const BodyGroup& group, double tau) {
-  for (size_t q = 0; q < heat_.size() && q < frictional_heat_.size(); ++q) {
+  for (size_t q = 0; q < frictional_heat_.size(); ++q) {
     auto& h = heat_[q];
     const auto& fh = frictional_heat_[q];
     h.generated += tau * fh.total;
@@ -191,8 +192,9 @@ void ContactHeatCoupling::account_step(const BodyGroup& group, double tau) {
   sum_heat();
 }
 
-void ContactHeatCoupling::set_pair_heat(std::vector<ContactHeat> heat) {
-  heat_ = std::move(heat);
+void ContactHeatCoupling::set_pair_heat(std::span<const ContactHeat> heat) {
+  assert(heat.size() == heat_.size());
+  std::copy(heat.begin(), heat.end(), heat_.begin());
   sum_heat();
 }
 

@@ -58,8 +58,10 @@ class ContactHeatCoupling {
   /// Newton corrections and their CG iterations of the pairs' heat steps so far.
   [[nodiscard]] long newton_iterations() const { return newton_; }
   [[nodiscard]] long newton_inner_iterations() const { return newton_inner_; }
-  /// The pairs' ledgers (from a checkpoint); the sum follows.
-  void set_pair_heat(std::vector<ContactHeat> heat);
+  /// One ledger per pair, kept in place for the run (the history reads them by address).
+  void set_pairs(size_t n) { heat_.resize(n); }
+  /// The pairs' ledgers (from a checkpoint, one per pair); the sum follows.
+  void set_pair_heat(std::span<const ContactHeat> heat);
 
  private:
   // The heat step with radiation or an h(t) film on any body of the group.

@@ -65,11 +65,11 @@ void ContactStatistics::register_pair_history(History& h, const std::string& suf
   h.add("contact_tangential_force_sum" + suffix, History::value_of(tangential_force_sum));
 }
 
-void ContactHeat::register_history(History& h) const {
-  h.add("heat_generated", History::value_of(generated));
-  h.add("heat_to_slave", History::value_of(to_slave));
-  h.add("heat_to_master", History::value_of(to_master));
-  h.add("heat_conducted", History::value_of(conducted));
+void ContactHeat::register_history(History& h, const std::string& suffix) const {
+  h.add("heat_generated" + suffix, History::value_of(generated));
+  h.add("heat_to_slave" + suffix, History::value_of(to_slave));
+  h.add("heat_to_master" + suffix, History::value_of(to_master));
+  h.add("heat_conducted" + suffix, History::value_of(conducted));
 }
 
 void BoundaryHeat::account_step(const Bodies& bodies, double t, double tau) {

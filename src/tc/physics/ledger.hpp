@@ -55,8 +55,9 @@ struct ContactStatistics {
 struct ContactHeat {
   double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
 
-  /// Its history.csv columns heat_generated, heat_to_slave, heat_to_master, heat_conducted.
-  void register_history(History& h) const;
+  /// Its history.csv columns heat_generated, heat_to_slave, heat_to_master, heat_conducted,
+  /// each name followed by `suffix` (one pair among several).
+  void register_history(History& h, const std::string& suffix = "") const;
 };
 
 /// Heat lost through the film and the radiation boundaries of all bodies, cumulative from

@@ -111,9 +111,7 @@ class Simulation {
   /// β_C λ_n [θ] (λ_n/2 with the contact-stabilised scheme), [θ] = θ_s − θ_m (θ_m of the master at
   /// the node, (Mθ_m)_k/(D1)_k), in W/m²: the heat flux out of the slave into the master (positive
   /// when the slave is hotter). Zero with heat_conduction = false; empty without the mortar pair.
-  [[nodiscard]] const std::vector<double>& contact_heat_flux() const {
-    return contact_.heat_flux();
-  }
+  [[nodiscard]] std::vector<double> contact_heat_flux() const { return contact_.heat_flux(); }
   /// The solver of the implicit heat step (null until conductance first appears).
   [[nodiscard]] const InterfaceHeatSolver* interface_heat_solver() const {
     return contact_.heat().interface_heat_solver();

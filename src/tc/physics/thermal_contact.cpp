@@ -118,13 +118,11 @@ void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
   if (active_.empty()) return;
   const auto na = static_cast<Eigen::Index>(active_.size());
   Eigen::VectorXd y0(na);
-  {
-    std::vector<std::vector<double>> xs;
-    for (int i = 0; i < n_bodies(); ++i) xs.push_back(x[i]->to_std());
+  for (int i = 0; i < n_bodies(); ++i) {  // the interface entries only, body by body
+    const auto xv = x[i]->read();
     for (Eigen::Index a = 0; a < na; ++a) {
       const int g = active_[a];
-      const int body = body_of(g);
-      y0(a) = xs[body][nodes_[body][g - offset_[body]]];
+      if (g >= offset_[i] && g < offset_[i + 1]) y0(a) = xv[nodes_[i][g - offset_[i]]];
     }
   }
   const Eigen::VectorXd c = l_active_ * lu_.solve(y0);  // L_Γ y
