@@ -73,12 +73,10 @@ struct CholeskyColumns {
 
 namespace {
 
-CholeskyColumns* columns_of(::KSP ksp, std::shared_ptr<CholeskyColumns>& cache) {
+CholeskyColumns* columns_of(::Mat f, std::shared_ptr<CholeskyColumns>& cache) {
   if (cache) return cache->factor ? cache.get() : nullptr;
   cache = std::make_shared<CholeskyColumns>();
-  ::PC pc = nullptr;
-  ::Mat f = nullptr;
-  if (KSPGetPC(ksp, &pc) || PCFactorGetMatrix(pc, &f) || !f) return nullptr;
+  if (!f) return nullptr;
   MatSolverType type = nullptr;
   if (MatFactorGetSolverType(f, &type) || !type || std::strcmp(type, MATSOLVERCHOLMOD) != 0)
     return nullptr;
@@ -140,7 +138,7 @@ std::vector<int> reach(CholeskyColumns& c, std::span<const PetscInt> dofs) {
 
 bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
                                      double* out) const {
-  CholeskyColumns* c = columns_of(ksp_.get(), columns_);
+  CholeskyColumns* c = columns_of(factor_.get(), columns_);
   if (!c || cols.empty()) return c != nullptr;
   const cholmod_factor& l = *c->factor;
   const int n = static_cast<int>(l.n);
@@ -325,7 +323,7 @@ double forward_flops(int nscol, int nsrow, double k) {
 }  // namespace
 
 bool CholeskySolver::forward_compliance_pays(std::span<const PetscInt> dofs, int block) const {
-  CholeskyColumns* c = columns_of(ksp_.get(), columns_);
+  CholeskyColumns* c = columns_of(factor_.get(), columns_);
   if (!c || dofs.empty()) return false;
   const cholmod_factor& l = *c->factor;
   const auto* super = static_cast<const int*>(l.super);
@@ -363,7 +361,7 @@ void ForwardColumnsDeleter::operator()(ForwardColumns* y) const {
 
 bool CholeskySolver::forward_compliance(ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
                                         double* out) const {
-  CholeskyColumns* c = columns_of(ksp_.get(), columns_);
+  CholeskyColumns* c = columns_of(factor_.get(), columns_);
   if (!c || (kept && kept->factor != c->factor)) return false;
   if (!kept) {
     kept.reset(new ForwardColumns);

@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -355,27 +356,57 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package
 
   TC_PETSC(MatSetOption(a.get(), MAT_SYMMETRIC, PETSC_TRUE));
   TC_PETSC(MatSetOption(a.get(), MAT_SPD, PETSC_TRUE));
-  TC_PETSC(KSPCreate(PETSC_COMM_SELF, ksp_.out()));
-  TC_PETSC(KSPSetOperators(ksp_.get(), a.get(), a.get()));
-  TC_PETSC(KSPSetType(ksp_.get(), KSPPREONLY));
+  // The KSP only factorises: the factor is kept and the KSP dropped, so that it no longer
+  // holds a reference to `a` and the caller's copy of the matrix can be freed (a 3D body's
+  // operator is about a tenth of its factor).
+  Handle<::KSP, KSPDestroy> ksp;
+  TC_PETSC(KSPCreate(PETSC_COMM_SELF, ksp.out()));
+  TC_PETSC(KSPSetOperators(ksp.get(), a.get(), a.get()));
+  TC_PETSC(KSPSetType(ksp.get(), KSPPREONLY));
   PC pc = nullptr;
-  TC_PETSC(KSPGetPC(ksp_.get(), &pc));
+  TC_PETSC(KSPGetPC(ksp.get(), &pc));
   TC_PETSC(PCSetType(pc, PCCHOLESKY));
   TC_PETSC(PCFactorSetMatSolverType(pc, package_.c_str()));
-  TC_PETSC(KSPSetErrorIfNotConverged(ksp_.get(), PETSC_TRUE));
-  TC_PETSC(KSPSetUp(ksp_.get()));  // the factorisation happens here, once
+  TC_PETSC(KSPSetErrorIfNotConverged(ksp.get(), PETSC_TRUE));
+  TC_PETSC(KSPSetUp(ksp.get()));  // the factorisation happens here, once
+  ::Mat f = nullptr;
+  TC_PETSC(PCFactorGetMatrix(pc, &f));
+  TC_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(f)));
+  factor_ = Handle<::Mat, MatDestroy>(f);
 }
 
-void CholeskySolver::solve(const Vector& b, Vector& x) const {
-  TC_PETSC(KSPSolve(ksp_.get(), b.get(), x.get()));
-}
+// MatSolve and MatMatSolve on the factor are what KSPPREONLY with PCCHOLESKY calls: the same
+// bits as solving through the KSP.
+void CholeskySolver::solve(const Vector& b, Vector& x) const { solve_raw(b.get(), x.get()); }
 
 void CholeskySolver::solve_raw(::Vec b, ::Vec x) const {
-  TC_PETSC(KSPSolve(ksp_.get(), b, x));
+  assert(b != x && "MatSolve needs distinct vectors");
+  TC_PETSC(MatSolve(factor_.get(), b, x));
 }
 
 void CholeskySolver::solve_many(::Mat b, ::Mat x) const {
-  TC_PETSC(KSPMatSolve(ksp_.get(), b, x));
+  TC_PETSC(MatMatSolve(factor_.get(), b, x));
+}
+
+double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol,
+                 int max_iterations, int& iterations) {
+  Handle<::KSP, KSPDestroy> ksp;
+  TC_PETSC(KSPCreate(PETSC_COMM_SELF, ksp.out()));
+  TC_PETSC(KSPSetOperators(ksp.get(), a.get(), a.get()));
+  TC_PETSC(KSPSetType(ksp.get(), KSPCG));
+  PC pc = nullptr;
+  TC_PETSC(KSPGetPC(ksp.get(), &pc));
+  TC_PETSC(PCSetType(pc, PCJACOBI));
+  TC_PETSC(KSPSetNormType(ksp.get(), KSP_NORM_UNPRECONDITIONED));
+  TC_PETSC(KSPSetTolerances(ksp.get(), rtol, 0.0, PETSC_DEFAULT, max_iterations));
+  TC_PETSC(KSPSolve(ksp.get(), b.get(), x.get()));
+  PetscInt its = 0;
+  TC_PETSC(KSPGetIterationNumber(ksp.get(), &its));
+  iterations = static_cast<int>(its);
+  PetscReal r = 0;
+  TC_PETSC(KSPGetResidualNorm(ksp.get(), &r));
+  const double bn = b.norm();
+  return bn > 0 ? r / bn : 0.0;
 }
 
 }  // namespace tc::core

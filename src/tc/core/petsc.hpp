@@ -210,10 +210,17 @@ class CholeskySolver {
   [[nodiscard]] const std::string& package() const { return package_; }
 
  private:
-  Handle<::KSP, KSPDestroy> ksp_;
+  Handle<::Mat, MatDestroy> factor_;  // PETSc's factored matrix (MATSOLVERCHOLMOD or MUMPS)
   std::string package_;
   mutable std::shared_ptr<CholeskyColumns> columns_;  // the factor's structure, on first use
 };
+
+/// Conjugate gradients with Jacobi's preconditioner from x = 0 until ‖r‖ ≤ rtol·‖b‖ (PETSc's
+/// KSPCG, unpreconditioned norm): for matrices whose diagonal scaling leaves them well
+/// conditioned independently of the mesh, such as a mass matrix. Returns the residual norm
+/// ratio reached and sets `iterations`; the caller decides what not converging means.
+double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol,
+                 int max_iterations, int& iterations);
 
 /// The factorisation packages this PETSc build offers for Cholesky on sequential AIJ.
 [[nodiscard]] std::vector<std::string> available_cholesky_packages();

@@ -35,7 +35,6 @@ struct BodyField {
   /// Forms and factorises A_u and A_θ of body `sys`, allocates the vectors.
   BodyField(const Problem& p, const BodySystem& sys);
 
-  core::SparseMatrix a_u;      // 4/τ² M_u + K_u (5.3), or K_u (quasistatic)
   core::SparseMatrix a_theta;  // M_θ/τ + K_θ (5.6)
   std::unique_ptr<ConstrainedSolver> mech, heat;
   core::Vector f_u, f_theta, rhs_u_base, rhs_theta_base, rhs_u, rhs_theta;
@@ -45,12 +44,15 @@ struct BodyField {
   // g^k = f^k − K_u u^k − K_uθ(θ^k − θ₀) that replaces M_u ü^k (which holds the contact force).
   std::unique_ptr<ConstrainedSolver> mass;
   core::Vector g_free;
-  // M_u factorised for the initial acceleration, kept until the stabiliser takes it
-  // (enable_contact) or the first step drops it: one factorisation less per body.
-  std::unique_ptr<ConstrainedSolver> initial_mass;
   bool expansion = false;  // θ drives u (thermal expansion on, α ≠ 0)
   bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
 };
+
+/// ü⁰ of M_u ü⁰ = r (2.1 at t = 0) with ü⁰ = 0 on the supports and on the massless dofs of the
+/// modified mass, by Jacobi-preconditioned CG: no factorisation of M_u, whose fill is that of
+/// A_u's and which would coexist with it at the run's memory peak. Throws NumericalError
+/// (step 0) when CG does not converge.
+void solve_initial_acceleration(const BodySystem& sys, const core::Vector& r, core::Vector& a);
 
 /// f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with s's scratch vectors.
 void subtract_thermal_force(const Problem& p, const BodySystem& sys, BodyField& s,

@@ -20,7 +20,7 @@ std::vector<PetscInt> free_or_none(std::span<const PetscInt> dofs,
 
 ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
                                      const std::string& package)
-    : dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)), reduced_(a.copy()) {
+    : dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)) {
   std::sort(dofs_.begin(), dofs_.end());  // the lifting sums in column order, as MatMult
   dofs_.erase(std::unique(dofs_.begin(), dofs_.end()), dofs_.end());
   std::vector<PetscInt> position(static_cast<size_t>(a.rows()), -1);
@@ -46,8 +46,9 @@ ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<Pe
     }
     lift_start_.push_back(static_cast<PetscInt>(lift_row_.size()));
   }
-  reduced_.zero_rows_columns(dofs_, diag_);
-  factor_ = core::CholeskySolver(reduced_, package);
+  auto reduced = a.copy();  // freed once factorised: the factor keeps no reference to it
+  reduced.zero_rows_columns(dofs_, diag_);
+  factor_ = core::CholeskySolver(reduced, package);
   lift_ = core::Vector(a.rows());
   rhs_ = core::Vector(a.rows());
 }

@@ -58,7 +58,6 @@ class ConstrainedSolver {
   std::vector<PetscInt> lift_start_, lift_row_;
   std::vector<double> lift_value_;
   double diag_ = 1.0;  // of the constrained rows: the mean diagonal keeps the scale uniform
-  core::SparseMatrix reduced_;
   core::CholeskySolver factor_;
   mutable core::Vector lift_, rhs_;
   std::unique_ptr<feti::Feti> feti_;

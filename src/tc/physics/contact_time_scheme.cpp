@@ -47,10 +47,8 @@ StabilisedNewmarkContact::StabilisedNewmarkContact(const Problem& p, Bodies& bod
   std::vector<PetscInt> n_u;
   for (const int b : members) {
     auto& sv = *bodies.fields[b];
-    sv.mass = sv.initial_mass
-                  ? std::move(sv.initial_mass)
-                  : body_solver(p, *bodies.systems[b], bodies.systems[b]->matrices().mass_u,
-                                BodyOperator::mass);
+    sv.mass = body_solver(p, *bodies.systems[b], bodies.systems[b]->matrices().mass_u,
+                          BodyOperator::mass);
     mass.push_back(sv.mass.get());
     n_u.push_back(bodies.systems[b]->n_u());
   }

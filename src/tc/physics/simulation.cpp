@@ -79,7 +79,7 @@ void Simulation::initialise() {
       static_initial_state(b, st);
     if (problem_.time.scheme == Scheme::dynamic) {
       // Consistent initial acceleration (2.1 at t = 0): M ü⁰ = f(0) − K u⁰ − K_uθ(θ⁰ − θ₀),
-      // with ü = 0 on the supports. M is factorised for this one solve and dropped.
+      // with ü = 0 on the supports.
       auto t = timers_.scope("factorization");
       const auto& m = sys.matrices();
       sys.mechanical_load(0.0, s.rhs_u);
@@ -88,9 +88,7 @@ void Simulation::initialise() {
       if (problem_.physics.thermal_expansion)
         subtract_thermal_force(problem_, sys, s, st.theta, s.rhs_u);
       s.g_free = s.rhs_u.clone();  // g⁰ = M ü⁰ (no contact force at t = 0)
-      s.initial_mass = body_solver(problem_, sys, m.mass_u, BodyOperator::mass);
-      st.a.zero();
-      s.initial_mass->solve(s.rhs_u, st.a);
+      solve_initial_acceleration(sys, s.rhs_u, st.a);
     }
     bodies_.states.push_back(std::move(st));
   }
@@ -127,7 +125,6 @@ void Simulation::enable_mortar_contact(DualContactSettings settings,
 
 void Simulation::advance() {
   const auto t0 = Clock::now();
-  for (auto& sv : bodies_.fields) sv->initial_mass.reset();
   std::vector<core::Vector> old_u;
   for (const auto& st : bodies_.states) old_u.push_back(st.u.clone());
   int coupling = 0;
