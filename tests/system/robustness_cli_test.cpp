@@ -410,8 +410,8 @@ TEST(Startup, ASerialRunNeedsNoOpenMpiSessionDirectory) {
 TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {
   // subdomains = "auto" (the default): a 3D box of 2.17 M dofs would need ~86 GiB solved
   // directly (io::direct_memory), so it is cut into FETI subdomains of about 40 k dofs, and
-  // `check` says so before anything runs. The count follows this machine's memory (half of it
-  // for the bodies): the expected line is computed from the same rule.
+  // `check` says so before anything runs. The count follows this machine's memory
+  // (io::kMemoryShare of it for the bodies): the expected line is computed from the same rule.
   const auto file = write_case(
       "auto-subdomains",
       replace_all(replace_all(kCase, "dimension = 2", "dimension = 3"),
@@ -421,7 +421,8 @@ TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   const double dofs = 101.0 * 101.0 * 71.0 * 3.0;
-  const int n = tc::io::auto_subdomains(3, dofs, 0.5 * static_cast<double>(pages) * page);
+  const int n = tc::io::auto_subdomains(
+      3, {dofs}, tc::io::kMemoryShare * static_cast<double>(pages) * page)[0];
   if (n > 1)
     EXPECT_NE(r.output.find("body \"b\": " + std::to_string(n) + " FETI subdomains"),
               std::string::npos)

@@ -259,18 +259,34 @@ TEST(CaseReader, FactorizationNamesAndMissingFile) {
 
 namespace {
 
-TEST(AutoSubdomains, OneWhileTheDirectSolveFitsThenAboutFortyThousandDofsEach) {
-  // The model reproduces the peaks it was fitted to within 15 % (2D 300² and 600² cells, 3D
-  // 20³ and 32³; measured 0.833, 3.36, 0.573, 2.94 GB) and never below them by more than 3 %.
-  EXPECT_NEAR(tc::io::direct_memory(2, 181202), 0.833e9, 0.03 * 0.833e9);
-  EXPECT_NEAR(tc::io::direct_memory(2, 722402), 3.36e9, 0.15 * 3.36e9);
-  EXPECT_NEAR(tc::io::direct_memory(3, 27783), 0.573e9, 0.15 * 0.573e9);
-  EXPECT_NEAR(tc::io::direct_memory(3, 107811), 2.94e9, 0.03 * 2.94e9);
+TEST(AutoSubdomains, OneWhileTheDirectSolvesFitThenAboutFortyThousandDofsEach) {
+  // The model reproduces the peaks it was fitted to (one box body, one dynamic step; 2D 300²
+  // and 600² cells, 3D 20³ and 32³: 0.530, 2.218, 0.377, 1.737 GB measured on 2026-11-25) to
+  // 7 %, and is above the peaks of the two-body runs of example 06 refined ×4 and ×5.3 (5.37
+  // and 15.36 GB measured; 6.61 and 17.94 GB estimated) by 17–23 %: a slab fills less than
+  // the cubes of the fit, and the budget may count on the estimate being high.
+  EXPECT_NEAR(tc::io::direct_memory(2, 181202), 0.530e9, 0.01 * 0.530e9);
+  EXPECT_NEAR(tc::io::direct_memory(2, 722402), 2.218e9, 0.07 * 2.218e9);
+  EXPECT_NEAR(tc::io::direct_memory(3, 27783), 0.377e9, 0.08 * 0.377e9);
+  EXPECT_NEAR(tc::io::direct_memory(3, 107811), 1.737e9, 0.01 * 1.737e9);
+  const double x4 = tc::io::direct_memory(3, 299475) + tc::io::direct_memory(3, 46875);
+  const double x53 = tc::io::direct_memory(3, 676863) + tc::io::direct_memory(3, 107811);
+  EXPECT_GT(x4, 5.37e9);
+  EXPECT_LT(x4, 1.25 * 5.37e9);
+  EXPECT_GT(x53, 15.36e9);
+  EXPECT_LT(x53, 1.25 * 15.36e9);
   EXPECT_GT(tc::io::direct_memory(3, 1e6), tc::io::direct_memory(2, 1e6));  // 3D fills more
-  EXPECT_EQ(tc::io::auto_subdomains(3, 1e5, 12e9), 1);
-  EXPECT_EQ(tc::io::auto_subdomains(3, 2.17e6, 12e9), 55);  // ⌈2.17e6 / 4e4⌉
-  EXPECT_EQ(tc::io::auto_subdomains(3, 5e4, 1e8), 2);       // at least two when cut
-  EXPECT_EQ(tc::io::auto_subdomains(3, 1e9, 0), 1);         // memory unknown: as before
+  using V = std::vector<double>;
+  using I = std::vector<int>;
+  EXPECT_EQ(tc::io::auto_subdomains(3, V{1e5}, 12e9), I{1});
+  EXPECT_EQ(tc::io::auto_subdomains(3, V{2.17e6}, 12e9), I{55});  // ⌈2.17e6 / 4e4⌉
+  EXPECT_EQ(tc::io::auto_subdomains(3, V{5e4}, 1e8), I{2});       // at least two when cut
+  EXPECT_EQ(tc::io::auto_subdomains(3, V{1e9}, 0), I{1});         // memory unknown: as before
+  // The ch. 7 example refined ×5.3 fits 0.75 of 23 GiB directly (it ran in 14.3 GiB); one
+  // budget for both bodies: the larger is cut first, and only as far as needed.
+  EXPECT_EQ(tc::io::auto_subdomains(3, V{676863, 107811}, 0.75 * 23 * 1073741824.0), (I{1, 1}));
+  EXPECT_EQ(tc::io::auto_subdomains(3, V{107811, 676863}, 12e9), (I{1, 17}));
+  EXPECT_EQ(tc::io::auto_subdomains(3, V{676863, 676863}, 1e9), (I{17, 17}));
 }
 
 TEST(CaseReader, SubdomainsAutoIsTheDefaultAndAnyOtherStringIsAnError) {

@@ -377,7 +377,9 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package
 
 // MatSolve and MatMatSolve on the factor are what KSPPREONLY with PCCHOLESKY calls: the same
 // bits as solving through the KSP.
-void CholeskySolver::solve(const Vector& b, Vector& x) const { solve_raw(b.get(), x.get()); }
+void CholeskySolver::solve(const Vector& b, Vector& x) const {
+  solve_raw(b.get(), x.get());
+}
 
 void CholeskySolver::solve_raw(::Vec b, ::Vec x) const {
   assert(b != x && "MatSolve needs distinct vectors");
@@ -388,8 +390,8 @@ void CholeskySolver::solve_many(::Mat b, ::Mat x) const {
   TC_PETSC(MatMatSolve(factor_.get(), b, x));
 }
 
-double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol,
-                 int max_iterations, int& iterations) {
+double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol, int max_iterations,
+                 int& iterations) {
   Handle<::KSP, KSPDestroy> ksp;
   TC_PETSC(KSPCreate(PETSC_COMM_SELF, ksp.out()));
   TC_PETSC(KSPSetOperators(ksp.get(), a.get(), a.get()));

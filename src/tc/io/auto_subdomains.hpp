@@ -1,6 +1,9 @@
 #pragma once
 // `subdomains = "auto"` (the default): one subdomain, the body's direct factorisation, while
-// it fits comfortably in memory; FETI subdomains (6.2) beyond.
+// the bodies' direct solves fit comfortably in memory together; FETI subdomains (6.2) for the
+// largest bodies beyond.
+
+#include <vector>
 
 namespace tc::io {
 
@@ -13,7 +16,19 @@ namespace tc::io {
 /// cheap there and its coarse problem stays small (bench/RESULTS.md, FETI).
 inline constexpr double kDofsPerSubdomain = 40000;
 
-/// 1 when direct_memory(dim, u_dofs) ≤ budget, else ⌈u_dofs / kDofsPerSubdomain⌉ (at least 2).
-[[nodiscard]] int auto_subdomains(int dim, double u_dofs, double budget);
+/// Memory of a body cut into subdomains of kDofsPerSubdomain [bytes]: their direct solves.
+[[nodiscard]] double decomposed_memory(int dim, double u_dofs);
+
+/// Share of the machine's memory the bodies' solves may take together: the rest is for the
+/// contact dual, the output and the system. direct_memory is above the measured peaks of
+/// non-cubic bodies (docs/choices.md), so the runs stay below about two thirds.
+inline constexpr double kMemoryShare = 0.75;
+
+/// Subdomains per body (1 = solved directly): every body directly when the sum of
+/// direct_memory fits `budget`; else the largest bodies are decomposed, ⌈u_dofs /
+/// kDofsPerSubdomain⌉ subdomains each (at least 2), one by one until the sum fits. A budget
+/// ≤ 0 (memory unknown) keeps every body direct.
+[[nodiscard]] std::vector<int> auto_subdomains(int dim, const std::vector<double>& u_dofs,
+                                               double budget);
 
 }  // namespace tc::io

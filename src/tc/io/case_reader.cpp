@@ -334,18 +334,25 @@ void CaseReader::read_bodies(const TableReader& root) {
 }
 
 void CaseReader::resolve_auto_subdomains(const toml::array& bodies) {
-  // Half the machine's memory shared by the bodies: the rest is for the contact dual, the
-  // output and what else runs. Measured peaks and the rule: docs/choices.md.
-  const double budget = 0.5 * physical_memory() / static_cast<double>(p_.bodies.size());
+  // One budget for all bodies: they are in memory together. Measured peaks and the rule:
+  // docs/choices.md.
+  std::vector<double> dofs(p_.bodies.size(), 0.0);
+  for (size_t i = 0; i < p_.bodies.size(); ++i)
+    if (p_.bodies[i].subdomains == 0 && mesh_built_[i])
+      dofs[i] = static_cast<double>(p_.bodies[i].mesh.n_nodes()) * dim_;
+  // Bodies with a number set take their share first (approximately: as if direct).
+  double fixed = 0;
+  for (const auto& body : p_.bodies)
+    if (body.subdomains == 1) fixed += direct_memory(dim_, body.mesh.n_nodes() * double(dim_));
+  const double budget = kMemoryShare * physical_memory() - fixed;
+  const auto chosen =
+      auto_subdomains(dim_, dofs, physical_memory() > 0 ? std::max(budget, 1.0) : 0.0);
   for (size_t i = 0; i < p_.bodies.size(); ++i) {
     auto& body = p_.bodies[i];
     if (body.subdomains != 0) continue;
     body.subdomains = 1;
-    if (!mesh_built_[i]) continue;
-    const double dofs = static_cast<double>(body.mesh.n_nodes()) * dim_;
-    const int n = auto_subdomains(dim_, dofs, budget);
-    if (n == 1) continue;
-    body.subdomains = std::min(n, body.mesh.n_cells());
+    if (!mesh_built_[i] || chosen[i] == 1) continue;
+    body.subdomains = std::min(chosen[i], body.mesh.n_cells());
     try {
       (void)mesh::partition_cells(body.mesh, body.subdomains);
     } catch (const MeshError& e) {
@@ -354,7 +361,7 @@ void CaseReader::resolve_auto_subdomains(const toml::array& bodies) {
                   fmt::format("\"auto\" chose {} subdomains (the direct factorisation would "
                               "need about {:.1f} GiB), which the body's mesh cannot be cut "
                               "into: {}; expected a number that it can",
-                              body.subdomains, direct_memory(dim_, dofs) / kGiB, e.what()));
+                              body.subdomains, direct_memory(dim_, dofs[i]) / kGiB, e.what()));
     }
   }
 }
