@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Issue 22's million-dof goal: the chapter-7 example (examples/06-thesis-frictional-heating, its
 # default dynamic scheme) refined by factor K in every direction, the first STEPS steps of its
-# τ = 0.01 s (default 10: the approach, the impact at step 7 and three steps in contact), one
-# run per K with this build. K = 2, 3, 4, 5.3 give 62 712, 200 336, 461 800 and 1 046 232 dofs
-# (with the temperature). Prints per K the dofs, the multipliers, the peak RSS, the set-up
-# (wall time before step 1: assembly, factorisations), the mean and the largest step time, the
-# phases, and the growth exponent of the mean step time between consecutive K and over all.
+# τ = 0.01 s (default 10: the approach, the impact at step 7 and three steps in contact). For
+# each K it runs a baseline binary (if given) and this build, one after the other. K = 2, 3,
+# 4, 5.3 give 62 712, 200 336, 461 800 and 1 046 232 dofs (with the temperature). Prints per
+# run the dofs, the multipliers, the peak RSS, the set-up (wall time before step 1: assembly,
+# factorisations), the mean and the largest step time, the phases; then the growth exponent
+# of the mean step time of this build between consecutive K and over all, and per K the
+# baseline/current ratio of the mean step time.
 #   bench/million/million.sh [STEPS] [K ...]        e.g. million.sh 10 2 3 4 5.3
-# Extra arguments to thermocontact run go in TC_ARGS. Needs ~14 GiB at K = 5.3.
+# BASELINE=<binary> adds the baseline runs; extra arguments to `thermocontact run` go in
+# TC_ARGS; TC_BENCH_WORK=<dir> keeps the runs there. Needs ~14.3 GiB at K = 5.3.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 steps=${1:-10}
@@ -18,6 +21,8 @@ work=${TC_BENCH_WORK:-$(mktemp -d)}
 [[ -n ${TC_BENCH_WORK:-} ]] || trap 'rm -rf "$work"' EXIT
 ex=$root/examples/06-thesis-frictional-heating/case.toml
 end=$(python3 -c "print(round(0.01 * $steps, 6))")
+whos=(current)
+[[ -z ${BASELINE:-} ]] || whos=(baseline current)
 export OPENBLAS_NUM_THREADS=1
 for k in "${ks[@]}"; do
   read -r master slave < <(python3 -c "
@@ -25,26 +30,35 @@ k = $k
 print(','.join(str(round(c * k)) for c in (8, 30, 6)), round(6 * k))")
   sed -e "s/cells = \[8, 30, 6\]/cells = [$master]/" -e "s/cells = \[6, 6, 6\]/cells = [$slave, $slave, $slave]/" \
     -e "s/^end = 1.0/end = $end/" "$ex" >"$work/k$k.toml"
-  /usr/bin/time -v "$root/build/bin/thermocontact" run "$work/k$k.toml" --output "$work/out-k$k" \
-    --force ${TC_ARGS:-} >"$work/k$k.log" 2>"$work/k$k.time"
+  for who in "${whos[@]}"; do
+    bin=$root/build/bin/thermocontact
+    [[ $who == current ]] || bin=$BASELINE
+    /usr/bin/time -v "$bin" run "$work/k$k.toml" --output "$work/$who-k$k" --force ${TC_ARGS:-} \
+      >"$work/$who-k$k.log" 2>"$work/$who-k$k.time"
+  done
 done
-python3 - "$work" "${ks[@]}" <<'PY'
+python3 - "$work" "${whos[*]}" "${ks[@]}" <<'PY'
 import csv, json, math, re, sys
-w, ks = sys.argv[1], sys.argv[2:]
-rows = []
+w, whos, ks = sys.argv[1], sys.argv[2].split(), sys.argv[3:]
+mean = {}
 for k in ks:
-    s = json.load(open(f"{w}/out-k{k}/summary.json"))
-    t = [float(x["wall_seconds"]) for x in list(csv.DictReader(open(f"{w}/out-k{k}/history.csv")))[1:]]
-    tm = open(f"{w}/k{k}.time").read()
-    rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", tm).group(1)) / 2**20
-    m, sec = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (?:\d+:)?(\d+):([\d.]+)", tm).groups()
-    wall = 60 * int(m) + float(sec)
-    mean = sum(t) / len(t)
-    rows.append((s["dofs"], mean))
-    print(f"K = {k}: {s['dofs']} dofs, {s['multipliers']} multipliers, {s['subdomains']} subdomains, "
-          f"peak RSS {rss:.2f} GiB, wall {wall:.1f} s, set-up {wall - sum(t):.1f} s, "
-          f"{len(t)} steps: mean {mean:.2f} s/step, largest {max(t):.2f} s, status {s['status']}")
-    print("    phases (s):", ", ".join(f"{n} {v:.2f}" for n, v in s["wall_seconds"].items() if v >= 0.01))
+    for who in whos:
+        d = f"{w}/{who}-k{k}"
+        s = json.load(open(f"{d}/summary.json"))
+        t = [float(x["wall_seconds"]) for x in list(csv.DictReader(open(f"{d}/history.csv")))[1:]]
+        tm = open(f"{d}.time").read()
+        rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", tm).group(1)) / 2**20
+        h, m, sec = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (?:(\d+):)?(\d+):([\d.]+)", tm).groups()
+        wall = 3600 * int(h or 0) + 60 * int(m) + float(sec)
+        mean[who, k] = (s["dofs"], sum(t) / len(t))
+        print(f"K = {k} {who}: {s['dofs']} dofs, {s['multipliers']} multipliers, {s['subdomains']} subdomains, "
+              f"peak RSS {rss:.2f} GiB, wall {wall:.1f} s, set-up {wall - sum(t):.1f} s, {len(t)} steps: "
+              f"first {t[0]:.2f} s, mean {sum(t) / len(t):.2f} s/step, mean of steps 2– {sum(t[1:]) / len(t[1:]):.2f} s, "
+              f"largest of steps 2– {max(t[1:]):.2f} s, status {s['status']}")
+        print("    phases (s):", ", ".join(f"{n} {v:.2f}" for n, v in s["wall_seconds"].items() if v >= 0.01))
+    if "baseline" in whos:
+        print(f"K = {k}: mean step time baseline / current {mean['baseline', k][1] / mean['current', k][1]:.2f}x")
+rows = [mean["current", k] for k in ks]
 for (n0, t0), (n1, t1) in zip(rows, rows[1:]):
     print(f"growth {n0} → {n1} dofs: mean step time as dofs^{math.log(t1 / t0) / math.log(n1 / n0):.2f}")
 if len(rows) > 2:

@@ -454,6 +454,9 @@ void DualContactSolver::recover(const core::Vector& lambda, BodyVectorsOut u) co
   if (n_rows() == 0) return;
   for (int i = 0; i < n_bodies(); ++i) {  // u_i −= A_i⁻¹ B_iᵀ λ
     b_[i].mult_transpose(lambda, w_in_[i]);
+    // No contact force on the body (every step before the first touch): A⁻¹0 = 0 exactly,
+    // and the solve would cost as much as the step's own.
+    if (w_in_[i].max_abs() == 0.0) continue;
     y_[i].zero();
     bodies_[i]->solve(w_in_[i], y_[i]);
     u[i]->axpy(-1.0, y_[i]);
