@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -149,6 +150,22 @@ std::string bad_factor_package() {
       opt, list);
 }
 
+/// -tc_forward_compliance (core::CholeskySolver::forward_compliance_pays) takes a logical
+/// value or none; PETSc would reject another only at the first contact step, with its trace.
+std::string bad_forward_compliance() {
+  char opt[64] = {};
+  PetscBool set = PETSC_FALSE;
+  TC_PETSC(
+      PetscOptionsGetString(nullptr, nullptr, "-tc_forward_compliance", opt, sizeof opt, &set));
+  if (!set) return {};
+  std::string v(opt);
+  std::transform(v.begin(), v.end(), v.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (const char* ok : {"", "true", "false", "yes", "no", "on", "off", "1", "0"})
+    if (v == ok) return {};
+  return fmt::format(
+      "error: option -tc_forward_compliance: found '{}', expected nothing, true or false\n", opt);
+}
+
 int run(const std::string& case_file, const std::string& output, const std::string& restart,
         bool force, int stop_after, std::vector<std::string> extra, const char* program) {
   if (const auto why = bad_options_file(extra); !why.empty()) {
@@ -162,7 +179,7 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   char** argv = args.data();
   tc::core::PetscSession session(&argc, &argv);
   install_signal_handlers();
-  if (const auto why = bad_factor_package(); !why.empty()) {
+  if (auto why = bad_factor_package() + bad_forward_compliance(); !why.empty()) {
     if (input_reporter()) fmt::print(stderr, "{}nothing was run.\n", why);
     return 2;
   }

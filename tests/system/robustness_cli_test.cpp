@@ -350,6 +350,12 @@ TEST(Issue20, BadPetscOptionsAreRefusedBeforeTheRunAndHelpReachesPetsc) {
             std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find(TC_SOURCE_DIR), std::string::npos) << r.output;
+  r = limited(run + " -tc_forward_compliance sometimes");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("option -tc_forward_compliance: found 'sometimes', expected nothing, "
+                          "true or false"),
+            std::string::npos)
+      << r.output;
   for (const std::string bad : {"/nonexistent/options", "/dev/zero"}) {
     r = limited(run + " -options_file " + bad);
     EXPECT_EQ(r.exit_code, 2) << r.output;
