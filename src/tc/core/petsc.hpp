@@ -219,8 +219,8 @@ class CholeskySolver {
 /// KSPCG, unpreconditioned norm): for matrices whose diagonal scaling leaves them well
 /// conditioned independently of the mesh, such as a mass matrix. Returns the residual norm
 /// ratio reached and sets `iterations`; the caller decides what not converging means.
-double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol,
-                 int max_iterations, int& iterations);
+double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol, int max_iterations,
+                 int& iterations);
 
 /// The factorisation packages this PETSc build offers for Cholesky on sequential AIJ.
 [[nodiscard]] std::vector<std::string> available_cholesky_packages();

@@ -121,8 +121,8 @@ BodyField::BodyField(const Problem& p, const BodySystem& sys) {
   a_theta = heat_operator(p, m.mass_theta, m.stiffness_theta);
   if (const auto* film = sys.constant_film()) a_theta.axpy(1.0, *film);  // + h∫θv
   // A_u (4/τ² M_u + K_u, or K_u quasistatic) only for its factorisation: products use M_u, K_u.
-  mech = body_solver(p, sys, mechanics_operator(p, m.mass_u, m.stiffness_u),
-                     BodyOperator::mechanics);
+  mech =
+      body_solver(p, sys, mechanics_operator(p, m.mass_u, m.stiffness_u), BodyOperator::mechanics);
   heat = body_solver(p, sys, a_theta, BodyOperator::heat);
   const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
   expansion = p.physics.thermal_expansion && coupled_material;
