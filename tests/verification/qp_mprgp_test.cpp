@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 
 #include "support/qp_problems.hpp"
 #include "tc/qp/mpgp.hpp"
@@ -591,6 +592,52 @@ TEST(Qp, AnUnderestimatedEigenvalueIsReplacedByAFullEstimate) {
   // 0.9 is the margin used here (the estimate tests above find it within 1 %).
   EXPECT_GE(o.result.max_eigenvalue, 0.9 * lambda);
   EXPECT_LT(o.error, 1e-6);
+}
+
+/// F of `p` as a dense matrix whose strictly lower triangle is NaN: any read of it shows.
+core::Handle<::Mat, MatDestroy> upper_triangle_only(const QpProblem& p) {
+  core::Handle<::Mat, MatDestroy> a;
+  TC_PETSC(MatConvert(p.f.get(), MATSEQDENSE, MAT_INITIAL_MATRIX, a.out()));
+  PetscScalar* v = nullptr;
+  PetscInt n = 0, ld = 0;
+  TC_PETSC(MatGetSize(a.get(), &n, nullptr));
+  TC_PETSC(MatDenseGetLDA(a.get(), &ld));
+  TC_PETSC(MatDenseGetArray(a.get(), &v));
+  for (PetscInt j = 0; j < n; ++j)
+    for (PetscInt i = j + 1; i < n; ++i) v[j * ld + i] = std::nan("");
+  TC_PETSC(MatDenseRestoreArray(a.get(), &v));
+  return a;
+}
+
+TEST(Qp, SymmetricDenseOperatorReadsTheUpperTriangleOnly) {
+  // The product with the upper triangle equals the general product of the full F: the same
+  // sums in another order, so within n·ε·‖F‖‖x‖ (n = 300, ε = 2.2e-16: 7e-14; 1e-12 leaves
+  // the margin). A read of the NaN lower triangle would make the difference NaN.
+  auto p = random_qp(PETSC_COMM_SELF, 300, QpKind::contact3d, 1e3, 0.5, 0.0, 99);
+  const auto a = upper_triangle_only(p);
+  const qp::SymmetricDenseOperator sym(a.get());
+  const qp::MatrixOperator full(p.f.get());
+  core::Vector x = p.x_star.clone(), y1 = x.duplicate(), y2 = sym.make_vector();
+  full.apply(x, y1);
+  sym.apply(x, y2);
+  ASSERT_TRUE(y2.all_finite());
+  y2.axpy(-1.0, y1);
+  EXPECT_LT(y2.max_abs(), 1e-12 * y1.max_abs());
+}
+
+TEST(Qp, MpgpOnTheSymmetricDenseOperatorReachesTheSolution) {
+  // The contact QP (bounds and friction discs) with F stored as the explicit dual operators
+  // are: the same tolerance argument as KnownSolution (κ ≤ 100, rtol 1e-12).
+  auto p = random_qp(PETSC_COMM_SELF, 120, QpKind::contact3d, 100.0, 0.5, 0.0, 7);
+  const auto a = upper_triangle_only(p);
+  const qp::SymmetricDenseOperator f(a.get());
+  QpOptions opt;
+  opt.rtol = 1e-12;
+  core::Vector x = p.x_star.duplicate();
+  const auto r = qp::Mpgp(f, p.set, opt).solve(p.d, x);
+  ASSERT_TRUE(r.converged()) << r.message;
+  x.axpy(-1.0, p.x_star);
+  EXPECT_LT(x.max_abs(), 1e-8);
 }
 
 }  // namespace

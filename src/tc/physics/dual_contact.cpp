@@ -433,7 +433,7 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
   if (rtol > 0) opt.rtol = rtol;
   qp::QpResult r;
   if (kind_ == DualOperator::explicit_schur) {
-    qp::MatrixOperator f(scaled ? f_scaled_.get() : f_dense_.get());
+    qp::SymmetricDenseOperator f(scaled ? f_scaled_.get() : f_dense_.get());
     r = qp::Mpgp(f, set, opt).solve(d, lambda);
   } else {
     qp::FunctionOperator f([this](const core::Vector& x, core::Vector& y) { apply_f(x, y); }, d);

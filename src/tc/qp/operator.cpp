@@ -2,11 +2,18 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <utility>
 #include <vector>
 
 namespace tc::qp {
+
+extern "C" {
+// The reference BLAS interface (Debian's libblas.so alternative, OpenBLAS here).
+void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda,
+            const double* x, const int* incx, const double* beta, double* y, const int* incy);
+}
 
 void MatrixOperator::apply(const Vector& x, Vector& y) const {
   TC_PETSC(MatMult(a_, x.get(), y.get()));
@@ -18,6 +25,37 @@ Vector MatrixOperator::make_vector() const {
   auto out = Vector::adopt(v);
   out.zero();
   return out;
+}
+
+SymmetricDenseOperator::SymmetricDenseOperator(::Mat a) : a_(a) {
+  PetscBool dense = PETSC_FALSE;
+  TC_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a), MATSEQDENSE, &dense));
+  PetscInt m = 0;
+  TC_PETSC(MatGetSize(a, &m, &n_));
+  assert(dense && m == n_);
+  (void)dense;
+}
+
+void SymmetricDenseOperator::apply(const Vector& x, Vector& y) const {
+  const PetscScalar* f = nullptr;
+  PetscInt lda = 0;
+  TC_PETSC(MatDenseGetArrayRead(a_, &f));
+  TC_PETSC(MatDenseGetLDA(a_, &lda));
+  {
+    const auto xv = x.read();
+    auto yv = y.view();
+    const int n = static_cast<int>(n_), ld = static_cast<int>(std::max<PetscInt>(lda, 1));
+    const int one = 1;
+    const double alpha = 1.0, beta = 0.0;
+    if (n > 0)
+      dsymv_("U", &n, &alpha, f, &ld, xv.span().data(), &one, &beta, yv.span().data(), &one);
+  }
+  TC_PETSC(MatDenseRestoreArrayRead(a_, &f));
+  TC_PETSC(PetscLogFlops(2.0 * static_cast<double>(n_) * static_cast<double>(n_)));
+}
+
+Vector SymmetricDenseOperator::make_vector() const {
+  return Vector(n_);
 }
 
 namespace {
