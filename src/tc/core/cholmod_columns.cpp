@@ -12,9 +12,10 @@
 #include <memory>
 #include <vector>
 
+#include "tc/core/blas.hpp"  // the BLAS that CHOLMOD calls: the same kernels, the same bits
 #include "tc/core/petsc.hpp"
 
-#if defined(TC_CHOLMOD_COLUMNS)  // cholmod.h and the BLAS found (CMakeLists.txt)
+#if defined(TC_CHOLMOD_COLUMNS)  // cholmod.h found (CMakeLists.txt)
 #include <cholmod.h>
 #define TC_HAVE_CHOLMOD 1
 #endif
@@ -25,23 +26,6 @@ namespace tc::core {
 // versions compile the fallback.
 #if defined(TC_HAVE_CHOLMOD) && !defined(PETSC_USE_64BIT_INDICES) && \
     !defined(PETSC_USE_COMPLEX) && PETSC_VERSION_GE(3, 14, 0) && PETSC_VERSION_LT(3, 19, 0)
-
-extern "C" {
-// The Fortran BLAS that CHOLMOD calls (the same library: the same kernels, the same bits).
-void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m,
-            const int* n, const double* alpha, const double* a, const int* lda, double* b,
-            const int* ldb);
-void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
-            const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
-            const double* beta, double* c, const int* ldc);
-void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
-            const double* a, const int* lda, const double* beta, double* c, const int* ldc);
-void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a,
-            const int* lda, double* x, const int* incx);
-void dgemv_(const char* trans, const int* m, const int* n, const double* alpha, const double* a,
-            const int* lda, const double* x, const int* incx, const double* beta, double* y,
-            const int* incy);
-}
 
 namespace {
 

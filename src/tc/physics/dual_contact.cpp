@@ -24,6 +24,8 @@ DualContactSolver::DualContactSolver(std::vector<const ConstrainedSolver*> bodie
     y_.emplace_back(n_u[i]);
   }
   w_.resize(bodies_.size());
+  s_used_.resize(bodies_.size());
+  s_used_size_.assign(bodies_.size(), 0);
 }
 
 DualContactSolver::DualContactSolver(const ConstrainedSolver& slave,
@@ -215,6 +217,10 @@ bool DualContactSolver::form_from_compliance() {
   for (int i = 0; i < nb; ++i) setup_solves_ += static_cast<int>(compliance_[i].cover(cols[i]));
   // B_i,T row by row, T-positions ascending: the order in which the sparse products summed
   // before (Eigen's setFromTriplets sorts them), which keeps every entry of F to the bit.
+  // Positions are then renumbered into U_i ⊆ T, the T-positions this step's rows reach: S
+  // grows with every dof the rows have ever touched (a sliding pin's track), the products below
+  // need only S_UU, and U's order is T's, so every sum runs over the same terms in the same
+  // order.
   struct RowsT {
     std::vector<PetscInt> start, pos;
     std::vector<double> value;
@@ -238,6 +244,7 @@ bool DualContactSolver::form_from_compliance() {
         r.value.push_back(v);
       }
     }
+    restrict_compliance(i, r.pos);
   }
   // By bands of `band` rows r: the band of W_i = B_i,T S_i, row r = Σ_p b(r, p) S(p, :) over
   // the few entries of row r (S's columns, contiguous: S is symmetric to the bit), stored q by
@@ -255,8 +262,8 @@ bool DualContactSolver::form_from_compliance() {
   for (PetscInt r0 = 0; r0 < m; r0 += band) {
     const PetscInt nr = std::min(band, m - r0);
     for (int i = 0; i < nb; ++i) {
-      const auto& sm = compliance_[i].matrix();
-      const auto t = static_cast<size_t>(compliance_[i].size());
+      const auto& sm = s_used_[i];
+      const auto t = static_cast<size_t>(s_used_size_[i]);
       const auto& r = bt[i];
       row_major.assign(static_cast<size_t>(nr) * t, 0.0);
       for (PetscInt k = 0; k < nr; ++k) {
@@ -301,6 +308,28 @@ bool DualContactSolver::form_from_compliance() {
   TC_PETSC(MatDenseRestoreArray(f_dense_.get(), &fv));
   assemble(f_dense_.get());
   return true;
+}
+
+void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {
+  const auto& full = compliance_[i].matrix();
+  const auto t = static_cast<size_t>(compliance_[i].size());
+  std::vector<PetscInt> at(t, -1);  // T-position → U-position
+  for (const PetscInt q : pos) at[static_cast<size_t>(q)] = 0;
+  std::vector<PetscInt> used;
+  for (size_t q = 0; q < t; ++q)
+    if (at[q] == 0) {
+      at[q] = static_cast<PetscInt>(used.size());
+      used.push_back(static_cast<PetscInt>(q));
+    }
+  for (auto& q : pos) q = at[static_cast<size_t>(q)];
+  const size_t u = used.size();
+  s_used_size_[i] = static_cast<PetscInt>(u);
+  auto& su = s_used_[i];
+  su.resize(u * u);
+  for (size_t b = 0; b < u; ++b) {
+    const double* col = full.data() + static_cast<size_t>(used[b]) * t;
+    for (size_t a = 0; a < u; ++a) su[b * u + a] = col[used[a]];
+  }
 }
 
 void DualContactSolver::form_by_solves() {

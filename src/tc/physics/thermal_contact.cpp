@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 
+#include "tc/core/blas.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::physics {
@@ -107,9 +109,15 @@ void InterfaceHeatSolver::set_conductance(std::span<const PairConductance> pairs
     for (Eigen::Index a = 0; a < na; ++a)
       if (body[a] == body[b]) s(a, b) = comp.matrix()(comp.index(node[a]), cb);
   }
-  Eigen::MatrixXd k = s * l_active_;
-  k.diagonal().array() += 1.0;
-  lu_.compute(k);
+  lu_ = s * l_active_;
+  lu_.diagonal().array() += 1.0;
+  const int n = static_cast<int>(na);
+  pivots_.resize(static_cast<size_t>(na));
+  int info = 0;
+  dgetrf_(&n, &n, lu_.data(), &n, pivots_.data(), &info);
+  // I + S L_Γ is similar to I + S^½ L_Γ S^½ (eigenvalues ≥ 1): a zero pivot is a broken L or S.
+  if (info != 0)
+    throw Error(fmt::format("InterfaceHeatSolver: LU of I + S L_JJ failed (LAPACK info {})", info));
 }
 
 void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
@@ -125,7 +133,13 @@ void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
       if (g >= offset_[i] && g < offset_[i + 1]) y0(a) = xv[nodes_[i][g - offset_[i]]];
     }
   }
-  const Eigen::VectorXd c = l_active_ * lu_.solve(y0);  // L_Γ y
+  {
+    const int n = static_cast<int>(na), one = 1;
+    int info = 0;
+    dgetrs_("N", &n, &one, lu_.data(), &n, pivots_.data(), y0.data(), &n, &info);
+    assert(info == 0);
+  }
+  const Eigen::VectorXd c = l_active_ * y0;  // L_Γ y
   std::vector<char> touched(static_cast<size_t>(n_bodies()), 0);
   for (int i = 0; i < n_bodies(); ++i) rhs_[i].copy_from(*b[i]);
   for (int i = 0; i < n_bodies(); ++i) {

@@ -7,13 +7,9 @@
 #include <utility>
 #include <vector>
 
-namespace tc::qp {
+#include "tc/core/blas.hpp"
 
-extern "C" {
-// The reference BLAS interface (Debian's libblas.so alternative, OpenBLAS here).
-void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda,
-            const double* x, const int* incx, const double* beta, double* y, const int* incy);
-}
+namespace tc::qp {
 
 void MatrixOperator::apply(const Vector& x, Vector& y) const {
   TC_PETSC(MatMult(a_, x.get(), y.get()));
