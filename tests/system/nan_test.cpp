@@ -85,7 +85,8 @@ TEST(NaN, InTheAssemblyItIsRefusedBeforeTheFirstStep) {
 }
 
 TEST(NaN, InTheTemperatureItIsFoundByTheHeatStep) {
-  const auto p = read("valid/plane-strain-2d.toml");
+  auto p = read("valid/plane-strain-2d.toml");
+  p.solver.coupling_order = tc::physics::CouplingOrder::heat_first;
   tc::physics::Simulation sim(p);
   sim.advance();
   auto c = sim.checkpoint();
@@ -93,6 +94,21 @@ TEST(NaN, InTheTemperatureItIsFoundByTheHeatStep) {
   sim.restore(c);
   expect_contains(numerical_error([&] { sim.advance(); }),
                   {"heat step", "temperature", "step 2, iteration 1"});
+}
+
+TEST(NaN, InTheTemperatureWithMechanicsFirstItIsFoundByTheMechanicalStep) {
+  // The case has thermoelastic heating: mechanics first by default, and θ^k enters its
+  // right-hand side through K_uθ before any heat step.
+  const auto p = read("valid/plane-strain-2d.toml");
+  ASSERT_FALSE(tc::physics::heat_before_mechanics(p.solver.coupling_order,
+                                                  p.physics.thermoelastic_heating));
+  tc::physics::Simulation sim(p);
+  sim.advance();
+  auto c = sim.checkpoint();
+  c.bodies[0].theta[3] = nan;
+  sim.restore(c);
+  expect_contains(numerical_error([&] { sim.advance(); }),
+                  {"mechanical step", "displacement", "step 2, iteration 1"});
 }
 
 TEST(NaN, InTheAccelerationItIsFoundByTheMechanicalStep) {

@@ -212,6 +212,7 @@ TEST(CaseReader, FixedPointKeysHaveTheirDefaultsAndAreRead) {
   EXPECT_DOUBLE_EQ(defaults.friction.loop_forcing, 1e-2);
   EXPECT_EQ(defaults.friction.max_updates, 100);
   EXPECT_FALSE(defaults.explicit_dual_limit.has_value());
+  EXPECT_EQ(defaults.coupling_order, tc::physics::CouplingOrder::automatic);
   const auto dir = fs::temp_directory_path() / "tc_io_case_reader_fixed_point_test";
   fs::create_directories(dir);
   std::string text;
@@ -224,7 +225,7 @@ TEST(CaseReader, FixedPointKeysHaveTheirDefaultsAndAreRead) {
       << "\n[solver]\ncoupling_acceleration = false\n"
          "conductance_treatment = \"lagged\"\nqp_forcing = 0.1\n"
          "qp_forcing_cap = 0.01\nloop_forcing = 0.5\nmax_friction_updates = 7\n"
-         "explicit_dual_limit = 0\n";
+         "explicit_dual_limit = 0\ncoupling_order = \"heat_first\"\n";
   const auto s = read_case(dir / "case.toml").solver;
   EXPECT_FALSE(s.friction.acceleration);
   EXPECT_EQ(s.conductance_treatment, tc::physics::ConductanceTreatment::lagged);
@@ -233,6 +234,7 @@ TEST(CaseReader, FixedPointKeysHaveTheirDefaultsAndAreRead) {
   EXPECT_DOUBLE_EQ(s.friction.loop_forcing, 0.5);
   EXPECT_EQ(s.friction.max_updates, 7);
   EXPECT_EQ(s.explicit_dual_limit, 0);
+  EXPECT_EQ(s.coupling_order, tc::physics::CouplingOrder::heat_first);
   fs::remove_all(dir);
 }
 

@@ -773,7 +773,7 @@ void CaseReader::read_solver(const TableReader& root) {
        "max_qp_iterations", "factorization", "feti_tolerance", "max_feti_iterations",
        "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations",
        "coupling_acceleration", "conductance_treatment", "qp_forcing", "qp_forcing_cap",
-       "loop_forcing", "max_friction_updates", "explicit_dual_limit"});
+       "loop_forcing", "max_friction_updates", "explicit_dual_limit", "coupling_order"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -784,6 +784,11 @@ void CaseReader::read_solver(const TableReader& root) {
   if (const auto v = s->choice("friction_loop", Need::optional, {"nested", "staggered"}))
     settings.friction_loop =
         *v == "nested" ? physics::FrictionLoop::nested : physics::FrictionLoop::staggered;
+  if (const auto v = s->choice("coupling_order", Need::optional,
+                               {"auto", "heat_first", "mechanics_first"}))
+    settings.coupling_order = *v == "heat_first"        ? physics::CouplingOrder::heat_first
+                              : *v == "mechanics_first" ? physics::CouplingOrder::mechanics_first
+                                                        : physics::CouplingOrder::automatic;
   if (const auto v = s->number("qp_tolerance", Need::optional, unit)) settings.qp_tolerance = *v;
   if (const auto v = s->boolean("coupling_acceleration")) settings.friction.acceleration = *v;
   if (const auto v = s->choice("conductance_treatment", Need::optional, {"implicit", "lagged"}))

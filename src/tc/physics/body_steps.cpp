@@ -81,8 +81,13 @@ int BodySteps::couple(int b, int step) {
     for (iteration = 1; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
       s.u_prev.copy_from(s.u_new);
       s.theta_prev.copy_from(s.theta_new);
-      heat_step(b, step, iteration);
-      mech_step(b, step, iteration);
+      if (heat_before_mechanics(problem_.solver.coupling_order, s.heating)) {
+        heat_step(b, step, iteration);
+        mech_step(b, step, iteration);
+      } else {
+        mech_step(b, step, iteration);
+        heat_step(b, step, iteration);
+      }
       s.u_prev.axpy(-1.0, s.u_new);
       s.theta_prev.axpy(-1.0, s.theta_new);
       const double du = s.u_prev.norm(), un = s.u_new.norm();

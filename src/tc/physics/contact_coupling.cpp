@@ -144,15 +144,11 @@ void ContactCoupling::register_history(History& h) const {
   }
 }
 
-void ContactCoupling::heat_step(int step, int iteration) {
-  // (4.3) for the bodies of the contact pairs, backward Euler:
-  //   (M_θ/τ + K_θ) θ + Σ L_θγ θ = rhs + Σ d_θγ(u̇)   (ContactHeatCoupling::heat_step),
-  // rhs with the thermoelastic term of each body.
-  auto scope = timers_.scope("heat_solve");
+void ContactCoupling::interface_laws() {
+  // 𝔉, β_C, δ_C at the interface temperature of the last iterate (θ^k at the first): fixed
+  // for this coupling iteration's heat step and Tresca QPs (interface_laws.hpp).
   auto g = group();
   const auto& dual = method_.enforcement->dual();
-  // 𝔉, β_C, δ_C at the interface temperature of the last iterate (θ^k at the first): fixed
-  // for this heat step and the Tresca QPs after it (interface_laws.hpp).
   nodal_laws_ = {};
   for (int q = 0; q < n_pairs(); ++q) {
     auto& pr = pairs_[q];
@@ -167,6 +163,15 @@ void ContactCoupling::heat_step(int step, int iteration) {
     all.frictional = all.frictional || pr.nodal.frictional;
     all.conducting = all.conducting || pr.nodal.conducting;
   }
+}
+
+void ContactCoupling::heat_step(int step, int iteration) {
+  // (4.3) for the bodies of the contact pairs, backward Euler:
+  //   (M_θ/τ + K_θ) θ + Σ L_θγ θ = rhs + Σ d_θγ(u̇)   (ContactHeatCoupling::heat_step),
+  // rhs with the thermoelastic term of each body.
+  auto scope = timers_.scope("heat_solve");
+  auto g = group();
+  const auto& dual = method_.enforcement->dual();
   for (const int b : group_.members) steps_.heat_rhs(b);
   const auto lambda = lambda_.to_std();
   const double unit = traction_per_multiplier();
@@ -325,28 +330,23 @@ int ContactCoupling::couple(int step) {
     for (const auto* f : g.fields) sq = std::hypot(sq, (f->*v).norm());
     return sq;
   };
-  int iteration = 1;
-  double change = 0;
-  double sweep_change = -1;  // ‖λ^p − λ^{p−1}‖/‖λ‖ of the previous iteration
-  for (; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
-    lambda_prev.copy_from(lambda_);
+  // Without thermal expansion u_free does not depend on θ: λ at the Coulomb solution (to the
+  // tolerance) stays exact, and so is the heat step with it, unless the conductance is lagged
+  // or depends on θ (then θ itself iterates); not when 𝔉 depends on θ (then λ does).
+  const bool theta_iterates = heat_.treatment() == ConductanceTreatment::lagged ||
+                              any_pair(&InterfaceLaws::conductance_varies);
+  const bool lambda_final = one_way && !any_pair(&InterfaceLaws::friction_varies);
+  const bool heat_first = heat_before_mechanics(problem_.solver.coupling_order, heating);
+  double dth = 0, thn = 0;
+  const auto heat_half = [&](int iteration) {  // θ^{p+1} and ‖θ^{p+1} − θ^p‖
     for (auto* f : g.fields) f->theta_prev.copy_from(f->theta_new);
     heat_step(step, iteration);
     for (auto* f : g.fields) f->theta_prev.axpy(-1.0, f->theta_new);
-    const double dth = norm(&BodyField::theta_prev);
-    const double thn = norm(&BodyField::theta_new);
-    // Without thermal expansion u_free does not depend on θ: λ of the last iteration (the
-    // Coulomb solution to the tolerance) stays exact, and so is this heat step with it, unless
-    // the conductance is lagged or depends on θ (then θ itself iterates); not when 𝔉 depends
-    // on θ (then λ does).
-    const bool theta_iterates = heat_.treatment() == ConductanceTreatment::lagged ||
-                                any_pair(&InterfaceLaws::conductance_varies);
-    if (one_way && tresca.converged && !any_pair(&InterfaceLaws::friction_varies) &&
-        (!theta_iterates || dth <= tol * thn)) {
-      change = thn > 0 ? dth / thn : dth;
-      break;
-    }
-    if (enforcement.qp_gives_displacements()) {  // the loads only: the QP solves for u itself
+    dth = norm(&BodyField::theta_prev);
+    thn = norm(&BodyField::theta_new);
+  };
+  const auto mechanical_half = [&](int iteration) {  // u_free, then the Coulomb QPs: residual
+    if (enforcement.qp_gives_displacements()) {      // the loads only: the QP solves for u itself
       auto scope = timers_.scope("mechanical_solve");
       for (const int b : group_.members) steps_.mech_load(b, step);
     } else {
@@ -356,13 +356,35 @@ int ContactCoupling::couple(int step) {
     // Nested: γ = λ_n(γ) to convergence at this θ, Aitken restarted (the map changed with θ);
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.
     if (nested || tresca.gamma.empty()) tresca.restart(lambda_, dim, nodal_laws_.friction);
-    const double fixed_residual = mech_step(tresca, targets, step, iteration,
-                                            nested ? problem_.solver.friction.max_updates : 1);
+    return mech_step(tresca, targets, step, iteration,
+                     nested ? problem_.solver.friction.max_updates : 1);
+  };
+  int iteration = 1;
+  double change = 0;
+  double sweep_change = -1;  // ‖λ^p − λ^{p−1}‖/‖λ‖ of the previous iteration
+  for (; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
+    lambda_prev.copy_from(lambda_);
+    interface_laws();
+    double fixed_residual = 0;
+    if (heat_first) {
+      heat_half(iteration);
+      // λ of the last iteration final: this heat step was the last one needed.
+      if (lambda_final && tresca.converged && (!theta_iterates || dth <= tol * thn)) {
+        change = thn > 0 ? dth / thn : dth;
+        break;
+      }
+      fixed_residual = mechanical_half(iteration);
+    } else {
+      fixed_residual = mechanical_half(iteration);
+      heat_half(iteration);
+    }
     lambda_prev.axpy(-1.0, lambda_);
     const double dl = lambda_prev.norm(), ln = lambda_.norm();
     const double rl = ln > 0 ? dl / ln : dl, rth = thn > 0 ? dth / thn : dth;
     change = std::max({rl, rth, ln > 0 ? fixed_residual / ln : fixed_residual});
     const bool friction_met = fixed_residual <= tol * ln && tresca.converged;
+    // Mechanics first, λ final: the heat step just taken had it.
+    if (!heat_first && lambda_final && friction_met && (!theta_iterates || dth <= tol * thn)) break;
     if (dl <= tol * ln && dth <= tol * thn && friction_met) break;
     if (nested && friction_met && sweep_change > 0 &&
         fixed_point_reached(rl, rth, sweep_change, tol))

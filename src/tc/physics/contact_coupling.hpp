@@ -105,6 +105,7 @@ class ContactCoupling {
   // The contact rows of every pair in the configuration of t^k, λ of the last step moved onto
   // them, the crosspoints' multipliers held at 0.
   void set_rows(BodyGroup& g);
+  void interface_laws();  // nodal_laws_ at the interface temperature of the last iterate
   // (4.3) for the contact bodies: + L_θγ θ = … + d_θγ of the current iterate of each pair.
   void heat_step(int step, int iteration);
   // The mechanical half of (6.3) with u_free fixed: coulomb_fixed_point over the enforcement's

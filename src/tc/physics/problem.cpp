@@ -24,6 +24,18 @@ std::string combined_contact_dual_unavailable(const Problem& p) {
   return "";
 }
 
+bool heat_before_mechanics(CouplingOrder order, bool thermoelastic_heating) {
+  switch (order) {
+    case CouplingOrder::heat_first:
+      return true;
+    case CouplingOrder::mechanics_first:
+      return false;
+    case CouplingOrder::automatic:
+      break;
+  }
+  return !thermoelastic_heating;
+}
+
 int TimeSettings::n_steps() const {
   // The case reader caps end/step far below this; a Problem built in code could still overflow
   // the int (it wrapped round to a few or negative steps).

@@ -109,6 +109,19 @@ enum class FrictionLoop {
   staggered  // one update per heat–mechanics iteration, as (6.3) is written
 };
 
+/// Which half of each iteration of the staggered fixed point (6.3) comes first (docs/choices.md,
+/// "The order of the staggered fixed point"). The fixed point is the same; the iterations to it
+/// are not.
+enum class CouplingOrder {
+  automatic,        // mechanics first where the heat step has the thermoelastic term, else heat
+  heat_first,       // as the thesis orders (6.1)–(6.3)
+  mechanics_first,  // the mechanical half at θ of the last iterate, then the heat step
+};
+/// Whether a heat step with (`thermoelastic_heating`) or without the thermoelastic term comes
+/// before the mechanical half under `order`. That term, (2/τ) K_θu u^{k+1,p} in (6.1), amplifies
+/// the error of the displacement guess by 2/τ; θ enters the mechanics unamplified (K_uθ θ).
+[[nodiscard]] bool heat_before_mechanics(CouplingOrder order, bool thermoelastic_heating);
+
 /// The dual QP of the mechanical step with contact (docs/choices.md, FETI):
 enum class ContactDual {
   automatic,  // combined where it applies (combined_contact_dual_unavailable), else nested
@@ -146,6 +159,7 @@ struct SolverSettings {
   double coupling_tolerance = 1e-6;
   int max_coupling_iterations = 20;
   FrictionLoop friction_loop = FrictionLoop::nested;
+  CouplingOrder coupling_order = CouplingOrder::automatic;
   FrictionFixedPointSettings friction;
   ConductanceTreatment conductance_treatment = ConductanceTreatment::implicit;
   double qp_tolerance = 1e-8;
