@@ -263,20 +263,26 @@ int check(const std::string& case_file, const char* program) {
   tc::core::PetscSession session(&argc, &argv);  // the contact check builds the mortar rows
   try {
     const auto problem = tc::io::read_case(case_file);
-    for (const auto& w : tc::io::check_geometry(problem)) fmt::print(stderr, "warning: {}\n", w);
+    const auto warnings = tc::io::check_geometry(problem);
+    if (tc::core::PetscSession::rank() != 0) return 0;  // every rank read it; one reports
+    for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
     int nodes = 0, cells = 0;
     for (const auto& b : problem.bodies) nodes += b.mesh.n_nodes(), cells += b.mesh.n_cells();
     fmt::print("{}: valid ({}D, {} bod{}, {} nodes, {} cells, {} steps)\n", case_file,
                problem.dimension, problem.bodies.size(), problem.bodies.size() == 1 ? "y" : "ies",
                nodes, cells, problem.time.n_steps());
+    const int node = tc::core::PetscSession::node_size();
+    const auto each = node > 1 ? fmt::format(" on each of the {} ranks of this node", node) : "";
     for (const auto& b : problem.bodies)
       if (b.subdomains > 1)
         fmt::print(
-            "  body \"{}\": {} FETI subdomains (solved directly it would need about {:.1f} GiB)\n",
+            "  body \"{}\": {} FETI subdomains (solved directly it would need about {:.1f} "
+            "GiB{})\n",
             b.name, b.subdomains,
             tc::io::direct_memory(problem.dimension,
                                   static_cast<double>(b.mesh.n_nodes()) * problem.dimension) /
-                (1024.0 * 1024.0 * 1024.0));
+                (1024.0 * 1024.0 * 1024.0),
+            each);
     return 0;
   } catch (const tc::InputError& e) {
     return report_input_error(e);

@@ -437,3 +437,43 @@ TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {
     EXPECT_EQ(r.output.find("FETI subdomains"), std::string::npos) << r.output;
   std::printf("check: %s", r.output.c_str());
 }
+
+TEST(Issue22, RanksOnOneNodeShareItsMemoryWhenSubdomainsAreChosen) {
+  // Every rank holds every body and factorises the direct ones (docs/choices.md, "Replicated
+  // state"): two ranks of the 10⁶-dof ch. 7 case on this machine were killed for memory while
+  // one rank ran in 14.7 GiB. So "auto" gives each rank its share of the node's memory. A
+  // cube whose direct solve fits the budget of one rank but not half of it: direct on one
+  // rank, cut on two, with the count of the same rule on half the budget.
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  const double budget = tc::io::kMemoryShare * static_cast<double>(pages) * page;
+  int n = 8;
+  const auto dofs = [](int c) { return 3.0 * (c + 1.0) * (c + 1.0) * (c + 1.0); };
+  while (tc::io::direct_memory(3, dofs(n)) <= budget / 2) ++n;
+  if (tc::io::direct_memory(3, dofs(n)) > budget || dofs(n) > 2.5e6)
+    GTEST_SKIP() << "no cube between the two budgets below 2.5 M dofs on this machine";
+  const auto cells = std::to_string(n);
+  const auto file =
+      write_case("auto-subdomains-ranks",
+                 replace_all(replace_all(kCase, "dimension = 2", "dimension = 3"),
+                             "min = [0.0, 0.0], max = [0.01, 0.01], cells = [2, 2]",
+                             "min = [0.0, 0.0, 0.0], max = [0.01, 0.01, 0.01], cells = [" + cells +
+                                 ", " + cells + ", " + cells + "]"));
+  const auto one = limited("check " + file.string());
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  EXPECT_EQ(one.output.find("FETI subdomains"), std::string::npos) << one.output;
+  const std::string launcher =
+      "env -i PATH=/usr/bin:/bin HOME=/tmp OMPI_ALLOW_RUN_AS_ROOT=1 "
+      "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
+      std::string(TC_MPIEXEC) + " -n 2 " + TC_BINARY;
+  const auto two = tc::test::run_command(kTimeLimit + launcher + " check " + file.string());
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  const int k = tc::io::auto_subdomains(3, {dofs(n)}, budget / 2)[0];
+  ASSERT_GT(k, 1);
+  EXPECT_NE(two.output.find("body \"b\": " + std::to_string(k) + " FETI subdomains"),
+            std::string::npos)
+      << two.output;
+  EXPECT_NE(two.output.find("on each of the 2 ranks of this node"), std::string::npos)
+      << two.output;
+  EXPECT_EQ(occurrences(two.output, ": valid ("), 1u) << two.output;  // said once, by rank 0
+  std::printf("%d³ cells: one rank\n%stwo ranks\n%s", n, one.output.c_str(), two.output.c_str());
+}

@@ -92,6 +92,8 @@ void singleton_transport_defaults() {
 }
 }  // namespace
 
+int PetscSession::node_size_ = 1;
+
 PetscSession::PetscSession(int* argc, char*** argv) {
   prefer_huge_pages();
   limit_blas_threads();
@@ -99,6 +101,15 @@ PetscSession::PetscSession(int* argc, char*** argv) {
   TC_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
   // Errors come back as codes, turned into exceptions by TC_PETSC; no traceback spam.
   TC_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  // Collective, so here where every rank passes, not on the first call of node_size().
+  MPI_Comm node = MPI_COMM_NULL;
+  if (MPI_Comm_split_type(PETSC_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node) ==
+          MPI_SUCCESS &&
+      node != MPI_COMM_NULL) {
+    int n = 1;
+    if (MPI_Comm_size(node, &n) == MPI_SUCCESS) node_size_ = n;
+    MPI_Comm_free(&node);
+  }
 }
 
 PetscSession::~PetscSession() {
@@ -110,6 +121,10 @@ int PetscSession::rank() {
   PetscMPIInt r = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &r);
   return r;
+}
+
+int PetscSession::node_size() {
+  return node_size_;
 }
 
 int PetscSession::size() {

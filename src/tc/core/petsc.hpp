@@ -28,6 +28,12 @@ class PetscSession {
 
   [[nodiscard]] static int rank();
   [[nodiscard]] static int size();
+  /// The ranks of PETSC_COMM_WORLD on this rank's node, sharing its memory (1 before a session):
+  /// every rank holds every body (docs/choices.md, "Replicated state"), so they divide it.
+  [[nodiscard]] static int node_size();
+
+ private:
+  static int node_size_;
 };
 
 /// Owning handle of a PETSc object (Vec, Mat, KSP, ...): move-only, destroyed once.

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "tc/core/petsc.hpp"
 #include "tc/io/auto_subdomains.hpp"
 #include "tc/io/case_schema.hpp"
 #include "tc/io/files.hpp"
@@ -117,6 +118,18 @@ double box_memory(int dim, const std::array<int, 3>& cells) {
 double physical_memory() {
   const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
   return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
+}
+
+/// A rank's share of it: every rank holds every body and its direct factors (docs/choices.md,
+/// "Replicated state"), so the ranks on one node each need what one rank alone would.
+double memory_per_rank() {
+  return physical_memory() / static_cast<double>(std::max(core::PetscSession::node_size(), 1));
+}
+
+/// " shared by N ranks" when more than one rank of the run is on this node, else "".
+std::string shared_by_ranks() {
+  const int n = core::PetscSession::node_size();
+  return n > 1 ? fmt::format(" shared by {} ranks", n) : std::string();
 }
 
 std::string quoted_list(const std::vector<std::string>& names) {
@@ -344,9 +357,9 @@ void CaseReader::resolve_auto_subdomains(const toml::array& bodies) {
   double fixed = 0;
   for (const auto& body : p_.bodies)
     if (body.subdomains == 1) fixed += direct_memory(dim_, body.mesh.n_nodes() * double(dim_));
-  const double budget = kMemoryShare * physical_memory() - fixed;
+  const double budget = kMemoryShare * memory_per_rank() - fixed;
   const auto chosen =
-      auto_subdomains(dim_, dofs, physical_memory() > 0 ? std::max(budget, 1.0) : 0.0);
+      auto_subdomains(dim_, dofs, memory_per_rank() > 0 ? std::max(budget, 1.0) : 0.0);
   for (size_t i = 0; i < p_.bodies.size(); ++i) {
     auto& body = p_.bodies[i];
     if (body.subdomains != 0) continue;
@@ -500,12 +513,12 @@ bool CaseReader::box_size_ok(const TableReader& box, const std::array<int, 3>& c
                                    total, kMaxBoxCells));
     return false;
   }
-  const double need = box_memory(dim_, cells), have = physical_memory();
+  const double need = box_memory(dim_, cells), have = memory_per_rank();
   if (have <= 0 || need <= have) return true;
   box.issue("cells", fmt::format("found {:.0f} cells, whose mesh and matrices alone need about "
                                  "{:.1f} GiB (before any factorisation), expected a box that "
-                                 "fits in this machine's {:.1f} GiB",
-                                 total, need / kGiB, have / kGiB));
+                                 "fits in this machine's {:.1f} GiB{}",
+                                 total, need / kGiB, physical_memory() / kGiB, shared_by_ranks()));
   return false;
 }
 
@@ -767,13 +780,17 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
 }
 
 void CaseReader::read_solver(const TableReader& root) {
-  const auto s = root.sub_table(
-      "solver", Need::optional,
-      {"coupling_tolerance", "max_coupling_iterations", "friction_loop", "qp_tolerance",
-       "max_qp_iterations", "factorization", "feti_tolerance", "max_feti_iterations",
-       "feti_preconditioner", "contact_dual", "newton_tolerance", "max_newton_iterations",
-       "coupling_acceleration", "conductance_treatment", "qp_forcing", "qp_forcing_cap",
-       "loop_forcing", "max_friction_updates", "explicit_dual_limit", "coupling_order"});
+  const auto s =
+      root.sub_table("solver", Need::optional, {"coupling_tolerance",    "max_coupling_iterations",
+                                                "coupling_order",        "friction_loop",
+                                                "qp_tolerance",          "max_qp_iterations",
+                                                "factorization",         "feti_tolerance",
+                                                "max_feti_iterations",   "feti_preconditioner",
+                                                "contact_dual",          "newton_tolerance",
+                                                "max_newton_iterations", "coupling_acceleration",
+                                                "conductance_treatment", "qp_forcing",
+                                                "qp_forcing_cap",        "loop_forcing",
+                                                "max_friction_updates",  "explicit_dual_limit"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -784,8 +801,8 @@ void CaseReader::read_solver(const TableReader& root) {
   if (const auto v = s->choice("friction_loop", Need::optional, {"nested", "staggered"}))
     settings.friction_loop =
         *v == "nested" ? physics::FrictionLoop::nested : physics::FrictionLoop::staggered;
-  if (const auto v = s->choice("coupling_order", Need::optional,
-                               {"auto", "heat_first", "mechanics_first"}))
+  if (const auto v =
+          s->choice("coupling_order", Need::optional, {"auto", "heat_first", "mechanics_first"}))
     settings.coupling_order = *v == "heat_first"        ? physics::CouplingOrder::heat_first
                               : *v == "mechanics_first" ? physics::CouplingOrder::mechanics_first
                                                         : physics::CouplingOrder::automatic;
