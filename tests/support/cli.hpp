@@ -5,10 +5,13 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <vector>
 
 namespace tc::test {
 
@@ -46,6 +49,24 @@ inline std::string read_file(const std::filesystem::path& p) {
   return s.str();
 }
 
+/// The directories fresh_dir made, removed when the test process ends (each run left its own
+/// behind: 9 000 of them had gathered in /tmp); TC_KEEP_TEST_DIRS=1 keeps them to look into.
+struct FreshDirs {
+  std::vector<std::filesystem::path> dirs;
+  FreshDirs() = default;
+  FreshDirs(const FreshDirs&) = delete;
+  FreshDirs& operator=(const FreshDirs&) = delete;
+  ~FreshDirs() {
+    if (std::getenv("TC_KEEP_TEST_DIRS") != nullptr) return;
+    std::error_code ignored;  // a directory a test removed itself is fine
+    for (const auto& d : dirs) std::filesystem::remove_all(d, ignored);
+  }
+};
+inline FreshDirs& fresh_dirs() {
+  static FreshDirs dirs;
+  return dirs;
+}
+
 /// A fresh empty directory under the system's temporary directory, private to this process:
 /// ctest runs the tests of one binary in parallel processes, and other checkouts' test runs
 /// may share the machine (a shared name let one run delete another's output mid-run).
@@ -54,6 +75,7 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
                  ("tc-test-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
+  fresh_dirs().dirs.push_back(d);
   return d;
 }
 
