@@ -84,15 +84,20 @@ TEST(NaN, InTheAssemblyItIsRefusedBeforeTheFirstStep) {
                   {"assembly", "K_θ", "not finite"});
 }
 
-TEST(NaN, InTheTemperatureItIsFoundByTheHeatStep) {
-  auto p = read("valid/plane-strain-2d.toml");
-  p.solver.coupling_order = tc::physics::CouplingOrder::heat_first;
+/// The error of the second step of `p` after a NaN was put into θ^1.
+std::string nan_in_theta_after_step_1(const tc::physics::Problem& p) {
   tc::physics::Simulation sim(p);
   sim.advance();
   auto c = sim.checkpoint();
   c.bodies[0].theta[3] = nan;
   sim.restore(c);
-  expect_contains(numerical_error([&] { sim.advance(); }),
+  return numerical_error([&] { sim.advance(); });
+}
+
+TEST(NaN, InTheTemperatureItIsFoundByTheHeatStep) {
+  auto p = read("valid/plane-strain-2d.toml");
+  p.solver.coupling_order = tc::physics::CouplingOrder::heat_first;
+  expect_contains(nan_in_theta_after_step_1(p),
                   {"heat step", "temperature", "step 2, iteration 1"});
 }
 
@@ -100,14 +105,9 @@ TEST(NaN, InTheTemperatureWithMechanicsFirstItIsFoundByTheMechanicalStep) {
   // The case has thermoelastic heating: mechanics first by default, and θ^k enters its
   // right-hand side through K_uθ before any heat step.
   const auto p = read("valid/plane-strain-2d.toml");
-  ASSERT_FALSE(tc::physics::heat_before_mechanics(p.solver.coupling_order,
-                                                  p.physics.thermoelastic_heating));
-  tc::physics::Simulation sim(p);
-  sim.advance();
-  auto c = sim.checkpoint();
-  c.bodies[0].theta[3] = nan;
-  sim.restore(c);
-  expect_contains(numerical_error([&] { sim.advance(); }),
+  ASSERT_FALSE(
+      tc::physics::heat_before_mechanics(p.solver.coupling_order, p.physics.thermoelastic_heating));
+  expect_contains(nan_in_theta_after_step_1(p),
                   {"mechanical step", "displacement", "step 2, iteration 1"});
 }
 
