@@ -262,7 +262,8 @@ bool DualContactSolver::form_from_compliance() {
   for (PetscInt r0 = 0; r0 < m; r0 += band) {
     const PetscInt nr = std::min(band, m - r0);
     for (int i = 0; i < nb; ++i) {
-      const auto& sm = s_used_[i];
+      // S_UU, or S itself where the rows reach all of T (no copy)
+      const double* sm = s_used_[i].empty() ? compliance_[i].matrix().data() : s_used_[i].data();
       const auto t = static_cast<size_t>(s_used_size_[i]);
       const auto& r = bt[i];
       row_major.assign(static_cast<size_t>(nr) * t, 0.0);
@@ -270,7 +271,7 @@ bool DualContactSolver::form_from_compliance() {
         double* wr = row_major.data() + static_cast<size_t>(k) * t;
         for (PetscInt e = r.start[r0 + k]; e < r.start[r0 + k + 1]; ++e) {
           const double v = r.value[static_cast<size_t>(e)];
-          const double* sp = sm.data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * t;
+          const double* sp = sm + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * t;
           for (size_t q = 0; q < t; ++q) wr[q] += v * sp[q];
         }
       }
@@ -321,10 +322,15 @@ void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {
       at[q] = static_cast<PetscInt>(used.size());
       used.push_back(static_cast<PetscInt>(q));
     }
-  for (auto& q : pos) q = at[static_cast<size_t>(q)];
   const size_t u = used.size();
   s_used_size_[i] = static_cast<PetscInt>(u);
   auto& su = s_used_[i];
+  if (u == t) {  // U = T: the positions stay, S is used as it is
+    su.clear();
+    su.shrink_to_fit();
+    return;
+  }
+  for (auto& q : pos) q = at[static_cast<size_t>(q)];
   su.resize(u * u);
   for (size_t b = 0; b < u; ++b) {
     const double* col = full.data() + static_cast<size_t>(used[b]) * t;

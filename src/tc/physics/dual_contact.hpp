@@ -162,7 +162,8 @@ class DualContactSolver {
   void form_scaled();           // Σ and Σ F Σ from f_dense_
   void form_by_solves();        // F column blocks by multi-right-hand-side solves
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
-  /// S_i on U, the T-positions in `pos` (into s_used_[i]), and `pos` renumbered into U.
+  /// S_i on U, the T-positions in `pos` (into s_used_[i]), and `pos` renumbered into U; where
+  /// U = T, nothing is copied (s_used_[i] empty).
   void restrict_compliance(int i, std::vector<PetscInt>& pos);
 
   std::vector<const ConstrainedSolver*> bodies_;
@@ -182,9 +183,10 @@ class DualContactSolver {
   int setup_solves_ = 0;
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
-  std::vector<DofCompliance> compliance_;    // per body
-  std::vector<std::vector<double>> w_;       // form_from_compliance: a band of B_i,T S_i per body
-  std::vector<std::vector<double>> s_used_;  // ... and S_i on the T-positions the rows reach
+  std::vector<DofCompliance> compliance_;  // per body
+  std::vector<std::vector<double>> w_;     // form_from_compliance: a band of B_i,T S_i per body
+  // ... and S_i on the T-positions the rows reach, when they are fewer than T (else empty)
+  std::vector<std::vector<double>> s_used_;
   std::vector<PetscInt> s_used_size_;
   mutable std::vector<core::Vector> w_in_, y_;  // per body: B_iᵀx and A_i⁻¹B_iᵀx
 };
