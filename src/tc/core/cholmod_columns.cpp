@@ -485,6 +485,56 @@ bool CholeskySolver::forward_compliance(ForwardColumnsPtr& kept, std::span<const
   return true;
 }
 
+bool CholeskySolver::solve_from_forward(const ForwardColumns& kept, std::span<const double> w,
+                                        double* x) const {
+  CholeskyColumns* c = columns_of(factor_.get(), columns_);
+  if (!c || kept.factor != c->factor || w.size() != kept.size) return false;
+  const cholmod_factor& l = *c->factor;
+  const int n = static_cast<int>(l.n);
+  const auto* super = static_cast<const int*>(l.super);
+  const auto* lpi = static_cast<const int*>(l.pi);
+  const auto* lpx = static_cast<const int*>(l.px);
+  const auto* ls = static_cast<const int*>(l.s);
+  const auto* lx = static_cast<const double*>(l.x);
+  const auto ns = static_cast<int>(l.nsuper);
+  c->y.assign(static_cast<size_t>(n), 0.0);
+  c->e.resize(std::max<size_t>(1, l.maxesize));
+  double* y = c->y.data();
+  double* e = c->e.data();
+  const double one = 1.0, minus_one = -1.0;
+  const int inc = 1;
+  // Y w, supernode by supernode: block s of a cover holds L⁻¹P E (rows of s's diagonal block)
+  // for the cover's sorted columns [lo[s], hi[s]), which are T's offset + order[q].
+  std::vector<double> ws;
+  for (const auto& cover : kept.covers) {
+    const auto& cols = cover.columns;
+    for (int s = 0; s < ns; ++s) {
+      const int cnt = cols.count(static_cast<size_t>(s));
+      const auto& ys = cover.y[static_cast<size_t>(s)];
+      if (cnt == 0 || ys.empty()) continue;
+      ws.resize(static_cast<size_t>(cnt));
+      for (int q = 0; q < cnt; ++q)
+        ws[static_cast<size_t>(q)] =
+            w[cover.offset + static_cast<size_t>(cols.order[static_cast<size_t>(
+                                 cols.lo[static_cast<size_t>(s)] + q)])];
+      const int nscol = super[s + 1] - super[s];
+      dgemv_("N", &nscol, &cnt, &one, ys.data(), &nscol, ws.data(), &inc, &one, y + super[s], &inc);
+    }
+  }
+  // The backward solve, L⁻ᵀ, over every supernode, descending, with CHOLMOD's calls for one
+  // right-hand side (as unit_solve_rows).
+  for (int s = ns - 1; s >= 0; --s) {
+    const int k1 = super[s], nscol = super[s + 1] - k1;
+    const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
+    const double* l1 = lx + lpx[s];
+    for (int ii = 0; ii < nsrow2; ++ii) e[ii] = y[ls[ps2 + ii]];
+    dgemv_("C", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, e, &inc, &one, y + k1, &inc);
+    dtrsv_("L", "C", "N", &nscol, l1, &nsrow, y + k1, &inc);
+  }
+  for (int i = 0; i < n; ++i) x[i] = y[c->pinv[static_cast<size_t>(i)]];  // x = Pᵀ y
+  return true;
+}
+
 #else
 
 struct CholeskyColumns {};
@@ -497,6 +547,10 @@ bool CholeskySolver::forward_compliance_pays(std::span<const PetscInt>, int) con
   return false;
 }
 bool CholeskySolver::forward_compliance(ForwardColumnsPtr&, std::span<const PetscInt>,
+                                        double*) const {
+  return false;
+}
+bool CholeskySolver::solve_from_forward(const ForwardColumns&, std::span<const double>,
                                         double*) const {
   return false;
 }

@@ -213,6 +213,11 @@ class CholeskySolver {
   /// nothing, with another package or another factor than kept's.
   bool forward_compliance(ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
                           double* out) const;
+  /// x = A⁻¹ E_T w for w given on T (kept's dofs, in their order): Y w = L⁻¹P E_T w from the
+  /// kept columns, then the backward solve alone, x = PᵀL⁻ᵀ(Y w). Half a solve plus one pass
+  /// over Y; equal to solve() on that right-hand side to round-off. Returns false, writing
+  /// nothing, without CHOLMOD or for another factor than kept's.
+  bool solve_from_forward(const ForwardColumns& kept, std::span<const double> w, double* x) const;
   [[nodiscard]] const std::string& package() const { return package_; }
 
  private:

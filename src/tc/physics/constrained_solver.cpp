@@ -84,6 +84,13 @@ bool ConstrainedSolver::forward_compliance(core::ForwardColumnsPtr& kept,
   return !feti_ && factor_.forward_compliance(kept, free_or_none(fresh, dofs_), out);
 }
 
+bool ConstrainedSolver::solve_from_forward(const core::ForwardColumns& kept,
+                                           std::span<const double> w, core::Vector& x) const {
+  if (feti_) return false;
+  auto xv = x.view();  // a constrained dof of T has no column in Y: its x is 0
+  return factor_.solve_from_forward(kept, w, xv.span().data());
+}
+
 void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
   if (feti_) {
     feti_->solve(b, x);

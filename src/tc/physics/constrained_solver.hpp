@@ -44,6 +44,12 @@ class ConstrainedSolver {
   /// False (nothing written) when the factorisation cannot.
   bool forward_compliance(core::ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
                           double* out) const;
+  /// x = A⁻¹ E_T w with zero prescribed values, w given on T (kept's dofs, in their order), by
+  /// the kept forward columns and the backward solve alone:
+  /// core::CholeskySolver::solve_from_forward. False (x untouched) when the factorisation
+  /// cannot.
+  bool solve_from_forward(const core::ForwardColumns& kept, std::span<const double> w,
+                          core::Vector& x) const;
   [[nodiscard]] const std::string& package() const {
     return feti_ ? feti_->package() : factor_.package();
   }

@@ -42,6 +42,19 @@ PetscInt DofCompliance::missing(std::span<const PetscInt> dofs) const {
   return static_cast<PetscInt>(std::unique(fresh.begin(), fresh.end()) - fresh.begin());
 }
 
+bool DofCompliance::solve(const core::Vector& w, core::Vector& x) const {
+  if (!by_forward_ || !forward_) return false;
+  std::vector<double> wt(dofs_.size());
+  {
+    const auto wv = w.read();
+    const auto n = static_cast<PetscInt>(index_.size());
+    for (PetscInt i = 0; i < n; ++i)
+      if (wv[i] != 0.0 && index_[i] < 0) return false;
+    for (size_t q = 0; q < dofs_.size(); ++q) wt[q] = wv[dofs_[q]];
+  }
+  return solver_.solve_from_forward(*forward_, wt, x);
+}
+
 PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
   const auto old = static_cast<Eigen::Index>(dofs_.size());
   for (const PetscInt d : dofs)

@@ -45,6 +45,11 @@ class DofCompliance {
   /// with the same solves in the same blocks, hence the same bits (restart).
   [[nodiscard]] const std::vector<PetscInt>& dofs() const { return dofs_; }
   [[nodiscard]] const std::vector<PetscInt>& chunks() const { return chunks_; }
+  /// x = A⁻¹w (zero prescribed values) for w that vanishes off T, by the forward columns Y kept
+  /// when S is grown by forward solves: x = PᵀL⁻ᵀ(Y w_T), half a solve and a pass over Y
+  /// (ConstrainedSolver::solve_from_forward). False, x untouched, otherwise (S grown by
+  /// restricted solves, or w nonzero off T).
+  bool solve(const core::Vector& w, core::Vector& x) const;
   /// Rebuilds S from scratch by replaying the recorded cover() calls (nothing to do when the
   /// record is already this one's).
   void replay(std::span<const PetscInt> dofs, std::span<const PetscInt> chunks);

@@ -492,8 +492,12 @@ void DualContactSolver::recover(const core::Vector& lambda, BodyVectorsOut u) co
     // No contact force on the body (every step before the first touch): A⁻¹0 = 0 exactly,
     // and the solve would cost as much as the step's own.
     if (w_in_[i].max_abs() == 0.0) continue;
-    y_[i].zero();
-    bodies_[i]->solve(w_in_[i], y_[i]);
+    // B_iᵀλ lives on T: with the compliance's forward columns Y, A⁻¹ of it is a backward
+    // solve of Y(B_iᵀλ)_T, half the full solve's flops.
+    if (!compliance_[i].solve(w_in_[i], y_[i])) {
+      y_[i].zero();
+      bodies_[i]->solve(w_in_[i], y_[i]);
+    }
     u[i]->axpy(-1.0, y_[i]);
   }
 }
