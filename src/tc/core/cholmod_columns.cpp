@@ -102,6 +102,24 @@ CholeskyColumns* columns_of(::Mat f, std::shared_ptr<CholeskyColumns>& cache) {
   return cache.get();
 }
 
+/// Supernode s's step of the backward solve y ← L⁻ᵀy for one right-hand side (permuted), with
+/// CHOLMOD's calls: E = y below the diagonal block (the ancestors' rows), y_s −= L_21ᵀE, then
+/// y_s ← L_11⁻ᵀ y_s. `e` holds at least the factor's maxesize entries.
+void backward_one(const cholmod_factor& l, int s, double* y, double* e) {
+  const auto* super = static_cast<const int*>(l.super);
+  const auto* lpi = static_cast<const int*>(l.pi);
+  const auto* lpx = static_cast<const int*>(l.px);
+  const auto* ls = static_cast<const int*>(l.s);
+  const double* l1 = static_cast<const double*>(l.x) + lpx[s];
+  const int k1 = super[s], nscol = super[s + 1] - k1;
+  const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
+  const double one = 1.0, minus_one = -1.0;
+  const int inc = 1;
+  for (int ii = 0; ii < nsrow2; ++ii) e[ii] = y[ls[ps2 + ii]];
+  dgemv_("C", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, e, &inc, &one, y + k1, &inc);
+  dtrsv_("L", "C", "N", &nscol, l1, &nsrow, y + k1, &inc);
+}
+
 /// The supernodes of `rows` (permuted) and all their ancestors, ascending.
 std::vector<int> reach(CholeskyColumns& c, std::span<const PetscInt> dofs) {
   std::vector<int> out;
@@ -174,19 +192,18 @@ bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<c
   const auto back = reach(*c, rows);
   for (auto it = back.rbegin(); it != back.rend(); ++it) {
     const int s = *it;
+    if (k == 1) {
+      backward_one(l, s, y, e);
+      continue;
+    }
     const int k1 = super[s], nscol = super[s + 1] - k1;
     const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
     const double* l1 = lx + lpx[s];
     gather_below(ps2, nsrow2);
-    if (k == 1) {
-      dgemv_("C", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, e, &inc, &one, y + k1, &inc);
-      dtrsv_("L", "C", "N", &nscol, l1, &nsrow, y + k1, &inc);
-    } else {
-      if (nsrow2 > 0)
-        dgemm_("C", "N", &nscol, &k, &nsrow2, &minus_one, l1 + nscol, &nsrow, e, &nsrow2, &one,
-               y + k1, &n);
-      dtrsm_("L", "L", "C", "N", &nscol, &k, &one, l1, &nsrow, y + k1, &n);
-    }
+    if (nsrow2 > 0)
+      dgemm_("C", "N", &nscol, &k, &nsrow2, &minus_one, l1 + nscol, &nsrow, e, &nsrow2, &one,
+             y + k1, &n);
+    dtrsm_("L", "L", "C", "N", &nscol, &k, &one, l1, &nsrow, y + k1, &n);
   }
   const auto nr = rows.size();
   for (int j = 0; j < k; ++j)  // X = Pᵀ Y on the wanted rows
@@ -492,16 +509,12 @@ bool CholeskySolver::solve_from_forward(const ForwardColumns& kept, std::span<co
   const cholmod_factor& l = *c->factor;
   const int n = static_cast<int>(l.n);
   const auto* super = static_cast<const int*>(l.super);
-  const auto* lpi = static_cast<const int*>(l.pi);
-  const auto* lpx = static_cast<const int*>(l.px);
-  const auto* ls = static_cast<const int*>(l.s);
-  const auto* lx = static_cast<const double*>(l.x);
   const auto ns = static_cast<int>(l.nsuper);
   c->y.assign(static_cast<size_t>(n), 0.0);
   c->e.resize(std::max<size_t>(1, l.maxesize));
   double* y = c->y.data();
   double* e = c->e.data();
-  const double one = 1.0, minus_one = -1.0;
+  const double one = 1.0;
   const int inc = 1;
   // Y w, supernode by supernode: block s of a cover holds L⁻¹P E (rows of s's diagonal block)
   // for the cover's sorted columns [lo[s], hi[s]), which are T's offset + order[q].
@@ -521,16 +534,7 @@ bool CholeskySolver::solve_from_forward(const ForwardColumns& kept, std::span<co
       dgemv_("N", &nscol, &cnt, &one, ys.data(), &nscol, ws.data(), &inc, &one, y + super[s], &inc);
     }
   }
-  // The backward solve, L⁻ᵀ, over every supernode, descending, with CHOLMOD's calls for one
-  // right-hand side (as unit_solve_rows).
-  for (int s = ns - 1; s >= 0; --s) {
-    const int k1 = super[s], nscol = super[s + 1] - k1;
-    const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
-    const double* l1 = lx + lpx[s];
-    for (int ii = 0; ii < nsrow2; ++ii) e[ii] = y[ls[ps2 + ii]];
-    dgemv_("C", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, e, &inc, &one, y + k1, &inc);
-    dtrsv_("L", "C", "N", &nscol, l1, &nsrow, y + k1, &inc);
-  }
+  for (int s = ns - 1; s >= 0; --s) backward_one(l, s, y, e);  // L⁻ᵀ, every supernode
   for (int i = 0; i < n; ++i) x[i] = y[c->pinv[static_cast<size_t>(i)]];  // x = Pᵀ y
   return true;
 }

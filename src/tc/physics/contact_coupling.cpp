@@ -338,6 +338,10 @@ int ContactCoupling::couple(int step) {
   const bool lambda_final = one_way && !any_pair(&InterfaceLaws::friction_varies);
   const bool heat_first = heat_before_mechanics(problem_.solver.coupling_order, heating);
   double dth = 0, thn = 0;
+  // The heat step just taken was the last one needed: it had the final λ (λ_converged).
+  const auto heat_was_last = [&](bool lambda_converged) {
+    return lambda_final && lambda_converged && (!theta_iterates || dth <= tol * thn);
+  };
   const auto heat_half = [&](int iteration) {  // θ^{p+1} and ‖θ^{p+1} − θ^p‖
     for (auto* f : g.fields) f->theta_prev.copy_from(f->theta_new);
     heat_step(step, iteration);
@@ -368,8 +372,7 @@ int ContactCoupling::couple(int step) {
     double fixed_residual = 0;
     if (heat_first) {
       heat_half(iteration);
-      // λ of the last iteration final: this heat step was the last one needed.
-      if (lambda_final && tresca.converged && (!theta_iterates || dth <= tol * thn)) {
+      if (heat_was_last(tresca.converged)) {  // λ of the last iteration
         change = thn > 0 ? dth / thn : dth;
         break;
       }
@@ -383,8 +386,7 @@ int ContactCoupling::couple(int step) {
     const double rl = ln > 0 ? dl / ln : dl, rth = thn > 0 ? dth / thn : dth;
     change = std::max({rl, rth, ln > 0 ? fixed_residual / ln : fixed_residual});
     const bool friction_met = fixed_residual <= tol * ln && tresca.converged;
-    // Mechanics first, λ final: the heat step just taken had it.
-    if (!heat_first && lambda_final && friction_met && (!theta_iterates || dth <= tol * thn)) break;
+    if (!heat_first && heat_was_last(friction_met)) break;  // λ of this iteration
     if (dl <= tol * ln && dth <= tol * thn && friction_met) break;
     if (nested && friction_met && sweep_change > 0 &&
         fixed_point_reached(rl, rth, sweep_change, tol))
