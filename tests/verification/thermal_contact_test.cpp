@@ -11,13 +11,15 @@
 //  - Coupling: a slave heated between the master and a fixed wall: the pressure of the
 //    laterally constrained blocks p = (δ + h_s β ΔT/M_s)/(h_s/M_s + h_m/M_m).
 //  - Two half-spaces under constant frictional power: the surface temperatures' closed forms.
-//  - InterfaceHeatSolver against the dense coupled solve (Dirichlet node on the interface).
+//  - InterfaceHeatSolver against the dense coupled solve (Dirichlet node on the interface), by
+//    its LU and by refinement with an earlier LU.
 //  - Aitken relaxation of the Coulomb fixed point: same answer, no more iterations.
 #include "tc/physics/thermal_contact.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 
 #include "support/body_energy.hpp"
@@ -44,13 +46,12 @@ core::SparseMatrix sparse(const Eigen::MatrixXd& d) {
   return m;
 }
 
-TEST(InterfaceHeatSolver, SolvesTheCoupledSystemExactlyWithDirichletNodesOnTheInterface) {
-  // Two 1D bodies (6 and 5 nodes, A = M/τ + K of linear elements), interface nodes {3, 4, 5}
-  // and {0, 1, 2}, a random symmetric positive semidefinite L_Γ coupling them, Dirichlet data
-  // at slave node 0 and at master node 1, which is on the interface. Reference: the dense
-  // (A + L) with the constrained rows replaced by θ = θ_D. Round-off only: 1e-12.
-  const int ns = 6, nm = 5;
-  auto chain = [](int n, double c, double k) {
+/// Two 1D bodies (6 and 5 nodes, A = M/τ + K of linear elements), interface nodes {3, 4, 5}
+/// and {0, 1, 2}, Dirichlet data at slave node 0 and at master node 1, which is on the
+/// interface; L_Γ symmetric positive semidefinite over the interface, set per case.
+struct TwoChains {
+  static constexpr int ns = 6, nm = 5;
+  static Eigen::MatrixXd chain(int n, double c, double k) {
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
     for (int e = 0; e + 1 < n; ++e) {
       a(e, e) += c / 3 + k;
@@ -59,53 +60,106 @@ TEST(InterfaceHeatSolver, SolvesTheCoupledSystemExactlyWithDirichletNodesOnTheIn
       a(e + 1, e) += c / 6 - k;
     }
     return a;
-  };
+  }
   const Eigen::MatrixXd as = chain(ns, 2.0, 5.0), am = chain(nm, 1.0, 3.0);
   const std::vector<int> gs = {3, 4, 5}, gm = {0, 1, 2};
-  Eigen::MatrixXd g = Eigen::MatrixXd::Random(6, 6);
-  const Eigen::MatrixXd lg = 40.0 * g * g.transpose();  // over [gs, gm]
-  Eigen::MatrixXd l = Eigen::MatrixXd::Zero(ns + nm, ns + nm);
-  std::vector<int> where = {3, 4, 5, ns + 0, ns + 1, ns + 2};
-  for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 6; ++b) l(where[a], where[b]) = lg(a, b);
-  const physics::ConstrainedSolver solver_s(sparse(as), {0}, ""), solver_m(sparse(am), {1}, "");
-  physics::InterfaceHeatSolver solver(solver_s, ns, gs, solver_m, nm, gm);
-  contact::ThermalContact tc{sparse(l.topLeftCorner(ns, ns)), sparse(l.topRightCorner(ns, nm)),
-                             sparse(l.bottomLeftCorner(nm, ns)),
-                             sparse(l.bottomRightCorner(nm, nm))};
+  const physics::ConstrainedSolver solver_s{sparse(as), {0}, ""}, solver_m{sparse(am), {1}, ""};
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(ns + nm);
+  static constexpr double theta_s0 = 300.0, theta_m1 = 310.0;
+
+  /// L over both bodies' nodes from lg over [gs, gm] (6 × 6).
+  [[nodiscard]] Eigen::MatrixXd full_l(const Eigen::MatrixXd& lg) const {
+    Eigen::MatrixXd l = Eigen::MatrixXd::Zero(ns + nm, ns + nm);
+    const int where[6] = {3, 4, 5, ns + 0, ns + 1, ns + 2};
+    for (int a = 0; a < 6; ++a)
+      for (int c = 0; c < 6; ++c) l(where[a], where[c]) = lg(a, c);
+    return l;
+  }
+  [[nodiscard]] static contact::ThermalContact blocks(const Eigen::MatrixXd& l) {
+    return {sparse(l.topLeftCorner(ns, ns)), sparse(l.topRightCorner(ns, nm)),
+            sparse(l.bottomLeftCorner(nm, ns)), sparse(l.bottomRightCorner(nm, nm))};
+  }
+  /// θ of both bodies by the solver (its conductance set by the caller).
+  [[nodiscard]] Eigen::VectorXd solve(const physics::InterfaceHeatSolver& solver) const {
+    core::Vector bs = core::Vector::from(std::vector<double>(b.data(), b.data() + ns));
+    core::Vector bm = core::Vector::from(std::vector<double>(b.data() + ns, b.data() + ns + nm));
+    core::Vector xs(ns), xm(nm);
+    xs.view()[0] = theta_s0;
+    xm.view()[1] = theta_m1;
+    solver.solve(bs, bm, xs, xm);
+    Eigen::VectorXd x(ns + nm);
+    const auto s = xs.to_std(), m = xm.to_std();
+    for (int i = 0; i < ns; ++i) x(i) = s[i];
+    for (int i = 0; i < nm; ++i) x(ns + i) = m[i];
+    return x;
+  }
+  /// The dense (A + L) with the constrained rows replaced by θ = θ_D.
+  [[nodiscard]] Eigen::VectorXd reference(const Eigen::MatrixXd& l) const {
+    Eigen::MatrixXd full = l;
+    full.topLeftCorner(ns, ns) += as;
+    full.bottomRightCorner(nm, nm) += am;
+    Eigen::VectorXd rhs = b;
+    for (const auto& [row, value] : {std::pair{0, theta_s0}, {ns + 1, theta_m1}}) {
+      full.row(row).setZero();
+      full(row, row) = 1.0;
+      rhs(row) = value;
+    }
+    return full.lu().solve(rhs);
+  }
+};
+
+// Round-off only: 1e-12 of the largest temperature.
+void expect_solves(const TwoChains& c, const physics::InterfaceHeatSolver& solver,
+                   const Eigen::MatrixXd& l) {
+  const Eigen::VectorXd x = c.solve(solver), ref = c.reference(l);
+  for (int i = 0; i < x.size(); ++i)
+    EXPECT_NEAR(x(i), ref(i), 1e-12 * ref.cwiseAbs().maxCoeff()) << i;
+}
+
+TEST(InterfaceHeatSolver, SolvesTheCoupledSystemExactlyWithDirichletNodesOnTheInterface) {
+  const TwoChains c;
+  const Eigen::MatrixXd g = Eigen::MatrixXd::Random(6, 6);
+  const Eigen::MatrixXd l = c.full_l(40.0 * g * g.transpose());
+  physics::InterfaceHeatSolver solver(c.solver_s, c.ns, c.gs, c.solver_m, c.nm, c.gm);
+  const auto tc = TwoChains::blocks(l);
   solver.set_conductance(tc);
   EXPECT_EQ(solver.active_nodes(), 6);
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(ns + nm);
-  const double theta_s0 = 300.0, theta_m1 = 310.0;
-  core::Vector bs = core::Vector::from(std::vector<double>(b.data(), b.data() + ns));
-  core::Vector bm = core::Vector::from(std::vector<double>(b.data() + ns, b.data() + ns + nm));
-  core::Vector xs(ns), xm(nm);
-  {
-    auto v = xs.view();
-    v[0] = theta_s0;
-  }
-  {
-    auto v = xm.view();
-    v[1] = theta_m1;
-  }
-  solver.solve(bs, bm, xs, xm);
-  Eigen::MatrixXd full = l;
-  full.topLeftCorner(ns, ns) += as;
-  full.bottomRightCorner(nm, nm) += am;
-  Eigen::VectorXd rhs = b;
-  for (const auto& [row, value] : {std::pair{0, theta_s0}, {ns + 1, theta_m1}}) {
-    full.row(row).setZero();
-    full(row, row) = 1.0;
-    rhs(row) = value;
-  }
-  const Eigen::VectorXd ref = full.lu().solve(rhs);
-  const auto s = xs.to_std(), m = xm.to_std();
-  for (int i = 0; i < ns; ++i) EXPECT_NEAR(s[i], ref(i), 1e-12 * ref.cwiseAbs().maxCoeff()) << i;
-  for (int i = 0; i < nm; ++i)
-    EXPECT_NEAR(m[i], ref(ns + i), 1e-12 * ref.cwiseAbs().maxCoeff()) << i;
+  expect_solves(c, solver, l);
   EXPECT_EQ(solver.setup_solves(), 6);  // one column of S per interface node, once
   solver.set_conductance(tc);
   EXPECT_EQ(solver.setup_solves(), 6);
+}
+
+TEST(InterfaceHeatSolver, RefinesWithTheLastLuWhileLStaysOnItsNodes) {
+  // L on the first two nodes of each side (J = 4 nodes), then 0.1 % larger there (as γ moves in
+  // the fixed point): refinement with the first LU; then 30× larger: refinement does not
+  // contract, a new LU; then on all six nodes: J grows, a new LU. Every solve to round-off
+  // against the dense solve (the refinement's stop, 1e-12 of the interface values, is below
+  // the 1e-12 of the largest temperature asked here only by their ratio, ~1).
+  // Five random draws of the data; without `refine` a new LU every time.
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    std::srand(seed);
+    const TwoChains c;
+    const Eigen::MatrixXd g = Eigen::MatrixXd::Random(6, 6);
+    Eigen::MatrixXd part = 40.0 * g * g.transpose();
+    for (const int a : {2, 5}) part.row(a).setZero(), part.col(a).setZero();
+    physics::InterfaceHeatSolver solver(c.solver_s, c.ns, c.gs, c.solver_m, c.nm, c.gm);
+    const auto check = [&](const Eigen::MatrixXd& lg, bool refine, int active, long lus) {
+      const Eigen::MatrixXd l = c.full_l(lg);
+      solver.set_conductance(TwoChains::blocks(l), refine);
+      expect_solves(c, solver, l);
+      EXPECT_EQ(solver.active_nodes(), active) << seed;
+      EXPECT_EQ(solver.factorizations(), lus) << seed;
+    };
+    check(part, true, 4, 1);
+    const long before = solver.refinement_steps();
+    check(1.001 * part, true, 4, 1);
+    EXPECT_GT(solver.refinement_steps(), before) << seed;
+    check(30.0 * part, true, 4, 2);
+    check(40.0 * g * g.transpose(), true, 6, 3);
+    check(part, true, 6, 4);  // L on fewer nodes than J: J kept (L moved far: a new LU)
+    check(part, false, 4, 5);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

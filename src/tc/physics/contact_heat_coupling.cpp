@@ -121,7 +121,8 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
       interface_heat_ = std::make_unique<InterfaceHeatSolver>(std::move(solvers), std::move(n),
                                                               std::move(gamma_nodes));
     }
-    interface_heat_->set_conductance(conducting);
+    // within a time step L changes by the fixed point's residual: refinement with the last LU
+    interface_heat_->set_conductance(conducting, iteration > 1);
   }
   bool boundary_term = false;
   for (const auto* sys : group.systems) boundary_term = boundary_term || sys->has_boundary_term();

@@ -17,6 +17,12 @@
 // solves per body and one dense LU of the nodes that L touches: A is never refactorised.
 // I + S L_Γ is similar to I + S^½ L_Γ S^½ (on the free nodes), so its eigenvalues are ≥ 1.
 //
+// L changes little from one iteration of (6.3) to the next (γ = λ_n moves by the fixed point's
+// residual), so where L's nodes are among those of the last LU (the working set J), the dense
+// system is solved by iterative refinement with that LU, each step a product with S_JJ L_JJ
+// and a pair of triangular solves (O(|J|²) against the LU's O(|J|³)), to a residual of
+// 1e-12‖y₀‖; a new LU only when J must grow or the refinement does not contract.
+//
 // A column of S costs one solve with A_i; columns are computed when their node first carries
 // conductance, all the new ones of a body together, and kept for the run (the matrices do not
 // change while τ does not).
@@ -54,11 +60,13 @@ class InterfaceHeatSolver {
 
   /// Takes L_θγ of every pair (blocks over the full node numbering, as
   /// MortarPair::thermal_conductance returns them) for the following solves; throws Error when L
-  /// has an entry off Γ.
-  void set_conductance(std::span<const PairConductance> pairs);
-  void set_conductance(const contact::ThermalContact& l) {
+  /// has an entry off Γ. `refine`: keep the last LU for refinement where it can serve; without
+  /// it J and the LU are those of this L, whatever came before (the first heat step of a time
+  /// step: then no state passes from one step to the next, and a restart repeats a run).
+  void set_conductance(std::span<const PairConductance> pairs, bool refine = false);
+  void set_conductance(const contact::ThermalContact& l, bool refine = false) {
     const PairConductance one{&l, 0, 1};
-    set_conductance(std::span(&one, 1));
+    set_conductance(std::span(&one, 1), refine);
   }
 
   /// Solves (A + L) θ = b for every body. On entry x_i hold the Dirichlet values at their
@@ -69,15 +77,23 @@ class InterfaceHeatSolver {
     solve(std::array{&b_slave, &b_master}, std::array{&x_slave, &x_master});
   }
 
-  /// Number of interface nodes L currently couples (the size of the dense system).
+  /// Number of interface nodes in the dense system: the working set J, which holds those L
+  /// currently couples.
   [[nodiscard]] int active_nodes() const { return static_cast<int>(active_.size()); }
   /// Solves with A spent on columns of S so far (one per interface node that ever carried
   /// conductance).
   [[nodiscard]] long setup_solves() const { return setup_solves_; }
+  /// LUs of I + S_JJ L_JJ so far, and refinement steps with an earlier one.
+  [[nodiscard]] long factorizations() const { return factorizations_; }
+  [[nodiscard]] long refinement_steps() const { return refinement_steps_; }
 
  private:
   [[nodiscard]] int n_bodies() const { return static_cast<int>(solver_.size()); }
   [[nodiscard]] int body_of(int g) const;  // the body of global interface index g
+  void factorize() const;                  // the LU of I + S_JJ L_JJ with the current L
+  void lu_solve(Eigen::VectorXd& y) const;
+  // y ← (I + S_JJ L_JJ)⁻¹ y, by the LU where it is current, else refining with it
+  void interface_solve(Eigen::VectorXd& y) const;
 
   std::vector<const ConstrainedSolver*> solver_;
   std::vector<PetscInt> n_;
@@ -90,12 +106,16 @@ class InterfaceHeatSolver {
   std::vector<DofCompliance> compliance_;
   long setup_solves_ = 0;
 
-  std::vector<int> active_;               // global interface indices with a row of L
-  Eigen::SparseMatrix<double> l_active_;  // L_Γ on the active nodes
+  std::vector<int> active_;               // J: global interface indices, ⊇ the rows of L
+  Eigen::SparseMatrix<double> l_active_;  // L_Γ on J
+  Eigen::MatrixXd s_;                     // S_JJ (zero between bodies)
   // LU of I + S_JJ L_JJ with partial pivoting, by LAPACK (dgetrf: the BLAS's kernels, 2× Eigen's
-  // PartialPivLU at 1 400–2 000 nodes, which is 0.1–0.3 s per coupling iteration)
-  Eigen::MatrixXd lu_;
-  std::vector<int> pivots_;
+  // PartialPivLU at 1 400–2 000 nodes, which is 0.1–0.3 s per coupling iteration), for the L of
+  // the last factorisation; a cache that solve() renews when refinement fails.
+  mutable Eigen::MatrixXd lu_;
+  mutable std::vector<int> pivots_;
+  mutable bool lu_current_ = false;  // the LU is of the current L
+  mutable long factorizations_ = 0, refinement_steps_ = 0;
   mutable std::vector<core::Vector> rhs_;
 };
 
