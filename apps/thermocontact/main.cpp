@@ -302,6 +302,8 @@ int info(const char* program) {
   fmt::print("thermocontact {}\n", THERMOCONTACT_VERSION);
   fmt::print("PETSc: {}\n", version);
   fmt::print("MPI ranks: {}\n", tc::core::PetscSession::size());
+  fmt::print("BLAS threads per rank: {} (OPENBLAS_NUM_THREADS sets them)\n",
+             tc::core::PetscSession::blas_threads());
   std::string packages;
   for (const auto& p : tc::core::available_cholesky_packages())
     packages += (packages.empty() ? "" : ", ") + p;

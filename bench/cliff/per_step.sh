@@ -2,7 +2,8 @@
 # Issue 22's "no cliff" goal: examples/07-pin-on-plate refined (case-refined.toml, Gmsh Tet4 made
 # here from the example's .geo files: 147 648 dofs, 2 205 multipliers) against the committed
 # coarse case (15 108 dofs, 492 multipliers), both for the first STEPS steps (default 13: the
-# press and three strokes), one after the other with this build. Prints, per case, the wall
+# press and three strokes), one after the other with this build, THREADS BLAS threads
+# (default 1). Prints, per case, the wall
 # seconds of the first step (it holds the factorisation and the dual set-up), the mean of the
 # others, and the refined/coarse ratio of both. Needs gmsh; ~1.9 GiB.
 #   bench/cliff/per_step.sh [STEPS]
@@ -19,7 +20,7 @@ sed -e "s/^end = 3.025 .*/end = $end/" "$ex/case-refined.toml" >"$work/refined.t
 sed -e "s/^end = 3.025 .*/end = $end/" "$ex/case.toml" >"$work/coarse.toml"
 cp "$ex/pin.msh" "$ex/plate.msh" "$work/"
 for c in coarse refined; do
-  OPENBLAS_NUM_THREADS=1 "$root/build/bin/thermocontact" run "$work/$c.toml" \
+  OPENBLAS_NUM_THREADS=${THREADS:-1} "$root/build/bin/thermocontact" run "$work/$c.toml" \
     --output "$work/out-$c" --force >/dev/null
 done
 python3 - "$work" <<'PY'

@@ -10,7 +10,8 @@
 # baseline/current ratio of the mean step time.
 #   bench/million/million.sh [STEPS] [K ...]        e.g. million.sh 10 2 3 4 5.3
 # BASELINE=<binary> adds the baseline runs; extra arguments to `thermocontact run` go in
-# TC_ARGS; TC_BENCH_WORK=<dir> keeps the runs there. Needs ~14.3 GiB at K = 5.3.
+# TC_ARGS; TC_BENCH_WORK=<dir> keeps the runs there. BLAS threads: THREADS for this build,
+# BASELINE_THREADS for the baseline (default 1 each). Needs ~14.3 GiB at K = 5.3.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 steps=${1:-10}
@@ -23,7 +24,6 @@ ex=$root/examples/06-thesis-frictional-heating/case.toml
 end=$(python3 -c "print(round(0.01 * $steps, 6))")
 whos=(current)
 [[ -z ${BASELINE:-} ]] || whos=(baseline current)
-export OPENBLAS_NUM_THREADS=1
 for k in "${ks[@]}"; do
   read -r master slave < <(python3 -c "
 k = $k
@@ -31,9 +31,9 @@ print(','.join(str(round(c * k)) for c in (8, 30, 6)), round(6 * k))")
   sed -e "s/cells = \[8, 30, 6\]/cells = [$master]/" -e "s/cells = \[6, 6, 6\]/cells = [$slave, $slave, $slave]/" \
     -e "s/^end = 1.0/end = $end/" "$ex" >"$work/k$k.toml"
   for who in "${whos[@]}"; do
-    bin=$root/build/bin/thermocontact
-    [[ $who == current ]] || bin=$BASELINE
-    /usr/bin/time -v "$bin" run "$work/k$k.toml" --output "$work/$who-k$k" --force ${TC_ARGS:-} \
+    bin=$root/build/bin/thermocontact threads=${THREADS:-1}
+    [[ $who == current ]] || bin=$BASELINE threads=${BASELINE_THREADS:-1}
+    OPENBLAS_NUM_THREADS=$threads /usr/bin/time -v "$bin" run "$work/k$k.toml" --output "$work/$who-k$k" --force ${TC_ARGS:-} \
       >"$work/$who-k$k.log" 2>"$work/$who-k$k.time"
   done
 done

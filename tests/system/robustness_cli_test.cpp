@@ -1,6 +1,8 @@
 // Issue 20: inputs that the command line took in silently or reported wrongly, each through the
 // binary as a user meets it (docs/robustness.md, "Bad input, issue 20").
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <sys/stat.h>
 
 #include <array>
@@ -411,6 +413,26 @@ TEST(Startup, ASerialRunNeedsNoOpenMpiSessionDirectory) {
                                        tmp.string() + " " + TC_BINARY + " info");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("MPI ranks: 1"), std::string::npos) << r.output;
+}
+
+TEST(Startup, BlasThreadsAreTheCpusOfTheRunUnlessTheEnvironmentSays) {
+  // Without OPENBLAS_NUM_THREADS a serial run takes the CPUs it may run on (its affinity mask:
+  // taskset, a batch system's cpuset); with it, the number given. `env -u`: this test process
+  // sets OPENBLAS_NUM_THREADS=1 for its children (tests/support/main.cpp).
+  cpu_set_t cpus;
+  CPU_ZERO(&cpus);
+  ASSERT_EQ(sched_getaffinity(0, sizeof cpus, &cpus), 0);
+  const std::string unset = "env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS ";
+  const std::string info = std::string(" ") + TC_BINARY + " info";
+  for (const auto& [command, threads] : {std::pair{unset + "taskset -c 0" + info, 1},
+                                         {unset + info, CPU_COUNT(&cpus)},
+                                         {"env OPENBLAS_NUM_THREADS=3" + info, 3}}) {
+    const auto r = tc::test::run_command(kTimeLimit + command);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(fmt::format("BLAS threads per rank: {} ", threads)), std::string::npos)
+        << command << "\n"
+        << r.output;
+  }
 }
 
 TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {

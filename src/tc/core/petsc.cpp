@@ -3,9 +3,11 @@
 #include <dlfcn.h>
 #include <fmt/format.h>
 #include <malloc.h>
+#include <sched.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstddef>
@@ -29,13 +31,26 @@ void check_petsc(PetscErrorCode code, const char* call, const char* file, int li
 }
 
 namespace {
-/// One BLAS thread per MPI rank unless the user says otherwise: the factorisations are
-/// sequential per rank, and threaded BLAS made each triangular solve 4.6× slower and the
-/// factorisation no faster on the 2-core machine (bench/RESULTS.md).
-void limit_blas_threads() {
-  if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS")) return;
+/// BLAS threads per rank: the CPUs this process may run on (its affinity mask), shared by the
+/// ranks on its node, unless OPENBLAS_NUM_THREADS (or OMP_NUM_THREADS) gives the number. A
+/// serial run then uses the machine's cores in the dense kernels (factorisation, the compliance,
+/// the QP's products with an explicit F); ranks that fill a node get one thread each. Set
+/// explicitly because OpenBLAS sized its pool from the environment when it was loaded.
+int set_blas_threads(int ranks_on_node) {
   using SetThreads = void (*)(int);
-  if (auto* f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+  auto* set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if (!set) return 1;
+  int n = 0;
+  for (const char* name : {"OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"})
+    if (const char* v = std::getenv(name); v && n <= 0) n = std::atoi(v);
+  if (n <= 0) {
+    cpu_set_t cpus;
+    CPU_ZERO(&cpus);
+    const int usable = sched_getaffinity(0, sizeof cpus, &cpus) == 0 ? CPU_COUNT(&cpus) : 1;
+    n = std::max(1, usable / std::max(1, ranks_on_node));
+  }
+  set(n);
+  return n;
 }
 
 /// The heap on transparent huge pages. In a fresh process the first assembly and
@@ -93,10 +108,10 @@ void singleton_transport_defaults() {
 }  // namespace
 
 int PetscSession::node_size_ = 1;
+int PetscSession::blas_threads_ = 1;
 
 PetscSession::PetscSession(int* argc, char*** argv) {
   prefer_huge_pages();
-  limit_blas_threads();
   singleton_transport_defaults();
   TC_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
   // Errors come back as codes, turned into exceptions by TC_PETSC; no traceback spam.
@@ -110,6 +125,7 @@ PetscSession::PetscSession(int* argc, char*** argv) {
     if (MPI_Comm_size(node, &n) == MPI_SUCCESS) node_size_ = n;
     MPI_Comm_free(&node);
   }
+  blas_threads_ = set_blas_threads(node_size_);
 }
 
 PetscSession::~PetscSession() {
@@ -125,6 +141,10 @@ int PetscSession::rank() {
 
 int PetscSession::node_size() {
   return node_size_;
+}
+
+int PetscSession::blas_threads() {
+  return blas_threads_;
 }
 
 int PetscSession::size() {

@@ -359,6 +359,7 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
   const auto* dual = sim.dual_solver();
   out.print("  \"multipliers\": {},\n", dual ? dual->n_rows() : 0);
   out.print("  \"ranks\": {},\n", core::PetscSession::size());
+  out.print("  \"blas_threads\": {},\n", core::PetscSession::blas_threads());
   out.print("  \"subdomains\": {},\n", subdomains);
   const auto feti = sim.feti_statistics();
   out.print(
