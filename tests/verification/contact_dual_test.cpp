@@ -6,6 +6,7 @@
 // blocks, so every contact multiplier (a pressure) is E δ/(h_s + h_m).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include "support/contact_rows.hpp"
@@ -185,6 +186,34 @@ TEST(ExplicitF, FromTheComplianceEqualsTheSolvesToRoundOff) {
   EXPECT_GT(solves[1], 0);
   EXPECT_LT(solves[1], solves[0] + 24 + 72);
   EXPECT_EQ(solves[2], 0);
+}
+
+TEST(ExplicitF, FormedByThreadsIsTheSerialFToTheBit) {
+  // F's bands of 32 rows are dealt to threads: 150 nodes (450 rows, 15 bands, the last short)
+  // by 1, 2 and 3 threads (more threads than the CPUs here is fine). Each entry is one sum
+  // whatever thread computes it, so F must be equal entry for entry; a band written to the
+  // wrong rows or a buffer shared between threads would show.
+  auto slave = make_block(3, {0, 0, 1}, {1, 1, 1.5}, {3, 3, 2}, "zmax", 0.0, "");
+  auto master = make_block(3, {0, 0, 0}, {1, 1, 1}, {3, 3, 3}, "", 0.0, "zmin");
+  const PetscInt n_s = slave.u_prescribed.size(), n_m = master.u_prescribed.size();
+  constexpr int nodes = 150;
+  std::vector<std::vector<double>> f;
+  for (const int threads : {1, 2, 3}) {
+    physics::DualContactSettings s;
+    s.form_threads = threads;
+    physics::DualContactSolver d(*slave.solver, *master.solver, n_s, n_m, s);
+    d.set_rows(scattered_rows(n_s, n_m, nodes, 3, 5));
+    ASSERT_NE(d.explicit_matrix(), nullptr);
+    const PetscScalar* v = nullptr;
+    TC_PETSC(MatDenseGetArrayRead(d.explicit_matrix(), &v));
+    f.emplace_back(v, v + 9 * nodes * nodes);
+    TC_PETSC(MatDenseRestoreArrayRead(d.explicit_matrix(), &v));
+  }
+  ASSERT_GT(*std::max_element(f[0].begin(), f[0].end()), 0.0);
+  for (size_t k = 0; k < f[0].size(); ++k) {
+    ASSERT_EQ(f[1][k], f[0][k]) << "2 threads, entry " << k;
+    ASSERT_EQ(f[2][k], f[0][k]) << "3 threads, entry " << k;
+  }
 }
 
 // ------------------------------------------------------------------- Coulomb friction, 3D

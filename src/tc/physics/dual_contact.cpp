@@ -2,8 +2,11 @@
 
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
+#include <system_error>
+#include <thread>
 #include <utility>
 
 #include "tc/core/error.hpp"
@@ -23,7 +26,6 @@ DualContactSolver::DualContactSolver(std::vector<const ConstrainedSolver*> bodie
     w_in_.emplace_back(n_u[i]);
     y_.emplace_back(n_u[i]);
   }
-  w_.resize(bodies_.size());
   s_used_.resize(bodies_.size());
   s_used_size_.assign(bodies_.size(), 0);
 }
@@ -221,10 +223,6 @@ bool DualContactSolver::form_from_compliance() {
   // grows with every dof the rows have ever touched (a sliding pin's track), the products below
   // need only S_UU, and U's order is T's, so every sum runs over the same terms in the same
   // order.
-  struct RowsT {
-    std::vector<PetscInt> start, pos;
-    std::vector<double> value;
-  };
   std::vector<RowsT> bt(nb);
   for (int i = 0; i < nb; ++i) {
     const auto& s = compliance_[i];
@@ -246,57 +244,13 @@ bool DualContactSolver::form_from_compliance() {
     }
     restrict_compliance(i, r.pos);
   }
-  // By bands of `band` rows r: the band of W_i = B_i,T S_i, row r = Σ_p b(r, p) S(p, :) over
-  // the few entries of row r (S's columns, contiguous: S is symmetric to the bit), stored q by
-  // q; then G = F_s + F_m on the band, F_i(r, c) = Σ_q b_i(c, q) W_i(r, q), the band of W_i in
-  // cache while every column c passes, straight into F's storage; then F = ½(G + Gᵀ) in place
-  // by tiles. (Before: W_iᵀ and F_i formed whole, 28 MB each at 1 875 rows, then read
-  // transposed: 0.2 s a step.)
   TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_dense_.out()));
   PetscScalar* fv = nullptr;
   TC_PETSC(MatDenseGetArray(f_dense_.get(), &fv));
   PetscInt ldf = m;
   TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ldf));
-  constexpr PetscInt band = 32;
-  std::vector<double> row_major;
-  for (PetscInt r0 = 0; r0 < m; r0 += band) {
-    const PetscInt nr = std::min(band, m - r0);
-    for (int i = 0; i < nb; ++i) {
-      // S_UU, or S itself where the rows reach all of T (no copy)
-      const double* sm = s_used_[i].empty() ? compliance_[i].matrix().data() : s_used_[i].data();
-      const auto t = static_cast<size_t>(s_used_size_[i]);
-      const auto& r = bt[i];
-      row_major.assign(static_cast<size_t>(nr) * t, 0.0);
-      for (PetscInt k = 0; k < nr; ++k) {
-        double* wr = row_major.data() + static_cast<size_t>(k) * t;
-        for (PetscInt e = r.start[r0 + k]; e < r.start[r0 + k + 1]; ++e) {
-          const double v = r.value[static_cast<size_t>(e)];
-          const double* sp = sm + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * t;
-          for (size_t q = 0; q < t; ++q) wr[q] += v * sp[q];
-        }
-      }
-      auto& w = w_[i];
-      w.resize(t * band);
-      for (size_t q = 0; q < t; ++q)
-        for (PetscInt k = 0; k < nr; ++k)
-          w[q * band + static_cast<size_t>(k)] = row_major[static_cast<size_t>(k) * t + q];
-    }
-    for (PetscInt c = 0; c < m; ++c) {
-      double sum[band] = {};  // Σ_i F_i(r, c), summed body by body
-      for (int i = 0; i < nb; ++i) {
-        const auto& r = bt[i];
-        double acc[band] = {};
-        for (PetscInt e = r.start[c]; e < r.start[c + 1]; ++e) {
-          const double v = r.value[static_cast<size_t>(e)];
-          const double* wq =
-              w_[i].data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * band;
-          for (PetscInt k = 0; k < nr; ++k) acc[k] += v * wq[k];
-        }
-        for (PetscInt k = 0; k < nr; ++k) sum[k] = i == 0 ? acc[k] : sum[k] + acc[k];
-      }
-      for (PetscInt k = 0; k < nr; ++k) fv[c * ldf + r0 + k] = sum[k];
-    }
-  }
+  form_bands(bt, fv, ldf);
+  // F = ½(G + Gᵀ) in place by tiles: exactly symmetric, as dsymv reads one triangle
   constexpr PetscInt tile = 64;
   for (PetscInt j0 = 0; j0 < m; j0 += tile)
     for (PetscInt i0 = 0; i0 <= j0; i0 += tile)
@@ -309,6 +263,73 @@ bool DualContactSolver::form_from_compliance() {
   TC_PETSC(MatDenseRestoreArray(f_dense_.get(), &fv));
   assemble(f_dense_.get());
   return true;
+}
+
+void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, PetscInt ldf) const {
+  // By bands of `band` rows r: the band of W_i = B_i,U S_i,UU, row r = Σ_q b(r, q) S(q, :) over
+  // the few entries of row r (S's columns, contiguous: S is symmetric to the bit), stored q by
+  // q; then G = F_s + F_m on the band, F_i(r, c) = Σ_q b_i(c, q) W_i(r, q), the band of W_i in
+  // cache while every column c passes, straight into F's storage. The bands write disjoint
+  // rows of F and are dealt to settings_.form_threads threads (by default the rank's BLAS
+  // threads, its CPUs): every entry is the same sum in the same order whatever the threads.
+  const PetscInt m = n_rows();
+  const int nb = n_bodies();
+  constexpr PetscInt band = 32;
+  const PetscInt n_bands = (m + band - 1) / band;
+  std::atomic<PetscInt> next{0};
+  const auto work = [&] {
+    std::vector<double> row_major;
+    std::vector<std::vector<double>> w(static_cast<size_t>(nb));  // the band of W_i, q by q
+    for (PetscInt b = next++; b < n_bands; b = next++) {
+      const PetscInt r0 = b * band, nr = std::min(band, m - r0);
+      for (int i = 0; i < nb; ++i) {
+        // S_UU, or S itself where the rows reach all of T (no copy)
+        const double* sm = s_used_[i].empty() ? compliance_[i].matrix().data() : s_used_[i].data();
+        const auto t = static_cast<size_t>(s_used_size_[i]);
+        const auto& r = bt[i];
+        row_major.assign(static_cast<size_t>(nr) * t, 0.0);
+        for (PetscInt k = 0; k < nr; ++k) {
+          double* wr = row_major.data() + static_cast<size_t>(k) * t;
+          for (PetscInt e = r.start[r0 + k]; e < r.start[r0 + k + 1]; ++e) {
+            const double v = r.value[static_cast<size_t>(e)];
+            const double* sp = sm + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * t;
+            for (size_t q = 0; q < t; ++q) wr[q] += v * sp[q];
+          }
+        }
+        auto& wi = w[static_cast<size_t>(i)];
+        wi.resize(t * band);
+        for (size_t q = 0; q < t; ++q)
+          for (PetscInt k = 0; k < nr; ++k)
+            wi[q * band + static_cast<size_t>(k)] = row_major[static_cast<size_t>(k) * t + q];
+      }
+      for (PetscInt c = 0; c < m; ++c) {
+        double sum[band] = {};  // Σ_i F_i(r, c), summed body by body
+        for (int i = 0; i < nb; ++i) {
+          const auto& r = bt[i];
+          double acc[band] = {};
+          for (PetscInt e = r.start[c]; e < r.start[c + 1]; ++e) {
+            const double v = r.value[static_cast<size_t>(e)];
+            const double* wq = w[static_cast<size_t>(i)].data() +
+                               static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * band;
+            for (PetscInt k = 0; k < nr; ++k) acc[k] += v * wq[k];
+          }
+          for (PetscInt k = 0; k < nr; ++k) sum[k] = i == 0 ? acc[k] : sum[k] + acc[k];
+        }
+        for (PetscInt k = 0; k < nr; ++k) fv[c * ldf + r0 + k] = sum[k];
+      }
+    }
+  };
+  // The bands' arithmetic throws nothing: the helpers need no exception channel. A helper the
+  // system cannot start leaves its bands to the others.
+  const int threads =
+      settings_.form_threads > 0 ? settings_.form_threads : core::PetscSession::blas_threads();
+  const PetscInt n_threads = std::clamp<PetscInt>(threads, 1, n_bands);
+  std::vector<std::jthread> helpers;
+  try {
+    for (PetscInt h = 1; h < n_threads; ++h) helpers.emplace_back(work);
+  } catch (const std::system_error&) {
+  }
+  work();
 }
 
 void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {

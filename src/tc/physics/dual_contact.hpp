@@ -48,6 +48,10 @@ struct DualContactSettings {
   /// and one for the tangent rows of each node (discs stay discs): Σ F Σ has a unit diagonal
   /// per node (docs/choices.md). Same minimiser; the stopping test is on Σ g^P against Σ d.
   bool scale = true;
+  /// Threads that form the explicit F from the compliance (its bands of rows are independent);
+  /// 0 = the rank's BLAS threads (core::PetscSession::blas_threads). The same F to the bit
+  /// with any number.
+  int form_threads = 0;
 };
 
 /// The bodies of one contact pair among the bodies of a DualContactSolver.
@@ -165,6 +169,14 @@ class DualContactSolver {
   /// S_i on U, the T-positions in `pos` (into s_used_[i]), and `pos` renumbered into U; where
   /// U = T, nothing is copied (s_used_[i] empty).
   void restrict_compliance(int i, std::vector<PetscInt>& pos);
+  /// B_i's rows on the positions of U_i, each row's in ascending order (CSR).
+  struct RowsT {
+    std::vector<PetscInt> start, pos;
+    std::vector<double> value;
+  };
+  /// F = Σ_i B_i,U S_i,UU B_i,Uᵀ into F's storage (column-major, leading dimension ldf), before
+  /// its symmetrisation; B_i given by rows on U (RowsT).
+  void form_bands(const std::vector<RowsT>& bt, double* fv, PetscInt ldf) const;
 
   std::vector<const ConstrainedSolver*> bodies_;
   DualContactSettings settings_;
@@ -184,8 +196,8 @@ class DualContactSolver {
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
   std::vector<DofCompliance> compliance_;  // per body
-  std::vector<std::vector<double>> w_;     // form_from_compliance: a band of B_i,T S_i per body
-  // ... and S_i on the T-positions the rows reach, when they are fewer than T (else empty)
+  // form_from_compliance: S_i on the T-positions the rows reach, when they are fewer than T
+  // (else empty)
   std::vector<std::vector<double>> s_used_;
   std::vector<PetscInt> s_used_size_;
   mutable std::vector<core::Vector> w_in_, y_;  // per body: B_iᵀx and A_i⁻¹B_iᵀx
