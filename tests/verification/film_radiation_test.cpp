@@ -19,6 +19,8 @@
 
 #include "support/problems.hpp"
 #include "support/test_meshes.hpp"
+#include "tc/physics/body_field.hpp"
+#include "tc/physics/boundary_heat.hpp"
 #include "tc/physics/simulation.hpp"
 
 namespace tc::test {
@@ -238,6 +240,44 @@ TEST(RadiationBoundary, ThinPlateReachesTheRadiativeEquilibrium) {
     std::printf("radiating plate, %s: max relative error %.3e\n", mesh::name(type), e);
     EXPECT_LT(e, 1e-6) << mesh::name(type);
   }
+}
+
+TEST(RadiationBoundary, EachCgIterationOfANewtonCorrectionSolvesWithAOnce) {
+  // The radiating plate's first heat step, from 300 K, with the solves with A counted: CG on
+  // (A + N')δ = −r preconditioned by A⁻¹ needs one solve for its first direction and one for
+  // each later direction, so a correction of k iterations costs k solves — not k + 1: the
+  // last iteration's residual meets the tolerance before a preconditioner would make a
+  // direction no one uses (on the pin-on-plate, one interface solve of three per heat step).
+  auto p = heat_only(2, {0.002, 0.01, 0}, {4, 2, 1}, 1e8, 1);
+  physics::BoundaryCondition in;
+  in.where = "xmin";
+  in.heat_flux = core::TimeTable(1.0e4);
+  physics::BoundaryCondition out;
+  out.where = "xmax";
+  out.radiation = physics::Radiation{core::TimeTable(0.8), core::TimeTable(300.0)};
+  p.boundaries.push_back(in);
+  p.boundaries.push_back(out);
+  p.bodies[0].initial_temperature = 300.0;
+  const physics::BodySystem sys(p, 0);
+  const physics::BodyField field(p, sys);
+  int solves = 0;
+  physics::HeatOperator op;
+  op.systems = {&sys};
+  op.apply = [&](const auto& x, const auto& y) { field.a_theta.mult(*x[0], *y[0]); };
+  op.solve = [&](const auto& r, const auto& z) {
+    ++solves;
+    field.heat->solve(*r[0], *z[0]);
+  };
+  // b: the flux into xmin (the steady state is the radiative equilibrium, ~1 040 K: from 300 K
+  // Newton takes several corrections)
+  core::Vector b(sys.n_theta()), theta(sys.n_theta());
+  const double t = p.time.step;
+  sys.thermal_load(t, b);
+  theta.fill(300.0);
+  const auto o = physics::solve_boundary_heat(op, t, {&b}, {&theta}, 1e-10, 20);
+  ASSERT_TRUE(o.converged);
+  ASSERT_GT(o.iterations, 1);  // several corrections, each with its own CG
+  EXPECT_EQ(solves, o.inner_iterations);
 }
 
 TEST(RadiationBoundary, NewtonFailureIsReportedWithStepIterationAndResidual) {
