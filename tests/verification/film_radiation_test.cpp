@@ -242,13 +242,10 @@ TEST(RadiationBoundary, ThinPlateReachesTheRadiativeEquilibrium) {
   }
 }
 
-TEST(RadiationBoundary, EachCgIterationOfANewtonCorrectionSolvesWithAOnce) {
-  // The radiating plate's first heat step, from 300 K, with the solves with A counted: CG on
-  // (A + N')δ = −r preconditioned by A⁻¹ needs one solve for its first direction and one for
-  // each later direction, so a correction of k iterations costs k solves — not k + 1: the
-  // last iteration's residual meets the tolerance before a preconditioner would make a
-  // direction no one uses (on the pin-on-plate, one interface solve of three per heat step).
-  auto p = heat_only(2, {0.002, 0.01, 0}, {4, 2, 1}, 1e8, 1);
+/// The 2D plate of plate_error (Quad4): 1e4 W/m² into xmin, radiation (ε = 0.8, 300 K) out of
+/// xmax, `steps` steps of τ = 1e8 s.
+physics::Problem radiating_plate_2d(int steps) {
+  auto p = heat_only(2, {0.002, 0.01, 0}, {4, 2, 1}, 1e8, steps);
   physics::BoundaryCondition in;
   in.where = "xmin";
   in.heat_flux = core::TimeTable(1.0e4);
@@ -257,6 +254,16 @@ TEST(RadiationBoundary, EachCgIterationOfANewtonCorrectionSolvesWithAOnce) {
   out.radiation = physics::Radiation{core::TimeTable(0.8), core::TimeTable(300.0)};
   p.boundaries.push_back(in);
   p.boundaries.push_back(out);
+  return p;
+}
+
+TEST(RadiationBoundary, EachCgIterationOfANewtonCorrectionSolvesWithAOnce) {
+  // The radiating plate's first heat step, from 300 K, with the solves with A counted: CG on
+  // (A + N')δ = −r preconditioned by A⁻¹ needs one solve for its first direction and one for
+  // each later direction, so a correction of k iterations costs k solves — not k + 1: the
+  // last iteration's residual meets the tolerance before a preconditioner would make a
+  // direction no one uses (on the pin-on-plate, one interface solve of three per heat step).
+  auto p = radiating_plate_2d(1);
   p.bodies[0].initial_temperature = 300.0;
   const physics::BodySystem sys(p, 0);
   const physics::BodyField field(p, sys);
@@ -281,15 +288,7 @@ TEST(RadiationBoundary, EachCgIterationOfANewtonCorrectionSolvesWithAOnce) {
 }
 
 TEST(RadiationBoundary, NewtonFailureIsReportedWithStepIterationAndResidual) {
-  auto p = heat_only(2, {0.002, 0.01, 0}, {4, 2, 1}, 1e8, 2);
-  physics::BoundaryCondition in;
-  in.where = "xmin";
-  in.heat_flux = core::TimeTable(1.0e4);
-  physics::BoundaryCondition out;
-  out.where = "xmax";
-  out.radiation = physics::Radiation{core::TimeTable(0.8), core::TimeTable(300.0)};
-  p.boundaries.push_back(in);
-  p.boundaries.push_back(out);
+  auto p = radiating_plate_2d(2);
   p.solver.max_newton_iterations = 1;
   physics::Simulation sim(p);
   Quiet quiet;
