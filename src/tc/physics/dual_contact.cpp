@@ -5,6 +5,8 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <system_error>
 #include <thread>
 #include <utility>
@@ -319,17 +321,32 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
       }
     }
   };
-  // The bands' arithmetic throws nothing: the helpers need no exception channel. A helper the
-  // system cannot start leaves its bands to the others.
+  // A band's buffers may fail to allocate: the first failure stops the dealing and is
+  // rethrown here once every thread has stopped (an exception must not leave a thread). A
+  // helper the system cannot start leaves its bands to the others.
+  std::mutex failed;
+  std::exception_ptr failure;
+  const auto guarded = [&] {
+    try {
+      work();
+    } catch (...) {
+      const std::lock_guard lock(failed);
+      if (!failure) failure = std::current_exception();
+      next = n_bands;
+    }
+  };
   const int threads =
       settings_.form_threads > 0 ? settings_.form_threads : core::PetscSession::blas_threads();
   const PetscInt n_threads = std::clamp<PetscInt>(threads, 1, n_bands);
-  std::vector<std::jthread> helpers;
-  try {
-    for (PetscInt h = 1; h < n_threads; ++h) helpers.emplace_back(work);
-  } catch (const std::system_error&) {
-  }
-  work();
+  {
+    std::vector<std::jthread> helpers;
+    try {
+      for (PetscInt h = 1; h < n_threads; ++h) helpers.emplace_back(guarded);
+    } catch (const std::system_error&) {
+    }
+    guarded();
+  }  // the helpers joined
+  if (failure) std::rethrow_exception(failure);
 }
 
 void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {
