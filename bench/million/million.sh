@@ -11,7 +11,10 @@
 #   bench/million/million.sh [STEPS] [K ...]        e.g. million.sh 10 2 3 4 5.3
 # BASELINE=<binary> adds the baseline runs; extra arguments to `thermocontact run` go in
 # TC_ARGS; TC_BENCH_WORK=<dir> keeps the runs there. BLAS threads: THREADS for this build,
-# BASELINE_THREADS for the baseline (default 1 each). Needs ~14.3 GiB at K = 5.3.
+# BASELINE_THREADS for the baseline (default 1 each). MPI ranks: RANKS for this build,
+# BASELINE_RANKS for the baseline (default 1: no launcher; N > 1 runs `mpirun -n N
+# --oversubscribe`, and the peak RSS is then that of the largest rank). Needs ~14.3 GiB at
+# K = 5.3 on one rank.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 steps=${1:-10}
@@ -31,9 +34,11 @@ print(','.join(str(round(c * k)) for c in (8, 30, 6)), round(6 * k))")
   sed -e "s/cells = \[8, 30, 6\]/cells = [$master]/" -e "s/cells = \[6, 6, 6\]/cells = [$slave, $slave, $slave]/" \
     -e "s/^end = 1.0/end = $end/" "$ex" >"$work/k$k.toml"
   for who in "${whos[@]}"; do
-    bin=$root/build/bin/thermocontact threads=${THREADS:-1}
-    [[ $who == current ]] || bin=$BASELINE threads=${BASELINE_THREADS:-1}
-    OPENBLAS_NUM_THREADS=$threads /usr/bin/time -v "$bin" run "$work/k$k.toml" --output "$work/$who-k$k" --force ${TC_ARGS:-} \
+    bin=$root/build/bin/thermocontact threads=${THREADS:-1} ranks=${RANKS:-1}
+    [[ $who == current ]] || bin=$BASELINE threads=${BASELINE_THREADS:-1} ranks=${BASELINE_RANKS:-1}
+    launch=()
+    [[ $ranks -le 1 ]] || launch=(mpirun -n "$ranks" --oversubscribe)
+    OPENBLAS_NUM_THREADS=$threads /usr/bin/time -v "${launch[@]}" "$bin" run "$work/k$k.toml" --output "$work/$who-k$k" --force ${TC_ARGS:-} \
       >"$work/$who-k$k.log" 2>"$work/$who-k$k.time"
   done
 done

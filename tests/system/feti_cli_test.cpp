@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "support/cli.hpp"
 #include "support/history.hpp"
@@ -106,33 +108,79 @@ TEST_F(FetiCli, TwoRanksGiveTheOneRankHistory) {
   EXPECT_NEAR(total_a, total_b, 0.02 * total_a);
 }
 
-TEST(DirectCli, RanksRepeatTheSerialHistoryToTheBit) {
-  // Undecomposed bodies: every rank holds every body and does the same arithmetic on them
-  // (docs/choices.md, "Replicated state"), so 1, 2 and 4 ranks give the same history, bit for
-  // bit (issue 22: the same history to 1e-6 at 1, 2 and 4 ranks). Checked on the 62 712-dof
-  // ch. 7 refinement by bench/RESULTS.md; here on the coarse case, first 0.1 s (the approach
-  // and the impact, contact in the last steps).
+/// The largest difference of each column between two histories, over the peak of its family:
+/// every energy and heat column (J) shares one scale, every force and reaction (N) another,
+/// the rest their own peak. A quantity that is round-off around zero while others of its
+/// unit are large (the frictional heat at impact, 1e-11 J beside 1e4 J of kinetic energy;
+/// the thermoelastic net thermal energy, −4e-8 J) is then judged at that unit's scale, not at
+/// its own noise.
+std::map<std::string, double> differences_by_unit(const History& a, const History& b) {
+  static const std::set<std::string> counts{"step",
+                                            "time",
+                                            "coupling_iterations",
+                                            "qp_iterations",
+                                            "operator_applications",
+                                            "wall_seconds",
+                                            "friction_iterations"};
+  auto family = [](const std::string& n) -> std::string {
+    for (const char* e : {"energy", "heat", "dissipation", "work"})
+      if (n.find(e) != std::string::npos) return "J";
+    for (const char* f : {"force", "reaction"})
+      if (n.find(f) != std::string::npos) return "N";
+    return n;
+  };
+  std::map<std::string, double> peak, out;
+  for (const auto& name : a.columns)
+    if (!counts.contains(name))
+      for (const double v : column(a, name))
+        peak[family(name)] = std::max(peak[family(name)], std::abs(v));
+  for (const auto& name : a.columns) {
+    if (counts.contains(name)) continue;
+    const auto va = column(a, name), vb = column(b, name);
+    double d = va.size() == vb.size() ? 0.0 : INFINITY;
+    for (size_t i = 0; i < va.size() && i < vb.size(); ++i)
+      d = std::max(d, std::abs(va[i] - vb[i]));
+    const double scale = peak[family(name)];
+    out[name] = scale > 0 ? d / scale : d;
+  }
+  return out;
+}
+
+TEST(DirectCli, RanksShareTheFactorAndRepeatTheSerialHistory) {
+  // Undecomposed bodies on N > 1 ranks: each body is factorised once by MUMPS over the ranks
+  // (core::CholeskySolver, FactorRanks::all_ranks), and the rest is replicated. The factor is
+  // another package's than the serial CHOLMOD one, so the histories differ by round-off carried
+  // through the QPs' and the fixed points' stopping tests: issue 22 asks for the same history to
+  // 1e-6 at 1, 2 and 4 ranks (differences_by_unit; 1e-11 seen on the coarse case to 0.3 s).
+  // With a package that factorises on one rank (-tc_factor_package cholmod) every rank does the
+  // serial arithmetic, bit for bit. The coarse ch. 7 case, first 0.1 s (the approach and the
+  // impact, contact in the last steps).
   const auto dir = fresh_dir("direct-cli-ranks");
   const auto file = dir / "case.toml";
   std::ofstream(file) << replace_all(read_file(kCase), "end = 0.3", "end = 0.1");
-  std::vector<History> runs;
-  for (const int n : {1, 2, 4}) {
-    const auto out = dir / fmt::format("np{}", n);
+  auto run = [&](int n, const std::string& options) {
+    const auto out = dir / fmt::format("np{}{}", n, options.empty() ? "" : "-own");
     const auto r = run_command(
         fmt::format("env -i PATH=/usr/bin:/bin HOME=/tmp OMPI_ALLOW_RUN_AS_ROOT=1 "
                     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
-                    "{} -n {} {} run {} --output {}",
-                    TC_MPIEXEC, n, TC_BINARY, file.string(), out.string()));
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    runs.push_back(read_history(out / "history.csv"));
+                    "{} -n {} {} run {} --output {} {}",
+                    TC_MPIEXEC, n, TC_BINARY, file.string(), out.string(), options));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return read_history(out / "history.csv");
+  };
+  const auto serial = run(1, "");
+  ASSERT_GT(column(serial, "active_nodes").back(), 0.0);  // contact was reached
+  for (const int n : {2, 4}) {
+    const auto spread = run(n, "");
+    ASSERT_EQ(serial.rows.size(), spread.rows.size());
+    for (const auto& [name, d] : differences_by_unit(serial, spread))
+      EXPECT_LT(d, 1e-6) << name << " at " << n << " ranks";
   }
-  ASSERT_GT(column(runs[0], "active_nodes").back(), 0.0);  // contact was reached
-  for (size_t k = 1; k < runs.size(); ++k) {
-    ASSERT_EQ(runs[0].rows.size(), runs[k].rows.size());
-    for (const auto& [name, d] : column_differences(runs[0], runs[k]))
-      EXPECT_EQ(d, 0.0) << name << " at " << (k == 1 ? 2 : 4) << " ranks";
-    EXPECT_EQ(column(runs[0], "qp_iterations"), column(runs[k], "qp_iterations"));
-  }
+  const auto own = run(2, "-tc_factor_package cholmod");
+  ASSERT_EQ(serial.rows.size(), own.rows.size());
+  for (const auto& [name, d] : column_differences(serial, own))
+    EXPECT_EQ(d, 0.0) << name << " at 2 ranks, each with its own factor";
+  EXPECT_EQ(column(serial, "qp_iterations"), column(own, "qp_iterations"));
 }
 
 }  // namespace

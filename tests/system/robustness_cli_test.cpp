@@ -461,16 +461,16 @@ TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {
 }
 
 TEST(Issue22, RanksOnOneNodeShareItsMemoryWhenSubdomainsAreChosen) {
-  // Every rank holds every body and factorises the direct ones (docs/choices.md, "Replicated
-  // state"): two ranks of the 10⁶-dof ch. 7 case on this machine were killed for memory while
-  // one rank ran in 14.7 GiB. So "auto" gives each rank its share of the node's memory. A
-  // cube whose direct solve fits the budget of one rank but not half of it: direct on one
-  // rank, cut on two, with the count of the same rule on half the budget.
+  // Every rank holds every body's matrices and its share of the direct factors (docs/choices.md,
+  // "Replicated state"), so "auto" gives each rank its share of the node's memory, and a
+  // direct body's estimate on 2 ranks halves its factor only. A cube whose direct solve fits
+  // the budget of one rank but not half of it with half its factor: direct on one rank, cut
+  // on two, with the count of the same rule on half the budget.
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   const double budget = tc::io::kMemoryShare * static_cast<double>(pages) * page;
   int n = 8;
   const auto dofs = [](int c) { return 3.0 * (c + 1.0) * (c + 1.0) * (c + 1.0); };
-  while (tc::io::direct_memory(3, dofs(n)) <= budget / 2) ++n;
+  while (tc::io::direct_memory(3, dofs(n), 2) <= budget / 2) ++n;
   if (tc::io::direct_memory(3, dofs(n)) > budget || dofs(n) > 2.5e6)
     GTEST_SKIP() << "no cube between the two budgets below 2.5 M dofs on this machine";
   const auto cells = std::to_string(n);
@@ -489,7 +489,7 @@ TEST(Issue22, RanksOnOneNodeShareItsMemoryWhenSubdomainsAreChosen) {
       std::string(TC_MPIEXEC) + " -n 2 " + TC_BINARY;
   const auto two = tc::test::run_command(kTimeLimit + launcher + " check " + file.string());
   ASSERT_EQ(two.exit_code, 0) << two.output;
-  const int k = tc::io::auto_subdomains(3, {dofs(n)}, budget / 2)[0];
+  const int k = tc::io::auto_subdomains(3, {dofs(n)}, budget / 2, 2)[0];
   ASSERT_GT(k, 1);
   EXPECT_NE(two.output.find("body \"b\": " + std::to_string(k) + " FETI subdomains"),
             std::string::npos)

@@ -140,6 +140,10 @@ std::vector<int> reach(CholeskyColumns& c, std::span<const PetscInt> dofs) {
 
 bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
                                      double* out) const {
+  if (distributed()) {
+    inverse_entries(cols, rows, out);
+    return true;
+  }
   CholeskyColumns* c = columns_of(factor_.get(), columns_);
   if (!c || cols.empty()) return c != nullptr;
   const cholmod_factor& l = *c->factor;
@@ -559,9 +563,11 @@ bool CholeskySolver::solve_from_forward(const ForwardColumns&, std::span<const d
   return false;
 }
 
-bool CholeskySolver::unit_solve_rows(std::span<const PetscInt>, std::span<const PetscInt>,
-                                     double*) const {
-  return false;
+bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
+                                     double* out) const {
+  if (!distributed()) return false;
+  inverse_entries(cols, rows, out);
+  return true;
 }
 
 #endif

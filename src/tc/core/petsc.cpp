@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstddef>
@@ -365,6 +366,15 @@ double mean_diagonal(const SparseMatrix& a) {
 
 // -------------------------------------------------------------------- CholeskySolver
 
+namespace {
+
+void check_mpi(int rc, const char* call) {
+  if (rc != MPI_SUCCESS) throw Error(fmt::format("{} failed (MPI error {})", call, rc));
+}
+#define TC_MPI(call) check_mpi((call), #call)
+
+}  // namespace
+
 std::vector<std::string> available_cholesky_packages() {
   // The packages register with Mat's initialisation, which nothing may have triggered yet.
   TC_PETSC(MatInitializePackage());
@@ -384,9 +394,20 @@ std::string requested_factor_package() {
   return set ? std::string(opt) : std::string();
 }
 
-CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package) {
+CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package,
+                               FactorRanks ranks) {
   package_ = package;
   if (auto opt = requested_factor_package(); !opt.empty()) package_ = std::move(opt);
+  int size = 1;
+  TC_MPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  // Over ranks, the factor is MUMPS's unless a package that factorises on one rank only was
+  // asked for: the same factorisation repeated on every rank divides nothing.
+  if (ranks == FactorRanks::all_ranks && size > 1 &&
+      (package_.empty() || package_ == MATSOLVERMUMPS)) {
+    package_ = MATSOLVERMUMPS;
+    factor_over_ranks(a);
+    return;
+  }
   if (package_.empty()) package_ = available_cholesky_packages().front();
 
   TC_PETSC(MatSetOption(a.get(), MAT_SYMMETRIC, PETSC_TRUE));
@@ -418,11 +439,203 @@ void CholeskySolver::solve(const Vector& b, Vector& x) const {
 
 void CholeskySolver::solve_raw(::Vec b, ::Vec x) const {
   assert(b != x && "MatSolve needs distinct vectors");
+  if (distributed()) {
+    solve_over_ranks(b, x);
+    return;
+  }
   TC_PETSC(MatSolve(factor_.get(), b, x));
 }
 
 void CholeskySolver::solve_many(::Mat b, ::Mat x) const {
+  if (distributed()) {
+    solve_many_over_ranks(b, x);
+    return;
+  }
   TC_PETSC(MatMatSolve(factor_.get(), b, x));
+}
+
+// ------------------------------------------------------- CholeskySolver over the ranks
+
+void CholeskySolver::factor_over_ranks(const SparseMatrix& a) {
+  auto& r = ranks_;
+  r.comm = PETSC_COMM_WORLD;
+  int size = 1;
+  TC_MPI(MPI_Comm_size(r.comm, &size));
+  TC_MPI(MPI_Comm_rank(r.comm, &r.rank));
+  r.n = a.rows();
+  r.count.resize(static_cast<size_t>(size));
+  r.start.resize(static_cast<size_t>(size));
+  for (int q = 0, at = 0; q < size; ++q) {
+    r.count[static_cast<size_t>(q)] = static_cast<int>(r.n / size + (q < r.n % size ? 1 : 0));
+    r.start[static_cast<size_t>(q)] = at;
+    at += r.count[static_cast<size_t>(q)];
+  }
+  const PetscInt first = r.start[static_cast<size_t>(r.rank)];
+  const PetscInt m = r.count[static_cast<size_t>(r.rank)];
+
+  // This rank's rows of the (replicated) sequential matrix, global columns, as an MPIAIJ.
+  Handle<::Mat, MatDestroy> local;
+  {
+    PetscInt rows = 0;
+    const PetscInt *ia = nullptr, *ja = nullptr;
+    PetscBool done = PETSC_FALSE;
+    TC_PETSC(MatGetRowIJ(a.get(), 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+    if (!done) throw PetscError(PETSC_ERR_SUP, "MatGetRowIJ: the operator is not in AIJ format");
+    const PetscScalar* av = nullptr;
+    TC_PETSC(MatSeqAIJGetArrayRead(a.get(), &av));
+    std::vector<PetscInt> offsets(static_cast<size_t>(m) + 1);
+    for (PetscInt i = 0; i <= m; ++i) offsets[static_cast<size_t>(i)] = ia[first + i] - ia[first];
+    TC_PETSC(MatCreateMPIAIJWithArrays(r.comm, m, m, r.n, r.n, offsets.data(), ja + ia[first],
+                                       av + ia[first], local.out()));
+    TC_PETSC(MatSeqAIJRestoreArrayRead(a.get(), &av));
+    TC_PETSC(MatRestoreRowIJ(a.get(), 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  }
+  TC_PETSC(MatSetOption(local.get(), MAT_SYMMETRIC, PETSC_TRUE));
+  TC_PETSC(MatSetOption(local.get(), MAT_SPD, PETSC_TRUE));
+  ::Mat f = nullptr;
+  TC_PETSC(MatGetFactor(local.get(), MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &f));
+  factor_ = Handle<::Mat, MatDestroy>(f);
+  MatFactorInfo info;
+  TC_PETSC(MatFactorInfoInitialize(&info));
+  TC_PETSC(MatCholeskyFactorSymbolic(f, local.get(), nullptr, &info));
+  TC_PETSC(MatCholeskyFactorNumeric(f, local.get(), &info));
+  MatFactorError error = MAT_FACTOR_NOERROR;
+  TC_PETSC(MatFactorGetError(f, &error));
+  if (error != MAT_FACTOR_NOERROR) {
+    PetscInt infog1 = 0;
+    TC_PETSC(MatMumpsGetInfog(f, 1, &infog1));
+    throw PetscError(
+        PETSC_ERR_LIB,
+        fmt::format("MUMPS Cholesky over {} ranks failed (INFOG(1) = {})", size, infog1));
+  }
+}
+
+void CholeskySolver::solve_over_ranks(::Vec b, ::Vec x) const {
+  const auto& r = ranks_;
+  const PetscInt first = r.start[static_cast<size_t>(r.rank)];
+  const PetscInt m = r.count[static_cast<size_t>(r.rank)];
+  const PetscScalar* bp = nullptr;
+  PetscScalar* xp = nullptr;
+  TC_PETSC(VecGetArrayRead(b, &bp));
+  TC_PETSC(VecGetArray(x, &xp));
+  {
+    // Views of this rank's rows of the replicated vectors: nothing is copied in.
+    Handle<::Vec, VecDestroy> bl, xl;
+    TC_PETSC(VecCreateMPIWithArray(r.comm, 1, m, r.n, bp + first, bl.out()));
+    TC_PETSC(VecCreateMPIWithArray(r.comm, 1, m, r.n, xp + first, xl.out()));
+    TC_PETSC(MatSolve(factor_.get(), bl.get(), xl.get()));
+  }
+  TC_MPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, xp, r.count.data(), r.start.data(),
+                        MPIU_SCALAR, r.comm));
+  TC_PETSC(VecRestoreArray(x, &xp));
+  TC_PETSC(VecRestoreArrayRead(b, &bp));
+}
+
+void CholeskySolver::solve_many_over_ranks(::Mat b, ::Mat x) const {
+  const auto& r = ranks_;
+  const PetscInt first = r.start[static_cast<size_t>(r.rank)];
+  const PetscInt m = r.count[static_cast<size_t>(r.rank)];
+  PetscInt n = 0, k = 0;
+  TC_PETSC(MatGetSize(b, &n, &k));
+  PetscInt ldb = n, ldx = n;
+  TC_PETSC(MatDenseGetLDA(b, &ldb));
+  TC_PETSC(MatDenseGetLDA(x, &ldx));
+  std::vector<PetscScalar> rows(static_cast<size_t>(m * k));
+  {
+    const PetscScalar* bp = nullptr;
+    TC_PETSC(MatDenseGetArrayRead(b, &bp));
+    for (PetscInt j = 0; j < k; ++j) std::copy_n(bp + j * ldb + first, m, rows.begin() + j * m);
+    TC_PETSC(MatDenseRestoreArrayRead(b, &bp));
+  }
+  Handle<::Mat, MatDestroy> bl, xl;
+  TC_PETSC(MatCreateDense(r.comm, m, PETSC_DECIDE, r.n, k, rows.data(), bl.out()));
+  TC_PETSC(MatCreateDense(r.comm, m, PETSC_DECIDE, r.n, k, nullptr, xl.out()));
+  TC_PETSC(MatMatSolve(factor_.get(), bl.get(), xl.get()));
+  const PetscScalar* mine = nullptr;
+  PetscInt ldl = m;
+  TC_PETSC(MatDenseGetLDA(xl.get(), &ldl));
+  TC_PETSC(MatDenseGetArrayRead(xl.get(), &mine));
+  PetscScalar* xp = nullptr;
+  TC_PETSC(MatDenseGetArray(x, &xp));
+  for (PetscInt j = 0; j < k; ++j) {
+    std::copy_n(mine + j * ldl, m, xp + j * ldx + first);
+    TC_MPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, xp + j * ldx, r.count.data(),
+                          r.start.data(), MPIU_SCALAR, r.comm));
+  }
+  TC_PETSC(MatDenseRestoreArray(x, &xp));
+  TC_PETSC(MatDenseRestoreArrayRead(xl.get(), &mine));
+}
+
+// Entries of A⁻¹ by MUMPS's own selected-inverse solve (ICNTL(30)): the sparse right-hand
+// sides e_c and the requested rows let it prune both triangular solves to the paths of the
+// elimination tree they touch, and no n × k block is formed. MUMPS takes the request on the
+// host, as a sparse matrix whose row c lists the rows wanted of column c, and writes the
+// entries into its values there; the host then sends them to every rank.
+void CholeskySolver::inverse_entries(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
+                                     double* out) const {
+  const auto& r = ranks_;
+  const auto nr = static_cast<PetscInt>(rows.size());
+  const auto nc = static_cast<PetscInt>(cols.size());
+  std::fill_n(out, nr * nc, 0.0);
+  std::vector<PetscInt> wanted;  // distinct rows ≥ 0, sorted: the pattern of each request row
+  for (const PetscInt i : rows)
+    if (i >= 0) wanted.push_back(i);
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  std::vector<PetscInt> asked;  // distinct columns ≥ 0, sorted
+  for (const PetscInt c : cols)
+    if (c >= 0) asked.push_back(c);
+  std::sort(asked.begin(), asked.end());
+  asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
+  const auto w = static_cast<PetscInt>(wanted.size());
+  const auto a = static_cast<PetscInt>(asked.size());
+  if (w == 0 || a == 0) return;
+
+  // The request, all of it on the host (rank 0): rows and columns 0..n-1 there, none elsewhere.
+  const bool host = r.rank == 0;
+  const PetscInt mine = host ? r.n : 0;
+  std::vector<PetscInt> offsets(static_cast<size_t>(mine) + 1, 0), columns;
+  std::vector<PetscScalar> values;
+  if (host) {
+    for (const PetscInt c : asked) offsets[static_cast<size_t>(c) + 1] = w;
+    for (PetscInt i = 0; i < r.n; ++i)
+      offsets[static_cast<size_t>(i) + 1] += offsets[static_cast<size_t>(i)];
+    columns.reserve(static_cast<size_t>(a * w));
+    for (PetscInt q = 0; q < a; ++q) columns.insert(columns.end(), wanted.begin(), wanted.end());
+    values.assign(columns.size(), 0.0);
+  }
+  Handle<::Mat, MatDestroy> request, transposed;
+  TC_PETSC(MatCreateMPIAIJWithArrays(r.comm, mine, mine, r.n, r.n, offsets.data(), columns.data(),
+                                     values.data(), request.out()));
+  TC_PETSC(MatCreateTranspose(request.get(), transposed.out()));
+  // The request sets MUMPS's right-hand side and solution formats (ICNTL 20, 21) and its
+  // selected-inverse mode (30) and leaves them set: restored for the ordinary solves after.
+  PetscInt formats[3] = {};
+  for (int q = 0; q < 3; ++q)
+    TC_PETSC(MatMumpsGetIcntl(factor_.get(), std::array{20, 21, 30}[q], &formats[q]));
+  TC_PETSC(MatMumpsGetInverse(factor_.get(), transposed.get()));
+  for (int q = 0; q < 3; ++q)
+    TC_PETSC(MatMumpsSetIcntl(factor_.get(), std::array{20, 21, 30}[q], formats[q]));
+
+  std::vector<double> entries(static_cast<size_t>(a * w));  // column q of `asked`, row of `wanted`
+  if (host) {
+    ::Mat diagonal = nullptr;  // the host's rows and columns: all of the request
+    TC_PETSC(MatMPIAIJGetSeqAIJ(request.get(), &diagonal, nullptr, nullptr));
+    const PetscScalar* v = nullptr;
+    TC_PETSC(MatSeqAIJGetArrayRead(diagonal, &v));
+    std::copy_n(v, entries.size(), entries.begin());
+    TC_PETSC(MatSeqAIJRestoreArrayRead(diagonal, &v));
+  }
+  TC_MPI(MPI_Bcast(entries.data(), static_cast<int>(entries.size()), MPI_DOUBLE, 0, r.comm));
+  for (PetscInt j = 0; j < nc; ++j) {
+    if (cols[j] < 0) continue;
+    const auto q = std::lower_bound(asked.begin(), asked.end(), cols[j]) - asked.begin();
+    for (PetscInt i = 0; i < nr; ++i) {
+      if (rows[i] < 0) continue;
+      const auto p = std::lower_bound(wanted.begin(), wanted.end(), rows[i]) - wanted.begin();
+      out[i + j * nr] = entries[static_cast<size_t>(q * w + p)];
+    }
+  }
 }
 
 double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol, int max_iterations,

@@ -181,14 +181,24 @@ struct ForwardColumnsDeleter {
 };
 using ForwardColumnsPtr = std::unique_ptr<ForwardColumns, ForwardColumnsDeleter>;
 
+/// Where a factor lives: on the calling rank alone, or spread over the ranks of
+/// PETSC_COMM_WORLD.
+enum class FactorRanks { this_rank, all_ranks };
+
 /// A direct Cholesky factorisation of an SPD SparseMatrix, done once, solved many times.
 /// The package is "mumps" or "cholmod" (PETSc's MatSolverType); it may be overridden with the
 /// PETSc option -tc_factor_package.
-
+///
+/// With FactorRanks::all_ranks on more than one rank, and the package MUMPS or left to the
+/// solver, the matrix (given whole on every rank) is factorised once by MUMPS over all ranks,
+/// each holding its part of the factor, instead of once per rank: every method is then
+/// collective, called by every rank with the same arguments, and returns the same replicated
+/// result on each.
 class CholeskySolver {
  public:
   CholeskySolver() = default;
-  explicit CholeskySolver(const SparseMatrix& a, const std::string& package = "");
+  explicit CholeskySolver(const SparseMatrix& a, const std::string& package = "",
+                          FactorRanks ranks = FactorRanks::this_rank);
   void solve(const Vector& b, Vector& x) const;
   void solve_raw(::Vec b, ::Vec x) const;  // the same on bare PETSc vectors
   /// X = A⁻¹B for dense B and X (n × k, column-major, PETSc MATSEQDENSE): one multi-right-hand
@@ -223,10 +233,27 @@ class CholeskySolver {
   /// nothing, without CHOLMOD or for another factor than kept's.
   bool solve_from_forward(const ForwardColumns& kept, std::span<const double> w, double* x) const;
   [[nodiscard]] const std::string& package() const { return package_; }
+  /// Whether the factor is spread over the ranks (see the class comment).
+  [[nodiscard]] bool distributed() const { return ranks_.comm != MPI_COMM_NULL; }
 
  private:
+  // The rows of the distributed matrix held by each rank (contiguous blocks), for MatSolve's
+  // vectors and the gathering of their results.
+  struct RowBlocks {
+    MPI_Comm comm = MPI_COMM_NULL;
+    std::vector<int> count, start;
+    int rank = 0;
+    PetscInt n = 0;
+  };
+  void factor_over_ranks(const SparseMatrix& a);
+  void solve_over_ranks(::Vec b, ::Vec x) const;
+  void solve_many_over_ranks(::Mat b, ::Mat x) const;
+  void inverse_entries(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
+                       double* out) const;
+
   Handle<::Mat, MatDestroy> factor_;  // PETSc's factored matrix (MATSOLVERCHOLMOD or MUMPS)
   std::string package_;
+  RowBlocks ranks_;
   mutable std::shared_ptr<CholeskyColumns> columns_;  // the factor's structure, on first use
 };
 

@@ -10,7 +10,10 @@ namespace tc::io {
 /// Peak memory of a run's body solved directly [bytes], for `u_dofs` displacement dofs (its
 /// matrices, the factors of the mechanical and heat operators, the vectors), fitted to serial
 /// runs of one box body on the 2-core VM (docs/choices.md, "subdomains = auto").
-[[nodiscard]] double direct_memory(int dim, double u_dofs);
+/// With `factor_ranks` > 1 the factors are spread over that many ranks (MUMPS, as
+/// core::CholeskySolver does over the ranks) and the peak is that of one rank: its share of
+/// the factors, the matrices and vectors whole.
+[[nodiscard]] double direct_memory(int dim, double u_dofs, int factor_ranks = 1);
 
 /// Displacement dofs per subdomain when a body is decomposed: FETI's subdomain factors are
 /// cheap there and its coarse problem stays small (bench/RESULTS.md, FETI).
@@ -29,6 +32,6 @@ inline constexpr double kMemoryShare = 0.75;
 /// kDofsPerSubdomain⌉ subdomains each (at least 2), one by one until the sum fits. A budget
 /// ≤ 0 (memory unknown) keeps every body direct.
 [[nodiscard]] std::vector<int> auto_subdomains(int dim, const std::vector<double>& u_dofs,
-                                               double budget);
+                                               double budget, int factor_ranks = 1);
 
 }  // namespace tc::io

@@ -160,7 +160,9 @@ class CaseReader {
   void check_subdomains(const TableReader& b, const physics::Body& body);
   /// `subdomains = "auto"` (or absent) → 1, or FETI subdomains where the direct factorisation
   /// would not fit comfortably (auto_subdomains).
-  void resolve_auto_subdomains(const toml::array& bodies);
+  void resolve_auto_subdomains(const TableReader& root, const toml::array& bodies);
+  /// The ranks a direct body's factor is spread over (1: each rank factorises it).
+  [[nodiscard]] int factor_ranks(const TableReader& root) const;
   void read_mesh(const TableReader& b, physics::Body& body);
   void read_box(const TableReader& box, physics::Body& body);
   void read_mesh_file(const TableReader& mesh, physics::Body& body);
@@ -343,10 +345,23 @@ void CaseReader::read_bodies(const TableReader& root) {
                   detail::join(detail::at("bodies", i), "name"),
                   fmt::format("found \"{}\" again, expected a unique body name", printable(name)));
   }
-  resolve_auto_subdomains(*a);
+  resolve_auto_subdomains(root, *a);
 }
 
-void CaseReader::resolve_auto_subdomains(const toml::array& bodies) {
+int CaseReader::factor_ranks(const TableReader& root) const {
+  // As core::CholeskySolver decides: over the ranks with MUMPS or the package left to it
+  // ([solver] is read after the bodies, so its key is looked at here directly).
+  std::string package = core::requested_factor_package();
+  if (package.empty())
+    if (const auto* solver = root.table().get_as<toml::table>("solver"))
+      package = (*solver)["factorization"].value_or(std::string());
+  if (!package.empty() && package != "auto" && package != "mumps") return 1;
+  int size = 1;
+  if (MPI_Comm_size(PETSC_COMM_WORLD, &size) != MPI_SUCCESS) return 1;
+  return size;
+}
+
+void CaseReader::resolve_auto_subdomains(const TableReader& root, const toml::array& bodies) {
   // One budget for all bodies: they are in memory together. Measured peaks and the rule:
   // docs/choices.md.
   std::vector<double> dofs(p_.bodies.size(), 0.0);
@@ -354,12 +369,14 @@ void CaseReader::resolve_auto_subdomains(const toml::array& bodies) {
     if (p_.bodies[i].subdomains == 0 && mesh_built_[i])
       dofs[i] = static_cast<double>(p_.bodies[i].mesh.n_nodes()) * dim_;
   // Bodies with a number set take their share first (approximately: as if direct).
+  const int ranks = factor_ranks(root);
   double fixed = 0;
   for (const auto& body : p_.bodies)
-    if (body.subdomains == 1) fixed += direct_memory(dim_, body.mesh.n_nodes() * double(dim_));
+    if (body.subdomains == 1)
+      fixed += direct_memory(dim_, body.mesh.n_nodes() * double(dim_), ranks);
   const double budget = kMemoryShare * memory_per_rank() - fixed;
   const auto chosen =
-      auto_subdomains(dim_, dofs, memory_per_rank() > 0 ? std::max(budget, 1.0) : 0.0);
+      auto_subdomains(dim_, dofs, memory_per_rank() > 0 ? std::max(budget, 1.0) : 0.0, ranks);
   for (size_t i = 0; i < p_.bodies.size(); ++i) {
     auto& body = p_.bodies[i];
     if (body.subdomains != 0) continue;
@@ -369,12 +386,13 @@ void CaseReader::resolve_auto_subdomains(const toml::array& bodies) {
     try {
       (void)mesh::partition_cells(body.mesh, body.subdomains);
     } catch (const MeshError& e) {
-      issues_.add(detail::line_of(*bodies.get(i)->as_table()),
-                  detail::join(detail::at("bodies", i), "subdomains"),
-                  fmt::format("\"auto\" chose {} subdomains (the direct factorisation would "
-                              "need about {:.1f} GiB), which the body's mesh cannot be cut "
-                              "into: {}; expected a number that it can",
-                              body.subdomains, direct_memory(dim_, dofs[i]) / kGiB, e.what()));
+      issues_.add(
+          detail::line_of(*bodies.get(i)->as_table()),
+          detail::join(detail::at("bodies", i), "subdomains"),
+          fmt::format("\"auto\" chose {} subdomains (the direct factorisation would "
+                      "need about {:.1f} GiB), which the body's mesh cannot be cut "
+                      "into: {}; expected a number that it can",
+                      body.subdomains, direct_memory(dim_, dofs[i], ranks) / kGiB, e.what()));
     }
   }
 }

@@ -72,7 +72,9 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
     dirichlet = std::move(both);
   }
   if (sys.subdomains().empty())
-    return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization);
+    // One factorisation shared by the ranks rather than one per rank (core::CholeskySolver).
+    return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization,
+                                               core::FactorRanks::all_ranks);
   const bool dynamic = p.time.scheme == Scheme::dynamic;
   auto local = [&](int s) {
     const auto m = sys.subdomain_matrices(s);

@@ -19,7 +19,7 @@ std::vector<PetscInt> free_or_none(std::span<const PetscInt> dofs,
 }  // namespace
 
 ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
-                                     const std::string& package)
+                                     const std::string& package, core::FactorRanks ranks)
     : dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)) {
   std::sort(dofs_.begin(), dofs_.end());  // the lifting sums in column order, as MatMult
   dofs_.erase(std::unique(dofs_.begin(), dofs_.end()), dofs_.end());
@@ -48,7 +48,7 @@ ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<Pe
   }
   auto reduced = a.copy();  // freed once factorised: the factor keeps no reference to it
   reduced.zero_rows_columns(dofs_, diag_);
-  factor_ = core::CholeskySolver(reduced, package);
+  factor_ = core::CholeskySolver(reduced, package, ranks);
   lift_ = core::Vector(a.rows());
   rhs_ = core::Vector(a.rows());
 }

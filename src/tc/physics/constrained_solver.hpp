@@ -16,8 +16,11 @@ namespace tc::physics {
 
 class ConstrainedSolver {
  public:
+  /// `ranks`: core::FactorRanks::all_ranks spreads the factor over the ranks (MUMPS; every
+  /// method is then collective), as core::CholeskySolver says.
   ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
-                    const std::string& package);
+                    const std::string& package,
+                    core::FactorRanks ranks = core::FactorRanks::this_rank);
   /// The same system solved by FETI over subdomains (the FETI object owns the Dirichlet dofs).
   explicit ConstrainedSolver(std::unique_ptr<feti::Feti> feti);
   ~ConstrainedSolver();
@@ -32,7 +35,9 @@ class ConstrainedSolver {
   /// The rows `rows` of A⁻¹[e_c for c in cols] with zero prescribed values (a constrained c
   /// gives a zero column), column-major |rows| × |cols|, without forming the n × k block:
   /// core::CholeskySolver::unit_solve_rows, the same bits as solve_homogeneous_many on that
-  /// block. False (nothing written) when the factorisation cannot (FETI, MUMPS).
+  /// block; with a factor over the ranks, MUMPS's selected entries of A⁻¹, any number of
+  /// columns at once (to round-off). False (nothing written) when the factorisation cannot
+  /// (FETI, MUMPS on one rank).
   bool solve_unit_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
                        double* out) const;
   /// Whether forward_compliance pays for a first set of `dofs` (blocks of `block` columns
@@ -53,6 +58,9 @@ class ConstrainedSolver {
   [[nodiscard]] const std::string& package() const {
     return feti_ ? feti_->package() : factor_.package();
   }
+  /// Whether solve_unit_rows is MUMPS's selected inverse over the ranks, which prunes its
+  /// solves by itself and is best given all columns in one call.
+  [[nodiscard]] bool unit_rows_at_once() const { return !feti_ && factor_.distributed(); }
   /// The FETI solver when the body is decomposed, else null.
   [[nodiscard]] const feti::Feti* feti() const { return feti_.get(); }
 

@@ -93,8 +93,9 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
     forward_.reset();
   }
   const auto n = static_cast<PetscInt>(index_.size());
-  for (Eigen::Index j0 = old; j0 < t; j0 += block) {
-    const auto k = std::min(block, t - j0);
+  const Eigen::Index step = solver_.unit_rows_at_once() ? t - old : block;
+  for (Eigen::Index j0 = old; j0 < t; j0 += step) {
+    const auto k = std::min(step, t - j0);
     part.resize(static_cast<size_t>(t * k));
     if (solver_.solve_unit_rows(
             std::span(dofs_).subspan(static_cast<size_t>(j0), static_cast<size_t>(k)),
