@@ -397,18 +397,10 @@ std::string requested_factor_package() {
 CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package,
                                FactorRanks ranks) {
   package_ = package;
-  if (auto opt = requested_factor_package(); !opt.empty()) package_ = std::move(opt);
-  int size = 1;
-  TC_MPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
-  // Over ranks, the factor is MUMPS's unless a package that factorises on one rank only was
-  // asked for: the same factorisation repeated on every rank divides nothing.
-  if (ranks == FactorRanks::all_ranks && size > 1 &&
-      (package_.empty() || package_ == MATSOLVERMUMPS)) {
-    package_ = MATSOLVERMUMPS;
+  if (spread_over_ranks(ranks)) {
     factor_over_ranks(a);
     return;
   }
-  if (package_.empty()) package_ = available_cholesky_packages().front();
 
   TC_PETSC(MatSetOption(a.get(), MAT_SYMMETRIC, PETSC_TRUE));
   TC_PETSC(MatSetOption(a.get(), MAT_SPD, PETSC_TRUE));
@@ -429,6 +421,33 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package
   TC_PETSC(PCFactorGetMatrix(pc, &f));
   TC_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(f)));
   factor_ = Handle<::Mat, MatDestroy>(f);
+}
+
+bool CholeskySolver::spread_over_ranks(FactorRanks ranks) {
+  if (auto opt = requested_factor_package(); !opt.empty()) package_ = std::move(opt);
+  int size = 1;
+  TC_MPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  // Over ranks, the factor is MUMPS's unless a package that factorises on one rank only was
+  // asked for: the same factorisation repeated on every rank divides nothing.
+  if (ranks == FactorRanks::all_ranks && size > 1 &&
+      (package_.empty() || package_ == MATSOLVERMUMPS)) {
+    package_ = MATSOLVERMUMPS;
+    return true;
+  }
+  if (package_.empty()) package_ = available_cholesky_packages().front();
+  return false;
+}
+
+CholeskySolver::CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> eliminated,
+                               double diag, const std::string& package, FactorRanks ranks) {
+  package_ = package;
+  if (spread_over_ranks(ranks)) {
+    factor_over_ranks(a, eliminated, diag);
+    return;
+  }
+  auto reduced = a.copy();  // freed once factorised: the factor keeps no reference to it
+  reduced.zero_rows_columns(eliminated, diag);
+  *this = CholeskySolver(reduced, package_, FactorRanks::this_rank);
 }
 
 // MatSolve and MatMatSolve on the factor are what KSPPREONLY with PCCHOLESKY calls: the same
@@ -456,7 +475,8 @@ void CholeskySolver::solve_many(::Mat b, ::Mat x) const {
 
 // ------------------------------------------------------- CholeskySolver over the ranks
 
-void CholeskySolver::factor_over_ranks(const SparseMatrix& a) {
+void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const PetscInt> eliminated,
+                                       double diag) {
   auto& r = ranks_;
   r.comm = PETSC_COMM_WORLD;
   int size = 1;
@@ -483,10 +503,29 @@ void CholeskySolver::factor_over_ranks(const SparseMatrix& a) {
     if (!done) throw PetscError(PETSC_ERR_SUP, "MatGetRowIJ: the operator is not in AIJ format");
     const PetscScalar* av = nullptr;
     TC_PETSC(MatSeqAIJGetArrayRead(a.get(), &av));
-    std::vector<PetscInt> offsets(static_cast<size_t>(m) + 1);
-    for (PetscInt i = 0; i <= m; ++i) offsets[static_cast<size_t>(i)] = ia[first + i] - ia[first];
-    TC_PETSC(MatCreateMPIAIJWithArrays(r.comm, m, m, r.n, r.n, offsets.data(), ja + ia[first],
-                                       av + ia[first], local.out()));
+    // The eliminated rows keep diag alone, the other rows lose the eliminated columns.
+    std::vector<char> gone(static_cast<size_t>(r.n), 0);
+    for (const PetscInt d : eliminated) gone[static_cast<size_t>(d)] = 1;
+    std::vector<PetscInt> offsets(static_cast<size_t>(m) + 1, 0), columns;
+    std::vector<PetscScalar> values;
+    columns.reserve(static_cast<size_t>(ia[first + m] - ia[first]));
+    values.reserve(columns.capacity());
+    for (PetscInt i = 0; i < m; ++i) {
+      const PetscInt row = first + i;
+      if (gone[static_cast<size_t>(row)]) {
+        columns.push_back(row);
+        values.push_back(diag);
+      } else {
+        for (PetscInt e = ia[row]; e < ia[row + 1]; ++e)
+          if (!gone[static_cast<size_t>(ja[e])]) {
+            columns.push_back(ja[e]);
+            values.push_back(av[e]);
+          }
+      }
+      offsets[static_cast<size_t>(i) + 1] = static_cast<PetscInt>(columns.size());
+    }
+    TC_PETSC(MatCreateMPIAIJWithArrays(r.comm, m, m, r.n, r.n, offsets.data(), columns.data(),
+                                       values.data(), local.out()));
     TC_PETSC(MatSeqAIJRestoreArrayRead(a.get(), &av));
     TC_PETSC(MatRestoreRowIJ(a.get(), 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
   }

@@ -199,6 +199,11 @@ class CholeskySolver {
   CholeskySolver() = default;
   explicit CholeskySolver(const SparseMatrix& a, const std::string& package = "",
                           FactorRanks ranks = FactorRanks::this_rank);
+  /// The factor of `a` with the rows and columns of the sorted `eliminated` replaced by
+  /// diag·I (symmetric elimination of Dirichlet dofs), without a whole copy of `a` when the
+  /// factor is spread over the ranks (each rank takes its rows, eliminated on the way).
+  CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> eliminated, double diag,
+                 const std::string& package, FactorRanks ranks);
   void solve(const Vector& b, Vector& x) const;
   void solve_raw(::Vec b, ::Vec x) const;  // the same on bare PETSc vectors
   /// X = A⁻¹B for dense B and X (n × k, column-major, PETSc MATSEQDENSE): one multi-right-hand
@@ -245,7 +250,9 @@ class CholeskySolver {
     int rank = 0;
     PetscInt n = 0;
   };
-  void factor_over_ranks(const SparseMatrix& a);
+  [[nodiscard]] bool spread_over_ranks(FactorRanks ranks);  // resolves package_ too
+  void factor_over_ranks(const SparseMatrix& a, std::span<const PetscInt> eliminated = {},
+                         double diag = 1.0);
   void solve_over_ranks(::Vec b, ::Vec x) const;
   void solve_many_over_ranks(::Mat b, ::Mat x) const;
   void inverse_entries(std::span<const PetscInt> cols, std::span<const PetscInt> rows,

@@ -46,9 +46,7 @@ ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<Pe
     }
     lift_start_.push_back(static_cast<PetscInt>(lift_row_.size()));
   }
-  auto reduced = a.copy();  // freed once factorised: the factor keeps no reference to it
-  reduced.zero_rows_columns(dofs_, diag_);
-  factor_ = core::CholeskySolver(reduced, package, ranks);
+  factor_ = core::CholeskySolver(a, dofs_, diag_, package, ranks);
   lift_ = core::Vector(a.rows());
   rhs_ = core::Vector(a.rows());
 }
