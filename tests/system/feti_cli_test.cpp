@@ -183,5 +183,22 @@ TEST(DirectCli, RanksShareTheFactorAndRepeatTheSerialHistory) {
   EXPECT_EQ(column(serial, "qp_iterations"), column(own, "qp_iterations"));
 }
 
+TEST(DirectCli, AFactorOverRanksThatFailsStopsEveryRankAndIsReportedOnce) {
+  // MUMPS given 1 MB of work space per rank (ICNTL(23)) fails the same way on both ranks
+  // (INFOG(1) = −19): one report, naming the package and MUMPS's code, exit code 1.
+  const auto dir = fresh_dir("direct-cli-mumps-fails");
+  const auto r = run_command(
+      fmt::format("env -i PATH=/usr/bin:/bin HOME=/tmp OMPI_ALLOW_RUN_AS_ROOT=1 "
+                  "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
+                  "{} -n 2 {} run {} --output {} -mat_mumps_icntl_23 1",
+                  TC_MPIEXEC, TC_BINARY, kCase.string(), (dir / "out").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const std::string what = "MUMPS Cholesky over 2 ranks failed (INFOG(1) = -19)";
+  size_t count = 0;
+  for (auto at = r.output.find(what); at != std::string::npos; at = r.output.find(what, at + 1))
+    ++count;
+  EXPECT_EQ(count, 1u) << r.output;
+}
+
 }  // namespace
 }  // namespace tc::test
