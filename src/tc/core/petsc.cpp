@@ -534,7 +534,7 @@ void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const Pe
   // MUMPS allocates its estimate of the factorisation's work space plus ICNTL(14) per cent
   // (20 % on more than one rank). Cholesky of an SPD matrix delays no pivot, so only the
   // ranks' dynamic scheduling can exceed the estimate: 10 % first (the 200 k-dof ch. 7 case at
-  // 2 ranks: 1.57 → 1.50 GiB per rank; 5 % ran out in 4 runs of 5), and when MUMPS reports a
+  // 2 ranks: 1.50 → 1.43 GiB per rank; 5 % ran out in 4 runs of 5), and when MUMPS reports a
   // work space too small (INFOG(1) −8, −9, −11, −12, −14, −15, −17), once more with 35 %.
   for (const PetscInt relaxation : {10, 35}) {
     ::Mat f = nullptr;
