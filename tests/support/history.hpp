@@ -76,18 +76,31 @@ inline std::vector<double> column(const History& h, const std::string& name) {
   return out;
 }
 
+/// Counters and wall times: not physical columns, left out of the comparisons below.
+inline bool is_counter(const std::string& name) {
+  static const std::vector<std::string> counters{"step",
+                                                 "time",
+                                                 "coupling_iterations",
+                                                 "qp_iterations",
+                                                 "operator_applications",
+                                                 "wall_seconds",
+                                                 "friction_iterations"};
+  return std::find(counters.begin(), counters.end(), name) != counters.end();
+}
+
+/// max over rows of |a − b| in one column (infinite when the runs have different lengths).
+inline double max_abs_difference(const History& a, const History& b, const std::string& name) {
+  const auto va = column(a, name), vb = column(b, name);
+  double d = vb.size() == va.size() ? 0.0 : INFINITY;
+  for (size_t i = 0; i < va.size() && i < vb.size(); ++i) d = std::max(d, std::abs(va[i] - vb[i]));
+  return d;
+}
+
 /// max over rows of |a − b| / scale per physical column of two runs of one case: the scale is
 /// the column's largest magnitude in a, or for the components of one support's reaction the
 /// largest of the three (a tangential reaction that is round-off next to the normal one is
-/// judged against that). Counters and wall times are left out.
+/// judged against that).
 inline std::map<std::string, double> column_differences(const History& a, const History& b) {
-  static const std::vector<std::string> skip{"step",
-                                             "time",
-                                             "coupling_iterations",
-                                             "qp_iterations",
-                                             "operator_applications",
-                                             "wall_seconds",
-                                             "friction_iterations"};
   auto peak = [&](const std::string& name) {
     double m = 0;
     for (const double v : column(a, name)) m = std::max(m, std::abs(v));
@@ -95,16 +108,39 @@ inline std::map<std::string, double> column_differences(const History& a, const 
   };
   std::map<std::string, double> out;
   for (const auto& name : a.columns) {
-    if (std::find(skip.begin(), skip.end(), name) != skip.end()) continue;
+    if (is_counter(name)) continue;
     double scale = peak(name);
     if (name.rfind("reaction_", 0) == 0) {
       const auto group = name.substr(0, name.size() - 1);  // reaction_<body>_<where>_
       for (const char* k : {"x", "y", "z"}) scale = std::max(scale, peak(group + k));
     }
-    const auto va = column(a, name), vb = column(b, name);
-    double d = vb.size() == va.size() ? 0.0 : INFINITY;
-    for (size_t i = 0; i < va.size() && i < vb.size(); ++i)
-      d = std::max(d, std::abs(va[i] - vb[i]));
+    const double d = max_abs_difference(a, b, name);
+    out[name] = scale > 0 ? d / scale : d;
+  }
+  return out;
+}
+
+/// The same over the peak of each column's unit: every energy and heat column (J) shares one
+/// scale, every force and reaction (N) another, the rest their own peak. A quantity that is
+/// round-off around zero while others of its unit are large (the frictional heat at impact,
+/// 1e-11 J beside 1e4 J of kinetic energy; the thermoelastic net thermal energy, −4e-8 J) is
+/// then judged at that unit's scale, not at its own noise.
+inline std::map<std::string, double> differences_by_unit(const History& a, const History& b) {
+  auto unit = [](const std::string& n) -> std::string {
+    for (const char* e : {"energy", "heat", "dissipation", "work"})
+      if (n.find(e) != std::string::npos) return "J";
+    for (const char* f : {"force", "reaction"})
+      if (n.find(f) != std::string::npos) return "N";
+    return n;
+  };
+  std::map<std::string, double> peak, out;
+  for (const auto& name : a.columns)
+    if (!is_counter(name))
+      for (const double v : column(a, name))
+        peak[unit(name)] = std::max(peak[unit(name)], std::abs(v));
+  for (const auto& name : a.columns) {
+    if (is_counter(name)) continue;
+    const double d = max_abs_difference(a, b, name), scale = peak[unit(name)];
     out[name] = scale > 0 ? d / scale : d;
   }
   return out;

@@ -8,8 +8,6 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <map>
-#include <set>
 
 #include "support/cli.hpp"
 #include "support/history.hpp"
@@ -106,44 +104,6 @@ TEST_F(FetiCli, TwoRanksGiveTheOneRankHistory) {
   for (size_t k = 0; k < qp_a.size(); ++k)
     if (k != worst) total_a += qp_a[k], total_b += qp_b[k];
   EXPECT_NEAR(total_a, total_b, 0.02 * total_a);
-}
-
-/// The largest difference of each column between two histories, over the peak of its family:
-/// every energy and heat column (J) shares one scale, every force and reaction (N) another,
-/// the rest their own peak. A quantity that is round-off around zero while others of its
-/// unit are large (the frictional heat at impact, 1e-11 J beside 1e4 J of kinetic energy;
-/// the thermoelastic net thermal energy, −4e-8 J) is then judged at that unit's scale, not at
-/// its own noise.
-std::map<std::string, double> differences_by_unit(const History& a, const History& b) {
-  static const std::set<std::string> counts{"step",
-                                            "time",
-                                            "coupling_iterations",
-                                            "qp_iterations",
-                                            "operator_applications",
-                                            "wall_seconds",
-                                            "friction_iterations"};
-  auto family = [](const std::string& n) -> std::string {
-    for (const char* e : {"energy", "heat", "dissipation", "work"})
-      if (n.find(e) != std::string::npos) return "J";
-    for (const char* f : {"force", "reaction"})
-      if (n.find(f) != std::string::npos) return "N";
-    return n;
-  };
-  std::map<std::string, double> peak, out;
-  for (const auto& name : a.columns)
-    if (!counts.contains(name))
-      for (const double v : column(a, name))
-        peak[family(name)] = std::max(peak[family(name)], std::abs(v));
-  for (const auto& name : a.columns) {
-    if (counts.contains(name)) continue;
-    const auto va = column(a, name), vb = column(b, name);
-    double d = va.size() == vb.size() ? 0.0 : INFINITY;
-    for (size_t i = 0; i < va.size() && i < vb.size(); ++i)
-      d = std::max(d, std::abs(va[i] - vb[i]));
-    const double scale = peak[family(name)];
-    out[name] = scale > 0 ? d / scale : d;
-  }
-  return out;
 }
 
 TEST(DirectCli, RanksShareTheFactorAndRepeatTheSerialHistory) {
