@@ -213,8 +213,9 @@ class CholeskySolver {
   /// column-major |rows| × |cols|: with CHOLMOD's supernodal factor, the forward solve visits
   /// only the supernodes the columns reach and the backward solve only those of the rows and
   /// their ancestors, each with CHOLMOD's own BLAS calls, so the entries are those of
-  /// solve_many on the same block, bit for bit. Returns false, writing nothing, with another
-  /// package (the caller then uses solve_many).
+  /// solve_many on the same block, bit for bit. With the factor spread over the ranks, MUMPS's
+  /// selected entries of A⁻¹ (to round-off, any number of columns at once). Returns false,
+  /// writing nothing, with another package (the caller then uses solve_many).
   bool unit_solve_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
                        double* out) const;
   /// Whether forward_compliance is worth it for a first cover of `dofs`: with CHOLMOD's
