@@ -17,11 +17,16 @@ namespace {
 /// The exception types the ranks agree on; the type decides the exit code (case-format.md).
 enum Kind : int { other = 0, numerical, petsc, mesh, generic, output };
 
-void check_mpi(int rc, const char* call) {
-  if (rc != MPI_SUCCESS) throw Error(fmt::format("collective error check: {} failed", call));
+// MPI failures of the check itself name it.
+void check_mpi_of_check(int rc, const char* call) {
+  if (rc != MPI_SUCCESS) check_mpi(rc, fmt::format("collective error check: {}", call).c_str());
 }
 
 }  // namespace
+
+void check_mpi(int rc, const char* call) {
+  if (rc != MPI_SUCCESS) throw Error(fmt::format("{} failed", call));
+}
 
 void sum_over_ranks(MPI_Comm comm, double* data, long n, const char* who) {
   int size = 1;
@@ -35,12 +40,12 @@ void sum_over_ranks(MPI_Comm comm, double* data, long n, const char* who) {
 
 void collective_check(MPI_Comm comm, const char* what, const std::function<void()>& phase) {
   int size = 1, rank = 0;
-  check_mpi(MPI_Comm_size(comm, &size), "MPI_Comm_size");
+  check_mpi_of_check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
   if (size == 1) {
     phase();
     return;
   }
-  check_mpi(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
+  check_mpi_of_check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
   int kind = other;
   std::string message;
   double numbers[4] = {0, 0, 0, 0};  // step, iteration, residual (numerical); PETSc code
@@ -72,15 +77,16 @@ void collective_check(MPI_Comm comm, const char* what, const std::function<void(
   }
   // The lowest failing rank (INT_MAX if none): one integer, the only cost when all went well.
   int first = failed ? rank : INT_MAX;
-  check_mpi(MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm), "MPI_Allreduce");
+  check_mpi_of_check(MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm),
+                     "MPI_Allreduce");
   if (first == INT_MAX) return;
   // Its type, numbers and message to every rank.
   int header[3] = {kind, static_cast<int>(message.size()), already_collective ? 1 : 0};
-  check_mpi(MPI_Bcast(header, 3, MPI_INT, first, comm), "MPI_Bcast");
-  check_mpi(MPI_Bcast(numbers, 4, MPI_DOUBLE, first, comm), "MPI_Bcast");
+  check_mpi_of_check(MPI_Bcast(header, 3, MPI_INT, first, comm), "MPI_Bcast");
+  check_mpi_of_check(MPI_Bcast(numbers, 4, MPI_DOUBLE, first, comm), "MPI_Bcast");
   std::vector<char> text(static_cast<size_t>(header[1]) + 1, '\0');
   if (rank == first) std::memcpy(text.data(), message.data(), message.size());
-  check_mpi(MPI_Bcast(text.data(), header[1], MPI_CHAR, first, comm), "MPI_Bcast");
+  check_mpi_of_check(MPI_Bcast(text.data(), header[1], MPI_CHAR, first, comm), "MPI_Bcast");
   const std::string named = header[2] != 0
                                 ? std::string(text.data())
                                 : fmt::format("rank {}: {}: {}", first, what, text.data());

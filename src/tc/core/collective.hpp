@@ -17,6 +17,9 @@ namespace tc::core {
 /// others in them). Collective on `comm`; with one rank it only calls `phase`.
 void collective_check(MPI_Comm comm, const char* what, const std::function<void()>& phase);
 
+/// Throws tc::Error "<call> failed" unless `rc` is MPI_SUCCESS.
+void check_mpi(int rc, const char* call);
+
 /// data[0 … n) ← its sum over the ranks of `comm` (in place; nothing to do on one rank).
 /// `who` names the caller in the error thrown if MPI fails.
 void sum_over_ranks(MPI_Comm comm, double* data, long n, const char* who);

@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::core {
@@ -366,14 +367,7 @@ double mean_diagonal(const SparseMatrix& a) {
 
 // -------------------------------------------------------------------- CholeskySolver
 
-namespace {
-
-void check_mpi(int rc, const char* call) {
-  if (rc != MPI_SUCCESS) throw Error(fmt::format("{} failed (MPI error {})", call, rc));
-}
 #define TC_MPI(call) check_mpi((call), #call)
-
-}  // namespace
 
 std::vector<std::string> available_cholesky_packages() {
   // The packages register with Mat's initialisation, which nothing may have triggered yet.
@@ -423,17 +417,23 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package
   factor_ = Handle<::Mat, MatDestroy>(f);
 }
 
-bool CholeskySolver::spread_over_ranks(FactorRanks ranks) {
-  if (auto opt = requested_factor_package(); !opt.empty()) package_ = std::move(opt);
-  int size = 1;
-  TC_MPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+int ranks_sharing_a_factor(const std::string& package) {
+  std::string asked = requested_factor_package();
+  if (asked.empty()) asked = package;
   // Over ranks, the factor is MUMPS's unless a package that factorises on one rank only was
   // asked for: the same factorisation repeated on every rank divides nothing.
-  if (ranks == FactorRanks::all_ranks && size > 1 &&
-      (package_.empty() || package_ == MATSOLVERMUMPS)) {
+  if (!asked.empty() && asked != MATSOLVERMUMPS) return 1;
+  int size = 1;
+  TC_MPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  return size;
+}
+
+bool CholeskySolver::spread_over_ranks(FactorRanks ranks) {
+  if (ranks == FactorRanks::all_ranks && ranks_sharing_a_factor(package_) > 1) {
     package_ = MATSOLVERMUMPS;
     return true;
   }
+  if (auto opt = requested_factor_package(); !opt.empty()) package_ = std::move(opt);
   if (package_.empty()) package_ = available_cholesky_packages().front();
   return false;
 }
@@ -630,16 +630,16 @@ void CholeskySolver::inverse_entries(std::span<const PetscInt> cols, std::span<c
   const auto nr = static_cast<PetscInt>(rows.size());
   const auto nc = static_cast<PetscInt>(cols.size());
   std::fill_n(out, nr * nc, 0.0);
-  std::vector<PetscInt> wanted;  // distinct rows ≥ 0, sorted: the pattern of each request row
-  for (const PetscInt i : rows)
-    if (i >= 0) wanted.push_back(i);
-  std::sort(wanted.begin(), wanted.end());
-  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
-  std::vector<PetscInt> asked;  // distinct columns ≥ 0, sorted
-  for (const PetscInt c : cols)
-    if (c >= 0) asked.push_back(c);
-  std::sort(asked.begin(), asked.end());
-  asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
+  auto distinct = [](std::span<const PetscInt> ids) {  // those ≥ 0, sorted, each once
+    std::vector<PetscInt> out;
+    for (const PetscInt i : ids)
+      if (i >= 0) out.push_back(i);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  };
+  const auto wanted = distinct(rows);  // the pattern of each request row
+  const auto asked = distinct(cols);
   const auto w = static_cast<PetscInt>(wanted.size());
   const auto a = static_cast<PetscInt>(asked.size());
   if (w == 0 || a == 0) return;
@@ -684,14 +684,15 @@ void CholeskySolver::inverse_entries(std::span<const PetscInt> cols, std::span<c
     TC_PETSC(MatSeqAIJRestoreArrayRead(diagonal, &v));
   }
   TC_MPI(MPI_Bcast(entries.data(), static_cast<int>(entries.size()), MPI_DOUBLE, 0, r.comm));
+  std::vector<PetscInt> at(rows.size(), -1);  // each row's place in `wanted`
+  for (PetscInt i = 0; i < nr; ++i)
+    if (rows[i] >= 0)
+      at[i] = std::lower_bound(wanted.begin(), wanted.end(), rows[i]) - wanted.begin();
   for (PetscInt j = 0; j < nc; ++j) {
     if (cols[j] < 0) continue;
     const auto q = std::lower_bound(asked.begin(), asked.end(), cols[j]) - asked.begin();
-    for (PetscInt i = 0; i < nr; ++i) {
-      if (rows[i] < 0) continue;
-      const auto p = std::lower_bound(wanted.begin(), wanted.end(), rows[i]) - wanted.begin();
-      out[i + j * nr] = entries[static_cast<size_t>(q * w + p)];
-    }
+    for (PetscInt i = 0; i < nr; ++i)
+      if (at[i] >= 0) out[i + j * nr] = entries[static_cast<size_t>(q * w + at[i])];
   }
 }
 

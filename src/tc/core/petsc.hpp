@@ -276,5 +276,9 @@ double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol,
 [[nodiscard]] std::vector<std::string> available_cholesky_packages();
 /// The package named by the PETSc option -tc_factor_package, or "" when it is not set.
 [[nodiscard]] std::string requested_factor_package();
+/// The ranks an undecomposed body's factor is spread over (CholeskySolver with
+/// FactorRanks::all_ranks) for the case's `package` ("" automatic; -tc_factor_package
+/// overrides it): every rank of PETSC_COMM_WORLD with MUMPS or the automatic choice, else 1.
+[[nodiscard]] int ranks_sharing_a_factor(const std::string& package);
 
 }  // namespace tc::core

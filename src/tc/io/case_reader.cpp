@@ -349,16 +349,11 @@ void CaseReader::read_bodies(const TableReader& root) {
 }
 
 int CaseReader::factor_ranks(const TableReader& root) const {
-  // As core::CholeskySolver decides: over the ranks with MUMPS or the package left to it
-  // ([solver] is read after the bodies, so its key is looked at here directly).
-  std::string package = core::requested_factor_package();
-  if (package.empty())
-    if (const auto* solver = root.table().get_as<toml::table>("solver"))
-      package = (*solver)["factorization"].value_or(std::string());
-  if (!package.empty() && package != "auto" && package != "mumps") return 1;
-  int size = 1;
-  if (MPI_Comm_size(PETSC_COMM_WORLD, &size) != MPI_SUCCESS) return 1;
-  return size;
+  // [solver] is read after the bodies, so its key is looked at here directly.
+  std::string package;
+  if (const auto* solver = root.table().get_as<toml::table>("solver"))
+    package = (*solver)["factorization"].value_or(std::string());
+  return core::ranks_sharing_a_factor(package == "auto" ? std::string() : package);
 }
 
 void CaseReader::resolve_auto_subdomains(const TableReader& root, const toml::array& bodies) {
