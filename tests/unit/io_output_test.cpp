@@ -81,6 +81,26 @@ TEST(Output, LeavesPvdVtuHistoryAndSummary) {
         "\"factorization\"", "\"heat_solve\"", "\"qp\"", "\"output\"", "\"coupling_iterations\"",
         "\"dofs\": 108", "\"multipliers\"", "\"ranks\"", "\"subdomains\"", "\"last\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
+
+  // The peak memory of the ranks (one here) and the phases' rises of it, which cannot add up
+  // to more than the peak itself.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      summary, m,
+      std::regex(
+          R"re("peak_memory_gib": \{"largest_rank": ([0-9.]+), "smallest_rank": ([0-9.]+), "phases": \{(.*)\}\})re")));
+  const double largest = std::stod(m[1]), smallest = std::stod(m[2]);
+  EXPECT_GT(smallest, 0.0);
+  EXPECT_EQ(largest, smallest);  // one rank
+  double phases = 0;
+  const std::string listed = m[3];
+  const std::regex value(R"re(: ([0-9.]+))re");
+  int n_phases = 0;
+  for (auto it = std::sregex_iterator(listed.begin(), listed.end(), value);
+       it != std::sregex_iterator(); ++it, ++n_phases)
+    phases += std::stod((*it)[1]);
+  EXPECT_EQ(n_phases, 7);
+  EXPECT_LE(phases, largest + 0.004);  // each phase rounded to 0.001 GiB
 }
 
 TEST(Output, SupportHoldsTheLoadInStatics) {

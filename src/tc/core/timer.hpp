@@ -1,21 +1,32 @@
 #pragma once
-// Wall-clock time per named phase (summary.json: assembly, mortar, factorization, ...).
+// Wall-clock time per named phase (summary.json: assembly, mortar, factorization, ...), and
+// how much the process's peak resident memory rose while in each phase (summary.json's
+// peak_memory_gib): where a run's memory goes, without an external profiler.
 #include <chrono>
 #include <map>
 #include <string>
 
 namespace tc::core {
 
+/// The peak resident set size of this process so far (getrusage's ru_maxrss), in bytes.
+[[nodiscard]] double peak_resident_bytes();
+
 class PhaseTimers {
  public:
-  /// Adds the time from construction to destruction to phase `name`.
+  /// Adds the time from construction to destruction to phase `name`, and the rise of the
+  /// peak resident memory in that time (a phase that allocates what an earlier one freed
+  /// adds nothing: it is the high-water mark that is attributed).
   class Scope {
    public:
     Scope(PhaseTimers& t, std::string name)
-        : timers_(t), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
+        : timers_(t),
+          name_(std::move(name)),
+          start_(std::chrono::steady_clock::now()),
+          peak_(peak_resident_bytes()) {}
     ~Scope() {
       timers_.add(name_,
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+      timers_.peak_growth_[name_] += peak_resident_bytes() - peak_;
     }
     Scope(const Scope&) = delete;
     Scope& operator=(const Scope&) = delete;
@@ -24,6 +35,7 @@ class PhaseTimers {
     PhaseTimers& timers_;
     std::string name_;
     std::chrono::steady_clock::time_point start_;
+    double peak_;
   };
 
   [[nodiscard]] Scope scope(std::string name) { return Scope(*this, std::move(name)); }
@@ -33,9 +45,15 @@ class PhaseTimers {
     return it == seconds_.end() ? 0.0 : it->second;
   }
   [[nodiscard]] const std::map<std::string, double>& all() const { return seconds_; }
+  /// Bytes by which the peak resident memory rose inside phase `name`.
+  [[nodiscard]] double peak_growth(const std::string& name) const {
+    const auto it = peak_growth_.find(name);
+    return it == peak_growth_.end() ? 0.0 : it->second;
+  }
 
  private:
   std::map<std::string, double> seconds_;
+  std::map<std::string, double> peak_growth_;
 };
 
 }  // namespace tc::core

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -30,6 +31,34 @@ std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";  // JSON has no NaN/Inf
   return fmt::format("{:.17g}", v);
 }
+
+constexpr std::array<const char*, 7> kPhases{
+    "assembly", "mortar", "dual_setup", "factorization", "heat_solve", "qp", "mechanical_solve"};
+
+}  // namespace
+
+std::string peak_memory_json(const core::PhaseTimers& t) {
+  constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+  std::vector<double> largest{core::peak_resident_bytes()};
+  for (const char* ph : kPhases) largest.push_back(t.peak_growth(ph));
+  double smallest = largest.front();
+  const bool root = core::PetscSession::rank() == 0;
+  core::check_mpi(
+      MPI_Reduce(root ? MPI_IN_PLACE : largest.data(), largest.data(),
+                 static_cast<int>(largest.size()), MPI_DOUBLE, MPI_MAX, 0, PETSC_COMM_WORLD),
+      "MPI_Reduce");
+  core::check_mpi(MPI_Reduce(root ? MPI_IN_PLACE : &smallest, &smallest, 1, MPI_DOUBLE, MPI_MIN, 0,
+                             PETSC_COMM_WORLD),
+                  "MPI_Reduce");
+  std::string phases;
+  for (size_t i = 0; i < kPhases.size(); ++i)
+    phases +=
+        fmt::format("{}{}: {:.3f}", i ? ", " : "", json_string(kPhases[i]), largest[i + 1] / gib);
+  return fmt::format(R"({{"largest_rank": {:.3f}, "smallest_rank": {:.3f}, "phases": {{{}}}}})",
+                     largest.front() / gib, smallest / gib, phases);
+}
+
+namespace {
 
 Field vector_field(const std::string& name, const core::Vector& v, int dim) {
   const auto values = v.to_std();
@@ -186,6 +215,7 @@ OutputWriter::~OutputWriter() {
 void OutputWriter::start(const physics::Simulation& sim) {
   // Rank 0 alone writes here; the check makes a failure stop every rank (and orders the
   // directory's creation before any rank writes its piece).
+  peak_memory_ = peak_memory_json(sim.timers());
   core::collective_check(PETSC_COMM_WORLD, "output", [&] {
     if (!root_) return;
     std::error_code ec;
@@ -239,6 +269,7 @@ void OutputWriter::append_history(const std::string& line) {
 
 void OutputWriter::step(const physics::Simulation& sim) {
   const double t0 = now_seconds();
+  peak_memory_ = peak_memory_json(sim.timers());
   try {
     core::collective_check(PETSC_COMM_WORLD, "output", [&] {
       require_finite_row(sim);  // before the row is written: history.csv holds numbers only
@@ -318,6 +349,7 @@ void OutputWriter::finish(const physics::Simulation& sim, const physics::RunStat
   // The last state is always written, even when `every` skipped it; not after a failed
   // write, which would only fail again (and the step may have no history row).
   if (!failed_ && sim.step() % every_ != 0 && sim.step() != resumed_step_) write_fields(sim);
+  peak_memory_ = peak_memory_json(sim.timers());
   core::collective_check(PETSC_COMM_WORLD, "output", [&] {
     if (!root_) return;
     write_summary(sim, status.completed ? "completed" : "stopped", status.message);
@@ -331,8 +363,7 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
   const auto& p = sim.problem();
   const auto& t = sim.timers();
   std::string phases;
-  for (const char* ph : {"assembly", "mortar", "dual_setup", "factorization", "heat_solve", "qp",
-                         "mechanical_solve"})
+  for (const char* ph : kPhases)
     phases += fmt::format("    {}: {},\n", json_string(ph), json_number(t[ph]));
   phases += fmt::format("    \"output\": {}\n", json_number(output_seconds_));
   std::string last;
@@ -352,6 +383,7 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
   out.print("  \"title\": {},\n", json_string(p.title));
   out.print("  \"case\": {},\n", json_string(p.case_file.string()));
   out.print("  \"wall_seconds\": {{\n{}  }},\n", phases);
+  out.print("  \"peak_memory_gib\": {},\n", peak_memory_);
   out.print("  \"coupling_iterations\": {},\n", sim.total_coupling_iterations());
   out.print("  \"qp_iterations\": {},\n", sim.total_qp_iterations());
   out.print("  \"operator_applications\": {},\n", sim.total_operator_applications());

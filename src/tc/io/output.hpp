@@ -59,7 +59,13 @@ class OutputWriter : public physics::Observer {
   bool resume_ = false;
   int resumed_step_ = -1;
   double output_seconds_ = 0;
+  std::string peak_memory_ = "null";  // summary.json's peak_memory_gib, gathered collectively
 };
+
+/// summary.json's peak_memory_gib: the peak resident memory of the largest and of the smallest
+/// rank so far, and per phase the largest rise of a rank's peak inside it, in GiB. Collective
+/// over PETSC_COMM_WORLD; the text is rank 0's.
+[[nodiscard]] std::string peak_memory_json(const core::PhaseTimers& timers);
 
 /// The fields of one body written to its .vtu (exposed for tests).
 void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data,
