@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
@@ -284,12 +285,81 @@ Vector::ReadView::~ReadView() {
   (void)VecRestoreArrayRead(v_, &data_);
 }
 
+// ------------------------------------------------------------------------- RowBlocks
+
+#define TC_MPI(call) check_mpi((call), #call)
+
+RowBlocks RowBlocks::over(MPI_Comm comm, PetscInt n) {
+  RowBlocks r;
+  r.comm = comm;
+  r.n = n;
+  int size = 1;
+  TC_MPI(MPI_Comm_size(comm, &size));
+  TC_MPI(MPI_Comm_rank(comm, &r.rank));
+  r.count.resize(static_cast<size_t>(size));
+  r.start.resize(static_cast<size_t>(size));
+  for (int q = 0, at = 0; q < size; ++q) {
+    r.count[static_cast<size_t>(q)] = static_cast<int>(n / size + (q < n % size ? 1 : 0));
+    r.start[static_cast<size_t>(q)] = at;
+    at += r.count[static_cast<size_t>(q)];
+  }
+  return r;
+}
+
+void RowBlocks::gather(double* x) const {
+  TC_MPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, x, count.data(), start.data(),
+                        MPIU_SCALAR, comm));
+}
+
+namespace {
+
+// This rank's block of a replicated array as a vector of the spread layout: nothing copied.
+Handle<::Vec, VecDestroy> block_view(const RowBlocks& r, const double* data) {
+  Handle<::Vec, VecDestroy> v;
+  TC_PETSC(VecCreateMPIWithArray(r.comm, 1, r.here(), r.n, data + r.first(), v.out()));
+  return v;
+}
+
+// op(A, x_block, y_block) on this rank's blocks of the replicated x and y, then y gathered.
+template <class Op>
+void spread_product(const RowBlocks& r, const Vector& x, Vector& y, Op op) {
+  const PetscScalar* xp = nullptr;
+  PetscScalar* yp = nullptr;
+  TC_PETSC(VecGetArrayRead(x.get(), &xp));
+  TC_PETSC(VecGetArray(y.get(), &yp));
+  {
+    const auto xl = block_view(r, xp);
+    const auto yl = block_view(r, yp);
+    op(xl.get(), yl.get());
+  }
+  r.gather(yp);
+  TC_PETSC(VecRestoreArray(y.get(), &yp));
+  TC_PETSC(VecRestoreArrayRead(x.get(), &xp));
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------------- SparseMatrix
 
 SparseMatrix::SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscInt> nnz_per_row) {
   TC_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, rows, cols, 0, nnz_per_row.data(), m_.out()));
   // Exact preallocation is a promise: a missing entry is a bug, not a slow path.
   TC_PETSC(MatSetOption(get(), MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+}
+
+SparseMatrix SparseMatrix::over_ranks(const RowBlocks& blocks, std::span<const PetscInt> diagonal,
+                                      std::span<const PetscInt> off_diagonal) {
+  assert(blocks.spread() && diagonal.size() == static_cast<size_t>(blocks.here()) &&
+         off_diagonal.size() == diagonal.size());
+  SparseMatrix a;
+  a.blocks_ = blocks;
+  TC_PETSC(MatCreate(blocks.comm, a.m_.out()));
+  TC_PETSC(MatSetSizes(a.get(), blocks.here(), blocks.here(), blocks.n, blocks.n));
+  TC_PETSC(MatSetType(a.get(), MATMPIAIJ));
+  TC_PETSC(MatMPIAIJSetPreallocation(a.get(), 0, diagonal.data(), 0, off_diagonal.data()));
+  TC_PETSC(MatSetOption(a.get(), MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  TC_PETSC(MatSetOption(a.get(), MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));  // add_values filters
+  return a;
 }
 
 PetscInt SparseMatrix::rows() const {
@@ -306,6 +376,14 @@ PetscInt SparseMatrix::cols() const {
 
 void SparseMatrix::add_values(std::span<const PetscInt> rows, std::span<const PetscInt> cols,
                               const double* row_major_block) {
+  if (distributed()) {  // this rank's rows only: nothing is sent at assembly
+    const auto n = static_cast<PetscInt>(cols.size());
+    for (size_t i = 0; i < rows.size(); ++i)
+      if (blocks_.owns(rows[i]))
+        TC_PETSC(MatSetValues(get(), 1, &rows[i], n, cols.data(), row_major_block + i * cols.size(),
+                              ADD_VALUES));
+    return;
+  }
   TC_PETSC(MatSetValues(get(), static_cast<PetscInt>(rows.size()), rows.data(),
                         static_cast<PetscInt>(cols.size()), cols.data(), row_major_block,
                         ADD_VALUES));
@@ -319,6 +397,7 @@ void SparseMatrix::assemble() {
 SparseMatrix SparseMatrix::copy() const {
   SparseMatrix c;
   TC_PETSC(MatDuplicate(get(), MAT_COPY_VALUES, c.m_.out()));
+  c.blocks_ = blocks_;
   return c;
 }
 
@@ -326,19 +405,33 @@ SparseMatrix SparseMatrix::share() const {
   TC_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(get())));
   SparseMatrix s;
   *s.m_.out() = get();
+  s.blocks_ = blocks_;
   return s;
 }
 
 void SparseMatrix::mult(const Vector& x, Vector& y) const {
+  if (distributed())
+    return spread_product(blocks_, x, y,
+                          [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMult(get(), xl, yl)); });
   TC_PETSC(MatMult(get(), x.get(), y.get()));
 }
 void SparseMatrix::mult_add(const Vector& x, Vector& y) const {
+  if (distributed())
+    return spread_product(blocks_, x, y,
+                          [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultAdd(get(), xl, yl, yl)); });
   TC_PETSC(MatMultAdd(get(), x.get(), y.get(), y.get()));
 }
 void SparseMatrix::mult_transpose(const Vector& x, Vector& y) const {
+  if (distributed())  // square: the columns are dealt as the rows
+    return spread_product(blocks_, x, y,
+                          [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultTranspose(get(), xl, yl)); });
   TC_PETSC(MatMultTranspose(get(), x.get(), y.get()));
 }
 void SparseMatrix::mult_transpose_add(const Vector& x, Vector& y) const {
+  if (distributed())
+    return spread_product(blocks_, x, y, [&](::Vec xl, ::Vec yl) {
+      TC_PETSC(MatMultTransposeAdd(get(), xl, yl, yl));
+    });
   TC_PETSC(MatMultTransposeAdd(get(), x.get(), y.get(), y.get()));
 }
 void SparseMatrix::axpy(double a, const SparseMatrix& x) {
@@ -349,8 +442,13 @@ void SparseMatrix::scale(double a) {
 }
 
 void SparseMatrix::zero_rows_columns(std::span<const PetscInt> rows, double diag) {
-  TC_PETSC(MatZeroRowsColumns(get(), static_cast<PetscInt>(rows.size()), rows.data(), diag, nullptr,
-                              nullptr));
+  std::vector<PetscInt> here;  // spread: each rank names its own rows (collective)
+  if (distributed())
+    std::copy_if(rows.begin(), rows.end(), std::back_inserter(here),
+                 [&](PetscInt r) { return blocks_.owns(r); });
+  const std::span<const PetscInt> named = distributed() ? std::span<const PetscInt>(here) : rows;
+  TC_PETSC(MatZeroRowsColumns(get(), static_cast<PetscInt>(named.size()), named.data(), diag,
+                              nullptr, nullptr));
 }
 
 double SparseMatrix::quadratic_form(const Vector& x, Vector& work) const {
@@ -359,15 +457,14 @@ double SparseMatrix::quadratic_form(const Vector& x, Vector& work) const {
 }
 
 double mean_diagonal(const SparseMatrix& a) {
-  Vector d(a.rows());
+  Vector d = a.distributed() ? Vector::distributed(a.row_blocks().comm, a.row_blocks().here())
+                             : Vector(a.rows());
   TC_PETSC(MatGetDiagonal(a.get(), d.get()));
   const double mean = d.sum() / static_cast<double>(a.rows());
   return mean > 0 ? mean : 1.0;
 }
 
 // -------------------------------------------------------------------- CholeskySolver
-
-#define TC_MPI(call) check_mpi((call), #call)
 
 std::vector<std::string> available_cholesky_packages() {
   // The packages register with Mat's initialisation, which nothing may have triggered yet.
@@ -391,7 +488,7 @@ std::string requested_factor_package() {
 CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package,
                                FactorRanks ranks) {
   package_ = package;
-  if (spread_over_ranks(ranks)) {
+  if (spread_over_ranks(ranks, a.distributed())) {
     factor_over_ranks(a);
     return;
   }
@@ -428,8 +525,9 @@ int ranks_sharing_a_factor(const std::string& package) {
   return size;
 }
 
-bool CholeskySolver::spread_over_ranks(FactorRanks ranks) {
-  if (ranks == FactorRanks::all_ranks && ranks_sharing_a_factor(package_) > 1) {
+bool CholeskySolver::spread_over_ranks(FactorRanks ranks, bool spread_matrix) {
+  // A matrix already spread over the ranks is factorised where it lies, by MUMPS.
+  if (spread_matrix || (ranks == FactorRanks::all_ranks && ranks_sharing_a_factor(package_) > 1)) {
     package_ = MATSOLVERMUMPS;
     return true;
   }
@@ -441,7 +539,7 @@ bool CholeskySolver::spread_over_ranks(FactorRanks ranks) {
 CholeskySolver::CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> eliminated,
                                double diag, const std::string& package, FactorRanks ranks) {
   package_ = package;
-  if (spread_over_ranks(ranks)) {
+  if (spread_over_ranks(ranks, a.distributed())) {
     factor_over_ranks(a, eliminated, diag);
     return;
   }
@@ -478,56 +576,43 @@ void CholeskySolver::solve_many(::Mat b, ::Mat x) const {
 void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const PetscInt> eliminated,
                                        double diag) {
   auto& r = ranks_;
-  r.comm = PETSC_COMM_WORLD;
-  int size = 1;
-  TC_MPI(MPI_Comm_size(r.comm, &size));
-  TC_MPI(MPI_Comm_rank(r.comm, &r.rank));
-  r.n = a.rows();
-  r.count.resize(static_cast<size_t>(size));
-  r.start.resize(static_cast<size_t>(size));
-  for (int q = 0, at = 0; q < size; ++q) {
-    r.count[static_cast<size_t>(q)] = static_cast<int>(r.n / size + (q < r.n % size ? 1 : 0));
-    r.start[static_cast<size_t>(q)] = at;
-    at += r.count[static_cast<size_t>(q)];
-  }
-  const PetscInt first = r.start[static_cast<size_t>(r.rank)];
-  const PetscInt m = r.count[static_cast<size_t>(r.rank)];
+  r = RowBlocks::over(PETSC_COMM_WORLD, a.rows());
+  const int size = static_cast<int>(r.count.size());
+  // A matrix spread over the ranks is spread as the factor is (the same rule).
+  assert(!a.distributed() ||
+         (a.row_blocks().first() == r.first() && a.row_blocks().here() == r.here()));
+  const PetscInt first = r.first();
+  const PetscInt m = r.here();
 
-  // This rank's rows of the (replicated) sequential matrix, global columns, as an MPIAIJ.
+  // This rank's rows (of the replicated matrix, or its own), global columns, as an MPIAIJ.
   Handle<::Mat, MatDestroy> local;
   {
-    PetscInt rows = 0;
-    const PetscInt *ia = nullptr, *ja = nullptr;
-    PetscBool done = PETSC_FALSE;
-    TC_PETSC(MatGetRowIJ(a.get(), 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
-    if (!done) throw PetscError(PETSC_ERR_SUP, "MatGetRowIJ: the operator is not in AIJ format");
-    const PetscScalar* av = nullptr;
-    TC_PETSC(MatSeqAIJGetArrayRead(a.get(), &av));
     // The eliminated rows keep diag alone, the other rows lose the eliminated columns.
     std::vector<char> gone(static_cast<size_t>(r.n), 0);
     for (const PetscInt d : eliminated) gone[static_cast<size_t>(d)] = 1;
     std::vector<PetscInt> offsets(static_cast<size_t>(m) + 1, 0), columns;
     std::vector<PetscScalar> values;
-    columns.reserve(static_cast<size_t>(ia[first + m] - ia[first]));
-    values.reserve(columns.capacity());
     for (PetscInt i = 0; i < m; ++i) {
       const PetscInt row = first + i;
       if (gone[static_cast<size_t>(row)]) {
         columns.push_back(row);
         values.push_back(diag);
       } else {
-        for (PetscInt e = ia[row]; e < ia[row + 1]; ++e)
-          if (!gone[static_cast<size_t>(ja[e])]) {
-            columns.push_back(ja[e]);
-            values.push_back(av[e]);
+        PetscInt nz = 0;
+        const PetscInt* cols = nullptr;
+        const PetscScalar* vals = nullptr;
+        TC_PETSC(MatGetRow(a.get(), row, &nz, &cols, &vals));  // columns in increasing order
+        for (PetscInt e = 0; e < nz; ++e)
+          if (!gone[static_cast<size_t>(cols[e])]) {
+            columns.push_back(cols[e]);
+            values.push_back(vals[e]);
           }
+        TC_PETSC(MatRestoreRow(a.get(), row, &nz, &cols, &vals));
       }
       offsets[static_cast<size_t>(i) + 1] = static_cast<PetscInt>(columns.size());
     }
     TC_PETSC(MatCreateMPIAIJWithArrays(r.comm, m, m, r.n, r.n, offsets.data(), columns.data(),
                                        values.data(), local.out()));
-    TC_PETSC(MatSeqAIJRestoreArrayRead(a.get(), &av));
-    TC_PETSC(MatRestoreRowIJ(a.get(), 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
   }
   TC_PETSC(MatSetOption(local.get(), MAT_SYMMETRIC, PETSC_TRUE));
   TC_PETSC(MatSetOption(local.get(), MAT_SPD, PETSC_TRUE));
@@ -565,21 +650,16 @@ void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const Pe
 
 void CholeskySolver::solve_over_ranks(::Vec b, ::Vec x) const {
   const auto& r = ranks_;
-  const PetscInt first = r.start[static_cast<size_t>(r.rank)];
-  const PetscInt m = r.count[static_cast<size_t>(r.rank)];
   const PetscScalar* bp = nullptr;
   PetscScalar* xp = nullptr;
   TC_PETSC(VecGetArrayRead(b, &bp));
   TC_PETSC(VecGetArray(x, &xp));
   {
-    // Views of this rank's rows of the replicated vectors: nothing is copied in.
-    Handle<::Vec, VecDestroy> bl, xl;
-    TC_PETSC(VecCreateMPIWithArray(r.comm, 1, m, r.n, bp + first, bl.out()));
-    TC_PETSC(VecCreateMPIWithArray(r.comm, 1, m, r.n, xp + first, xl.out()));
+    const auto bl = block_view(r, bp);  // this rank's rows of the replicated vectors
+    const auto xl = block_view(r, xp);
     TC_PETSC(MatSolve(factor_.get(), bl.get(), xl.get()));
   }
-  TC_MPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, xp, r.count.data(), r.start.data(),
-                        MPIU_SCALAR, r.comm));
+  r.gather(xp);
   TC_PETSC(VecRestoreArray(x, &xp));
   TC_PETSC(VecRestoreArrayRead(b, &bp));
 }
@@ -696,25 +776,57 @@ void CholeskySolver::inverse_entries(std::span<const PetscInt> cols, std::span<c
   }
 }
 
+namespace {
+double jacobi_cg_on(::Mat a, ::Vec b, ::Vec x, double rtol, int max_iterations, int& iterations);
+}  // namespace
+
 double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol, int max_iterations,
                  int& iterations) {
+  if (a.distributed()) {  // on this rank's blocks of b and x, x gathered after
+    const auto& r = a.row_blocks();
+    double reached = 0;
+    const PetscScalar* bp = nullptr;
+    PetscScalar* xp = nullptr;
+    TC_PETSC(VecGetArrayRead(b.get(), &bp));
+    TC_PETSC(VecGetArray(x.get(), &xp));
+    {
+      const auto bl = block_view(r, bp);
+      const auto xl = block_view(r, xp);
+      reached = jacobi_cg_on(a.get(), bl.get(), xl.get(), rtol, max_iterations, iterations);
+    }
+    r.gather(xp);
+    TC_PETSC(VecRestoreArray(x.get(), &xp));
+    TC_PETSC(VecRestoreArrayRead(b.get(), &bp));
+    return reached;
+  }
+  return jacobi_cg_on(a.get(), b.get(), x.get(), rtol, max_iterations, iterations);
+}
+
+namespace {
+
+double jacobi_cg_on(::Mat a, ::Vec b, ::Vec x, double rtol, int max_iterations, int& iterations) {
+  MPI_Comm comm = MPI_COMM_NULL;
+  TC_PETSC(PetscObjectGetComm(reinterpret_cast<PetscObject>(a), &comm));
   Handle<::KSP, KSPDestroy> ksp;
-  TC_PETSC(KSPCreate(PETSC_COMM_SELF, ksp.out()));
-  TC_PETSC(KSPSetOperators(ksp.get(), a.get(), a.get()));
+  TC_PETSC(KSPCreate(comm, ksp.out()));
+  TC_PETSC(KSPSetOperators(ksp.get(), a, a));
   TC_PETSC(KSPSetType(ksp.get(), KSPCG));
   PC pc = nullptr;
   TC_PETSC(KSPGetPC(ksp.get(), &pc));
   TC_PETSC(PCSetType(pc, PCJACOBI));
   TC_PETSC(KSPSetNormType(ksp.get(), KSP_NORM_UNPRECONDITIONED));
   TC_PETSC(KSPSetTolerances(ksp.get(), rtol, 0.0, PETSC_DEFAULT, max_iterations));
-  TC_PETSC(KSPSolve(ksp.get(), b.get(), x.get()));
+  TC_PETSC(KSPSolve(ksp.get(), b, x));
   PetscInt its = 0;
   TC_PETSC(KSPGetIterationNumber(ksp.get(), &its));
   iterations = static_cast<int>(its);
   PetscReal r = 0;
   TC_PETSC(KSPGetResidualNorm(ksp.get(), &r));
-  const double bn = b.norm();
+  PetscReal bn = 0;
+  TC_PETSC(VecNorm(b, NORM_2, &bn));
   return bn > 0 ? r / bn : 0.0;
 }
+
+}  // namespace
 
 }  // namespace tc::core

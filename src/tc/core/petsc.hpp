@@ -142,10 +142,42 @@ class Vector {
 };
 
 /// A sequential sparse matrix (AIJ) with exact preallocation given per row.
+/// The rows 0..n−1 dealt to the ranks of `comm` in contiguous blocks, the first n mod size
+/// ranks one row more: the layout of a factor spread over the ranks and of the matrices whose
+/// rows are spread with it (SparseMatrix::over_ranks), so that each rank's rows of the
+/// replicated vectors are its part of both.
+struct RowBlocks {
+  MPI_Comm comm = MPI_COMM_NULL;  // MPI_COMM_NULL: not spread
+  std::vector<int> count, start;
+  int rank = 0;
+  PetscInt n = 0;
+  [[nodiscard]] static RowBlocks over(MPI_Comm comm, PetscInt n);
+  [[nodiscard]] bool spread() const { return comm != MPI_COMM_NULL; }
+  [[nodiscard]] PetscInt first() const { return start[static_cast<size_t>(rank)]; }
+  [[nodiscard]] PetscInt here() const { return count[static_cast<size_t>(rank)]; }
+  [[nodiscard]] bool owns(PetscInt row) const { return row >= first() && row < first() + here(); }
+  /// Gathers every rank's block of the replicated array `x` (length n) into every rank's x.
+  void gather(double* x) const;
+};
+
+/// A sparse matrix, whole on each rank (a sequential AIJ), or with its rows spread over the
+/// ranks (`over_ranks`, an MPIAIJ in RowBlocks): then the vectors it takes and gives are still
+/// replicated and whole, every method is collective, each rank computes its rows and the
+/// results are gathered.
 class SparseMatrix {
  public:
   SparseMatrix() = default;
   SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscInt> nnz_per_row);
+  /// A square n × n matrix whose rows are spread over the ranks of PETSC_COMM_WORLD
+  /// (RowBlocks::over), preallocated exactly: `diagonal` and `off_diagonal` give, for each of
+  /// this rank's rows, its entries in this rank's block of columns and outside it.
+  [[nodiscard]] static SparseMatrix over_ranks(const RowBlocks& blocks,
+                                               std::span<const PetscInt> diagonal,
+                                               std::span<const PetscInt> off_diagonal);
+  [[nodiscard]] bool distributed() const { return blocks_.spread(); }
+  [[nodiscard]] const RowBlocks& row_blocks() const { return blocks_; }
+  /// Whether this rank holds row r (every row when the matrix is whole).
+  [[nodiscard]] bool owns_row(PetscInt r) const { return !distributed() || blocks_.owns(r); }
 
   [[nodiscard]] ::Mat get() const { return m_.get(); }
   [[nodiscard]] PetscInt rows() const;
@@ -168,6 +200,7 @@ class SparseMatrix {
 
  private:
   Handle<::Mat, MatDestroy> m_;
+  RowBlocks blocks_;  // spread when the rows are dealt over the ranks
 };
 
 /// The mean of the diagonal (1 if not positive): the scale given to the rows of eliminated
@@ -190,7 +223,8 @@ enum class FactorRanks { this_rank, all_ranks };
 /// PETSc option -tc_factor_package.
 ///
 /// With FactorRanks::all_ranks on more than one rank, and the package MUMPS or left to the
-/// solver, the matrix (given whole on every rank) is factorised once by MUMPS over all ranks,
+/// solver, or with a matrix whose rows are spread over the ranks (SparseMatrix::over_ranks),
+/// the matrix (whole on every rank, or spread) is factorised once by MUMPS over all ranks,
 /// each holding its part of the factor, instead of once per rank: every method is then
 /// collective, called by every rank with the same arguments, and returns the same replicated
 /// result on each.
@@ -243,15 +277,8 @@ class CholeskySolver {
   [[nodiscard]] bool distributed() const { return ranks_.comm != MPI_COMM_NULL; }
 
  private:
-  // The rows of the distributed matrix held by each rank (contiguous blocks), for MatSolve's
-  // vectors and the gathering of their results.
-  struct RowBlocks {
-    MPI_Comm comm = MPI_COMM_NULL;
-    std::vector<int> count, start;
-    int rank = 0;
-    PetscInt n = 0;
-  };
-  [[nodiscard]] bool spread_over_ranks(FactorRanks ranks);  // resolves package_ too
+  // Resolves package_ too; a matrix spread over the ranks is factorised there.
+  [[nodiscard]] bool spread_over_ranks(FactorRanks ranks, bool spread_matrix);
   void factor_over_ranks(const SparseMatrix& a, std::span<const PetscInt> eliminated = {},
                          double diag = 1.0);
   void solve_over_ranks(::Vec b, ::Vec x) const;

@@ -78,11 +78,30 @@ NodeGraph node_graph(const mesh::Mesh& m) {
 }
 
 core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_block, int col_block,
-                            const CellKernel& kernel) {
-  std::vector<PetscInt> nnz(static_cast<size_t>(row_block) * m.n_nodes());
-  for (int a = 0; a < m.n_nodes(); ++a)
-    for (int k = 0; k < row_block; ++k) nnz[row_block * a + k] = col_block * g.degree(a);
-  core::SparseMatrix out(row_block * m.n_nodes(), col_block * m.n_nodes(), nnz);
+                            const CellKernel& kernel, const core::RowBlocks* spread) {
+  assert(!spread || row_block == col_block);
+  core::SparseMatrix out;
+  if (spread) {  // this rank's rows: entries in its block of columns and outside it
+    const PetscInt first = spread->first(), end = first + spread->here();
+    std::vector<PetscInt> diagonal, off_diagonal;
+    for (PetscInt row = first; row < end; ++row) {
+      const int a = static_cast<int>(row / row_block);
+      PetscInt in = 0;
+      for (int e = g.offsets[a]; e < g.offsets[a + 1]; ++e)
+        for (int k = 0; k < col_block; ++k) {
+          const PetscInt col = static_cast<PetscInt>(col_block) * g.columns[e] + k;
+          in += col >= first && col < end ? 1 : 0;
+        }
+      diagonal.push_back(in);
+      off_diagonal.push_back(col_block * g.degree(a) - in);
+    }
+    out = core::SparseMatrix::over_ranks(*spread, diagonal, off_diagonal);
+  } else {
+    std::vector<PetscInt> nnz(static_cast<size_t>(row_block) * m.n_nodes());
+    for (int a = 0; a < m.n_nodes(); ++a)
+      for (int k = 0; k < row_block; ++k) nnz[row_block * a + k] = col_block * g.degree(a);
+    out = core::SparseMatrix(row_block * m.n_nodes(), col_block * m.n_nodes(), nnz);
+  }
   std::vector<PetscInt> rows, cols;
   RowMajor ke;
   for (int c = 0; c < m.n_cells(); ++c) {
@@ -93,6 +112,9 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
       for (int k = 0; k < row_block; ++k) rows.push_back(row_block * a + k);
       for (int k = 0; k < col_block; ++k) cols.push_back(col_block * a + k);
     }
+    if (spread &&
+        std::none_of(rows.begin(), rows.end(), [&](PetscInt r) { return spread->owns(r); }))
+      continue;  // another rank's cell
     ke = kernel(c, m.cell_type(c), cell_coords(m, c));
     assert(ke.rows() == static_cast<Eigen::Index>(rows.size()) &&
            ke.cols() == static_cast<Eigen::Index>(cols.size()));
@@ -102,17 +124,20 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
   return out;
 }
 
-BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat) {
+BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat,
+                           const core::RowBlocks* spread) {
   // (4.3), (4.4): one pass per matrix; the graph is shared, so each pattern is exact.
   const auto g = node_graph(m);
   const int d = m.dim();
   const double lambda = mat.lame_lambda(), mu = mat.lame_mu();
   const double beta = mat.thermal_stress_modulus();
   BodyMatrices b;
-  b.mass_u = assemble(m, g, d, d,
-                      [&](int, CellType t, const Coords& x) { return mass_u(t, x, mat.density); });
+  b.mass_u = assemble(
+      m, g, d, d, [&](int, CellType t, const Coords& x) { return mass_u(t, x, mat.density); },
+      spread);
   b.stiffness_u = assemble(
-      m, g, d, d, [&](int, CellType t, const Coords& x) { return stiffness_u(t, x, lambda, mu); });
+      m, g, d, d, [&](int, CellType t, const Coords& x) { return stiffness_u(t, x, lambda, mu); },
+      spread);
   b.coupling_u_theta = assemble(
       m, g, d, 1, [&](int, CellType t, const Coords& x) { return coupling_u_theta(t, x, beta); });
   b.mass_theta = assemble(m, g, 1, 1, [&](int, CellType t, const Coords& x) {
@@ -125,46 +150,50 @@ BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat) {
 }
 
 core::SparseMatrix singular_mass_u(const mesh::Mesh& m, const Material& mat,
-                                   const std::vector<char>& massless) {
+                                   const std::vector<char>& massless,
+                                   const core::RowBlocks* spread) {
   const int d = m.dim();
-  return assemble(m, node_graph(m), d, d, [&](int c, CellType t, const Coords& x) {
-    Eigen::MatrixXd me = mass_u(t, x, mat.density);
-    const auto nodes = m.cell(c);
-    const auto n = static_cast<Eigen::Index>(nodes.size());
-    // P_e (node level): identity on massive nodes; a massless node follows the massive nodes
-    // of the cell nearest to it (ties within 1e-9 share equally: the node above on a Hex8
-    // whose face lies on the boundary, the free vertices of a Tet4).
-    Eigen::MatrixXd p = Eigen::MatrixXd::Zero(n, n);
-    bool any = false;
-    for (Eigen::Index a = 0; a < n; ++a) {
-      if (!massless[static_cast<size_t>(nodes[a])]) {
-        p(a, a) = 1.0;
-        continue;
-      }
-      any = true;
-      double nearest = INFINITY;
-      for (Eigen::Index b = 0; b < n; ++b)
-        if (!massless[static_cast<size_t>(nodes[b])])
-          nearest = std::min(nearest, (x.row(a) - x.row(b)).norm());
-      if (!std::isfinite(nearest))
-        throw Error(
-            fmt::format("modified mass: cell {} has every node on the contact boundary; "
-                        "it needs a node off it (refine the mesh across the boundary)",
-                        c));
-      std::vector<Eigen::Index> near;
-      for (Eigen::Index b = 0; b < n; ++b)
-        if (!massless[static_cast<size_t>(nodes[b])] &&
-            (x.row(a) - x.row(b)).norm() <= nearest * (1 + 1e-9))
-          near.push_back(b);
-      for (const auto b : near) p(a, b) = 1.0 / static_cast<double>(near.size());
-    }
-    if (!any) return me;
-    Eigen::MatrixXd pd = Eigen::MatrixXd::Zero(d * n, d * n);  // P_e ⊗ I_d (interleaved dofs)
-    for (Eigen::Index a = 0; a < n; ++a)
-      for (Eigen::Index b = 0; b < n; ++b)
-        for (int k = 0; k < d; ++k) pd(d * a + k, d * b + k) = p(a, b);
-    return Eigen::MatrixXd(pd.transpose() * me * pd);
-  });
+  return assemble(
+      m, node_graph(m), d, d,
+      [&](int c, CellType t, const Coords& x) {
+        Eigen::MatrixXd me = mass_u(t, x, mat.density);
+        const auto nodes = m.cell(c);
+        const auto n = static_cast<Eigen::Index>(nodes.size());
+        // P_e (node level): identity on massive nodes; a massless node follows the massive nodes
+        // of the cell nearest to it (ties within 1e-9 share equally: the node above on a Hex8
+        // whose face lies on the boundary, the free vertices of a Tet4).
+        Eigen::MatrixXd p = Eigen::MatrixXd::Zero(n, n);
+        bool any = false;
+        for (Eigen::Index a = 0; a < n; ++a) {
+          if (!massless[static_cast<size_t>(nodes[a])]) {
+            p(a, a) = 1.0;
+            continue;
+          }
+          any = true;
+          double nearest = INFINITY;
+          for (Eigen::Index b = 0; b < n; ++b)
+            if (!massless[static_cast<size_t>(nodes[b])])
+              nearest = std::min(nearest, (x.row(a) - x.row(b)).norm());
+          if (!std::isfinite(nearest))
+            throw Error(
+                fmt::format("modified mass: cell {} has every node on the contact boundary; "
+                            "it needs a node off it (refine the mesh across the boundary)",
+                            c));
+          std::vector<Eigen::Index> near;
+          for (Eigen::Index b = 0; b < n; ++b)
+            if (!massless[static_cast<size_t>(nodes[b])] &&
+                (x.row(a) - x.row(b)).norm() <= nearest * (1 + 1e-9))
+              near.push_back(b);
+          for (const auto b : near) p(a, b) = 1.0 / static_cast<double>(near.size());
+        }
+        if (!any) return me;
+        Eigen::MatrixXd pd = Eigen::MatrixXd::Zero(d * n, d * n);  // P_e ⊗ I_d (interleaved dofs)
+        for (Eigen::Index a = 0; a < n; ++a)
+          for (Eigen::Index b = 0; b < n; ++b)
+            for (int k = 0; k < d; ++k) pd(d * a + k, d * b + k) = p(a, b);
+        return Eigen::MatrixXd(pd.transpose() * me * pd);
+      },
+      spread);
 }
 
 core::SparseMatrix boundary_mass(const mesh::Mesh& m, const std::vector<WeightedFacet>& facets) {

@@ -23,15 +23,21 @@ struct NodeGraph {
 using CellKernel = std::function<Eigen::MatrixXd(int cell, CellType, const Coords&)>;
 
 /// Assembles Σ_cells kernel into a (row_block·N) × (col_block·N) matrix; dof of node a,
-/// component k is row_block·a + k. Preallocation is exact (from the node graph).
+/// component k is row_block·a + k. Preallocation is exact (from the node graph). With
+/// `spread` (square matrices only) each rank assembles its rows alone, from the cells that
+/// touch them (core::SparseMatrix::over_ranks).
 [[nodiscard]] core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_block,
-                                          int col_block, const CellKernel& kernel);
+                                          int col_block, const CellKernel& kernel,
+                                          const core::RowBlocks* spread = nullptr);
 
 /// The constant matrices of one body (ch. 4): M_u, K_u, K_uθ, M_θ, K_θ.
 struct BodyMatrices {
   core::SparseMatrix mass_u, stiffness_u, coupling_u_theta, mass_theta, stiffness_theta;
 };
-[[nodiscard]] BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat);
+/// With `spread`, M_u and K_u have their rows spread over the ranks (the largest two: the
+/// others are a third of the size or less and stay whole).
+[[nodiscard]] BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat,
+                                         const core::RowBlocks* spread = nullptr);
 
 /// M_u without inertia on the nodes flagged in `massless` (the potential contact boundary):
 /// the modified mass matrix of Hager, Hüeber & Wohlmuth (IJNME 73, 2008), built cell by cell
@@ -41,7 +47,8 @@ struct BodyMatrices {
 /// translation are those of M_u; the change is confined to the cells at the boundary, O(h).
 /// The pattern is M_u's. Throws when a cell touching the boundary has no massive node.
 [[nodiscard]] core::SparseMatrix singular_mass_u(const mesh::Mesh& m, const Material& mat,
-                                                 const std::vector<char>& massless);
+                                                 const std::vector<char>& massless,
+                                                 const core::RowBlocks* spread = nullptr);
 
 /// A boundary facet with a coefficient: h of a film boundary (its nodes numbered in the mesh
 /// the matrix is assembled on, its `cell` a cell of that mesh).

@@ -22,12 +22,26 @@ std::vector<PetscInt> keys(const std::map<PetscInt, TimeTable>& m) {
   return out;
 }
 
+/// The rows of an undecomposed body's M_u and K_u spread as its factor will be (one rule:
+/// core::ranks_sharing_a_factor), so that no rank holds them whole; whole otherwise.
+core::RowBlocks u_rows(const Problem& problem, const Body& body) {
+  if (body.subdomains > 1 || core::ranks_sharing_a_factor(problem.solver.factorization) <= 1)
+    return {};
+  return core::RowBlocks::over(PETSC_COMM_WORLD,
+                               static_cast<PetscInt>(problem.dimension) * body.mesh.n_nodes());
+}
+
+const core::RowBlocks* spread(const core::RowBlocks& r) {
+  return r.spread() ? &r : nullptr;
+}
+
 }  // namespace
 
 BodySystem::BodySystem(const Problem& problem, int index)
     : body_(&problem.bodies.at(index)),
       dim_(problem.dimension),
-      m_(fem::assemble_body(body_->mesh, body_->material)),
+      u_rows_(u_rows(problem, *body_)),
+      m_(fem::assemble_body(body_->mesh, body_->material, spread(u_rows_))),
       volumes_(fem::volume_integrals(body_->mesh)) {
   for (int k = 0; k < dim_; ++k)
     u_loads_.push_back({body_->body_force[k], k, sparse_weights(volumes_)});
@@ -54,7 +68,7 @@ BodySystem::BodySystem(const Problem& problem, int index)
     for (int a = 0; a < body_->mesh.n_nodes(); ++a)
       if (massless_[static_cast<size_t>(a)])
         for (int k = 0; k < dim_; ++k) massless_dofs_.push_back(dim_ * a + k);
-    m_.mass_u = fem::singular_mass_u(body_->mesh, body_->material, massless_);
+    m_.mass_u = fem::singular_mass_u(body_->mesh, body_->material, massless_, spread(u_rows_));
   }
   cell_part_ = mesh::partition_cells(body_->mesh, std::max(1, body_->subdomains));
   if (body_->subdomains > 1) subdomains_ = mesh::split(body_->mesh, cell_part_, body_->subdomains);

@@ -28,7 +28,8 @@ ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<Pe
     position[static_cast<size_t>(dofs_[k])] = static_cast<PetscInt>(k);
   std::vector<std::vector<std::pair<PetscInt, double>>> columns(dofs_.size());
   for (PetscInt r = 0; r < a.rows(); ++r) {
-    if (position[static_cast<size_t>(r)] >= 0) continue;  // overwritten by diag · x_D
+    // Over the ranks, this rank's rows: the factor reads no other rows of the right-hand side.
+    if (position[static_cast<size_t>(r)] >= 0 || !a.owns_row(r)) continue;  // diag · x_D
     PetscInt n = 0;
     const PetscInt* cols = nullptr;
     const PetscScalar* vals = nullptr;
