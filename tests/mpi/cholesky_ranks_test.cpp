@@ -135,6 +135,30 @@ TEST(CholeskyOverRanks, BlockSolvesAndSelectedInverseEntriesAgreeWithColumnSolve
   TC_PETSC(MatDenseRestoreArrayRead(x.get(), &xp));
 }
 
+TEST(CholeskyOverRanks, SelectedInverseEntriesOfMoreColumnsThanOneRequestHolds) {
+  // 1 200 columns: MUMPS is asked for them in two requests (chunks of 1024 columns), whose
+  // entries must land in their own columns of the answer.
+  const auto a = grid_operator(11);
+  const PetscInt n = a.rows();
+  const core::CholeskySolver spread(a, "", core::FactorRanks::all_ranks);
+  const core::CholeskySolver own(a, "", core::FactorRanks::this_rank);
+  if (!spread.distributed()) GTEST_SKIP() << "one rank: no selected inverse";
+  std::vector<PetscInt> cols;
+  for (PetscInt c = n - 1; c >= n - 1200; --c) cols.push_back(c);  // descending
+  const std::vector<PetscInt> rows{0, n - 1, 500, n - 1200, 1024};
+  std::vector<double> entries(rows.size() * cols.size(), -99.0);
+  ASSERT_TRUE(spread.unit_solve_rows(cols, rows, entries.data()));
+  for (size_t j = 0; j < cols.size(); j += 7) {  // every 7th column: both chunks, any offset
+    core::Vector e(n), column(n);
+    e.view()[cols[j]] = 1.0;
+    own.solve(e, column);
+    const auto c = column.read();
+    for (size_t i = 0; i < rows.size(); ++i)
+      ASSERT_NEAR(entries[i + j * rows.size()], c[rows[i]], kTolerance * column.max_abs())
+          << i << ", " << j;
+  }
+}
+
 TEST(CholeskyOverRanks, ConstrainedSolverAndComplianceAgreeWithTheRanksOwn) {
   const auto a = grid_operator(10);
   const PetscInt n = a.rows();

@@ -285,6 +285,9 @@ class CholeskySolver {
   void solve_many_over_ranks(::Mat b, ::Mat x) const;
   void inverse_entries(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
                        double* out) const;
+  // Entries (A⁻¹)(wanted, asked), column-major, on every rank: one MUMPS request.
+  void inverse_entries_chunk(std::span<const PetscInt> asked, std::span<const PetscInt> wanted,
+                             std::vector<double>& entries) const;
 
   Handle<::Mat, MatDestroy> factor_;  // PETSc's factored matrix (MATSOLVERCHOLMOD or MUMPS)
   std::string package_;
