@@ -592,6 +592,15 @@ void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const Pe
     for (const PetscInt d : eliminated) gone[static_cast<size_t>(d)] = 1;
     std::vector<PetscInt> offsets(static_cast<size_t>(m) + 1, 0), columns;
     std::vector<PetscScalar> values;
+    PetscInt entries = 0;  // reserved exactly: the copy is as large as this rank's rows
+    for (PetscInt row = first; row < first + m; ++row) {
+      PetscInt nz = 0;
+      TC_PETSC(MatGetRow(a.get(), row, &nz, nullptr, nullptr));
+      entries += nz;
+      TC_PETSC(MatRestoreRow(a.get(), row, &nz, nullptr, nullptr));
+    }
+    columns.reserve(static_cast<size_t>(entries));
+    values.reserve(static_cast<size_t>(entries));
     for (PetscInt i = 0; i < m; ++i) {
       const PetscInt row = first + i;
       if (gone[static_cast<size_t>(row)]) {
