@@ -1,5 +1,6 @@
 // Matrices with their rows spread over the ranks (core::SparseMatrix::over_ranks, assembled by
-// fem::assemble with a RowBlocks) against the same matrices assembled whole on each rank: every
+// fem::assemble with RowBlocks: M_u, K_u and the rectangular K_uθ) against the same matrices
+// assembled whole on each rank: every
 // product the time loop takes, the operations forming and constraining an operator, CG on the
 // mass matrix, and the constrained solver on a spread operator. Run at 1 and 2 ranks (label
 // mpi): at 1 rank the spread matrix is an MPIAIJ holding every row, at 2 each holds half.
@@ -58,7 +59,8 @@ Pair both() {
   const auto m = some_mesh();
   const auto mat = steel();
   const auto blocks = core::RowBlocks::over(PETSC_COMM_WORLD, 3 * m.n_nodes());
-  return {fem::assemble_body(m, mat), fem::assemble_body(m, mat, &blocks)};
+  const auto theta = core::RowBlocks::over(PETSC_COMM_WORLD, m.n_nodes());
+  return {fem::assemble_body(m, mat), fem::assemble_body(m, mat, &blocks, &theta)};
 }
 
 TEST(MatrixOverRanks, ProductsAreTheWholeMatrixsGatheredOnEveryRank) {
@@ -66,7 +68,8 @@ TEST(MatrixOverRanks, ProductsAreTheWholeMatrixsGatheredOnEveryRank) {
   int size = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   ASSERT_TRUE(spread.stiffness_u.distributed());
-  EXPECT_FALSE(spread.coupling_u_theta.distributed());  // the smaller matrices stay whole
+  ASSERT_TRUE(spread.coupling_u_theta.distributed());
+  EXPECT_FALSE(spread.mass_theta.distributed());  // the heat matrices stay whole
   EXPECT_EQ(spread.stiffness_u.row_blocks().here() == spread.stiffness_u.rows(), size == 1);
   const PetscInt n = whole.stiffness_u.rows();
   for (const auto* pair : {&whole.stiffness_u, &whole.mass_u}) {
@@ -91,6 +94,26 @@ TEST(MatrixOverRanks, ProductsAreTheWholeMatrixsGatheredOnEveryRank) {
     EXPECT_NEAR(qa, qb, kProduct * std::abs(qa));
     EXPECT_NEAR(core::mean_diagonal(a), core::mean_diagonal(b), 1e-14 * core::mean_diagonal(a));
   }
+  // K_uθ, rectangular: its columns are dealt as the temperature dofs, u ← θ and θ ← u.
+  const auto& ka = whole.coupling_u_theta;
+  const auto& kb = spread.coupling_u_theta;
+  const PetscInt nt = ka.cols();
+  const auto theta = some_vector(nt, 0.9);
+  core::Vector y(n), z(n);
+  ka.mult(theta, y);
+  kb.mult(theta, z);
+  EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
+  y = some_vector(n, 0.2);
+  z = y.clone();
+  ka.mult_add(theta, y);
+  kb.mult_add(theta, z);
+  EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
+  const auto u = some_vector(n, 1.7);
+  core::Vector ta(nt), tb(nt);
+  ka.mult_transpose(u, ta);
+  kb.mult_transpose(u, tb);
+  EXPECT_LT(max_abs_diff(ta, tb), kProduct * ta.max_abs());
+  EXPECT_TRUE(same_on_every_rank(tb));
 }
 
 TEST(MatrixOverRanks, OperatorsFormedAndConstrainedAsTheWholeOnes) {

@@ -320,19 +320,20 @@ Handle<::Vec, VecDestroy> block_view(const RowBlocks& r, const double* data) {
   return v;
 }
 
-// op(A, x_block, y_block) on this rank's blocks of the replicated x and y, then y gathered.
+// op(A, x_block, y_block) on this rank's blocks of the replicated x (dealt in rx) and y (in
+// ry), then y gathered.
 template <class Op>
-void spread_product(const RowBlocks& r, const Vector& x, Vector& y, Op op) {
+void spread_product(const RowBlocks& rx, const RowBlocks& ry, const Vector& x, Vector& y, Op op) {
   const PetscScalar* xp = nullptr;
   PetscScalar* yp = nullptr;
   TC_PETSC(VecGetArrayRead(x.get(), &xp));
   TC_PETSC(VecGetArray(y.get(), &yp));
   {
-    const auto xl = block_view(r, xp);
-    const auto yl = block_view(r, yp);
+    const auto xl = block_view(rx, xp);
+    const auto yl = block_view(ry, yp);
     op(xl.get(), yl.get());
   }
-  r.gather(yp);
+  ry.gather(yp);
   TC_PETSC(VecRestoreArray(y.get(), &yp));
   TC_PETSC(VecRestoreArrayRead(x.get(), &xp));
 }
@@ -347,14 +348,17 @@ SparseMatrix::SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscIn
   TC_PETSC(MatSetOption(get(), MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
 }
 
-SparseMatrix SparseMatrix::over_ranks(const RowBlocks& blocks, std::span<const PetscInt> diagonal,
+SparseMatrix SparseMatrix::over_ranks(const RowBlocks& rows, const RowBlocks& cols,
+                                      std::span<const PetscInt> diagonal,
                                       std::span<const PetscInt> off_diagonal) {
-  assert(blocks.spread() && diagonal.size() == static_cast<size_t>(blocks.here()) &&
+  assert(rows.spread() && cols.comm == rows.comm &&
+         diagonal.size() == static_cast<size_t>(rows.here()) &&
          off_diagonal.size() == diagonal.size());
   SparseMatrix a;
-  a.blocks_ = blocks;
-  TC_PETSC(MatCreate(blocks.comm, a.m_.out()));
-  TC_PETSC(MatSetSizes(a.get(), blocks.here(), blocks.here(), blocks.n, blocks.n));
+  a.blocks_ = rows;
+  a.col_blocks_ = cols;
+  TC_PETSC(MatCreate(rows.comm, a.m_.out()));
+  TC_PETSC(MatSetSizes(a.get(), rows.here(), cols.here(), rows.n, cols.n));
   TC_PETSC(MatSetType(a.get(), MATMPIAIJ));
   TC_PETSC(MatMPIAIJSetPreallocation(a.get(), 0, diagonal.data(), 0, off_diagonal.data()));
   TC_PETSC(MatSetOption(a.get(), MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
@@ -398,6 +402,7 @@ SparseMatrix SparseMatrix::copy() const {
   SparseMatrix c;
   TC_PETSC(MatDuplicate(get(), MAT_COPY_VALUES, c.m_.out()));
   c.blocks_ = blocks_;
+  c.col_blocks_ = col_blocks_;
   return c;
 }
 
@@ -406,30 +411,31 @@ SparseMatrix SparseMatrix::share() const {
   SparseMatrix s;
   *s.m_.out() = get();
   s.blocks_ = blocks_;
+  s.col_blocks_ = col_blocks_;
   return s;
 }
 
 void SparseMatrix::mult(const Vector& x, Vector& y) const {
   if (distributed())
-    return spread_product(blocks_, x, y,
+    return spread_product(col_blocks_, blocks_, x, y,
                           [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMult(get(), xl, yl)); });
   TC_PETSC(MatMult(get(), x.get(), y.get()));
 }
 void SparseMatrix::mult_add(const Vector& x, Vector& y) const {
   if (distributed())
-    return spread_product(blocks_, x, y,
+    return spread_product(col_blocks_, blocks_, x, y,
                           [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultAdd(get(), xl, yl, yl)); });
   TC_PETSC(MatMultAdd(get(), x.get(), y.get(), y.get()));
 }
 void SparseMatrix::mult_transpose(const Vector& x, Vector& y) const {
-  if (distributed())  // square: the columns are dealt as the rows
-    return spread_product(blocks_, x, y,
+  if (distributed())
+    return spread_product(blocks_, col_blocks_, x, y,
                           [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultTranspose(get(), xl, yl)); });
   TC_PETSC(MatMultTranspose(get(), x.get(), y.get()));
 }
 void SparseMatrix::mult_transpose_add(const Vector& x, Vector& y) const {
   if (distributed())
-    return spread_product(blocks_, x, y, [&](::Vec xl, ::Vec yl) {
+    return spread_product(blocks_, col_blocks_, x, y, [&](::Vec xl, ::Vec yl) {
       TC_PETSC(MatMultTransposeAdd(get(), xl, yl, yl));
     });
   TC_PETSC(MatMultTransposeAdd(get(), x.get(), y.get(), y.get()));

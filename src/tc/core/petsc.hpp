@@ -168,14 +168,16 @@ class SparseMatrix {
  public:
   SparseMatrix() = default;
   SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscInt> nnz_per_row);
-  /// A square n × n matrix whose rows are spread over the ranks of PETSC_COMM_WORLD
-  /// (RowBlocks::over), preallocated exactly: `diagonal` and `off_diagonal` give, for each of
-  /// this rank's rows, its entries in this rank's block of columns and outside it.
-  [[nodiscard]] static SparseMatrix over_ranks(const RowBlocks& blocks,
+  /// A matrix whose rows are spread over the ranks in `rows` and whose columns are dealt in
+  /// `cols` (the blocks of the vectors it multiplies: the rows' own for a square matrix),
+  /// preallocated exactly: `diagonal` and `off_diagonal` give, for each of this rank's rows,
+  /// its entries in this rank's block of columns and outside it.
+  [[nodiscard]] static SparseMatrix over_ranks(const RowBlocks& rows, const RowBlocks& cols,
                                                std::span<const PetscInt> diagonal,
                                                std::span<const PetscInt> off_diagonal);
   [[nodiscard]] bool distributed() const { return blocks_.spread(); }
   [[nodiscard]] const RowBlocks& row_blocks() const { return blocks_; }
+  [[nodiscard]] const RowBlocks& column_blocks() const { return col_blocks_; }
   /// Whether this rank holds row r (every row when the matrix is whole).
   [[nodiscard]] bool owns_row(PetscInt r) const { return !distributed() || blocks_.owns(r); }
 
@@ -200,7 +202,8 @@ class SparseMatrix {
 
  private:
   Handle<::Mat, MatDestroy> m_;
-  RowBlocks blocks_;  // spread when the rows are dealt over the ranks
+  RowBlocks blocks_;      // spread when the rows are dealt over the ranks
+  RowBlocks col_blocks_;  // then the columns' blocks (the vectors a product takes)
 };
 
 /// The mean of the diagonal (1 if not positive): the scale given to the rows of eliminated

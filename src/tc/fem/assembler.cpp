@@ -78,11 +78,15 @@ NodeGraph node_graph(const mesh::Mesh& m) {
 }
 
 core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_block, int col_block,
-                            const CellKernel& kernel, const core::RowBlocks* spread) {
-  assert(!spread || row_block == col_block);
+                            const CellKernel& kernel, const core::RowBlocks* spread,
+                            const core::RowBlocks* spread_cols) {
+  if (spread && !spread_cols) spread_cols = spread;  // square
+  assert(!spread ||
+         (spread->n == row_block * m.n_nodes() && spread_cols->n == col_block * m.n_nodes()));
   core::SparseMatrix out;
   if (spread) {  // this rank's rows: entries in its block of columns and outside it
     const PetscInt first = spread->first(), end = first + spread->here();
+    const PetscInt c0 = spread_cols->first(), c1 = c0 + spread_cols->here();
     std::vector<PetscInt> diagonal, off_diagonal;
     for (PetscInt row = first; row < end; ++row) {
       const int a = static_cast<int>(row / row_block);
@@ -90,12 +94,12 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
       for (int e = g.offsets[a]; e < g.offsets[a + 1]; ++e)
         for (int k = 0; k < col_block; ++k) {
           const PetscInt col = static_cast<PetscInt>(col_block) * g.columns[e] + k;
-          in += col >= first && col < end ? 1 : 0;
+          in += col >= c0 && col < c1 ? 1 : 0;
         }
       diagonal.push_back(in);
       off_diagonal.push_back(col_block * g.degree(a) - in);
     }
-    out = core::SparseMatrix::over_ranks(*spread, diagonal, off_diagonal);
+    out = core::SparseMatrix::over_ranks(*spread, *spread_cols, diagonal, off_diagonal);
   } else {
     std::vector<PetscInt> nnz(static_cast<size_t>(row_block) * m.n_nodes());
     for (int a = 0; a < m.n_nodes(); ++a)
@@ -124,8 +128,8 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
   return out;
 }
 
-BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat,
-                           const core::RowBlocks* spread) {
+BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat, const core::RowBlocks* spread,
+                           const core::RowBlocks* spread_theta) {
   // (4.3), (4.4): one pass per matrix; the graph is shared, so each pattern is exact.
   const auto g = node_graph(m);
   const int d = m.dim();
@@ -139,7 +143,8 @@ BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat,
       m, g, d, d, [&](int, CellType t, const Coords& x) { return stiffness_u(t, x, lambda, mu); },
       spread);
   b.coupling_u_theta = assemble(
-      m, g, d, 1, [&](int, CellType t, const Coords& x) { return coupling_u_theta(t, x, beta); });
+      m, g, d, 1, [&](int, CellType t, const Coords& x) { return coupling_u_theta(t, x, beta); },
+      spread && spread_theta ? spread : nullptr, spread_theta);
   b.mass_theta = assemble(m, g, 1, 1, [&](int, CellType t, const Coords& x) {
     return mass_theta(t, x, mat.heat_capacity());
   });

@@ -24,20 +24,23 @@ using CellKernel = std::function<Eigen::MatrixXd(int cell, CellType, const Coord
 
 /// Assembles Σ_cells kernel into a (row_block·N) × (col_block·N) matrix; dof of node a,
 /// component k is row_block·a + k. Preallocation is exact (from the node graph). With
-/// `spread` (square matrices only) each rank assembles its rows alone, from the cells that
-/// touch them (core::SparseMatrix::over_ranks).
+/// `spread` each rank assembles its rows alone, from the cells that touch them
+/// (core::SparseMatrix::over_ranks), the columns dealt in `spread_cols` (`spread` when null).
 [[nodiscard]] core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_block,
                                           int col_block, const CellKernel& kernel,
-                                          const core::RowBlocks* spread = nullptr);
+                                          const core::RowBlocks* spread = nullptr,
+                                          const core::RowBlocks* spread_cols = nullptr);
 
 /// The constant matrices of one body (ch. 4): M_u, K_u, K_uθ, M_θ, K_θ.
 struct BodyMatrices {
   core::SparseMatrix mass_u, stiffness_u, coupling_u_theta, mass_theta, stiffness_theta;
 };
-/// With `spread`, M_u and K_u have their rows spread over the ranks (the largest two: the
-/// others are a third of the size or less and stay whole).
+/// With `spread` (the displacement dofs' blocks), M_u and K_u have their rows spread over the
+/// ranks, and with `spread_theta` (the temperature dofs') K_uθ too, its columns dealt in
+/// `spread_theta`; M_θ and K_θ stay whole.
 [[nodiscard]] BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat,
-                                         const core::RowBlocks* spread = nullptr);
+                                         const core::RowBlocks* spread = nullptr,
+                                         const core::RowBlocks* spread_theta = nullptr);
 
 /// M_u without inertia on the nodes flagged in `massless` (the potential contact boundary):
 /// the modified mass matrix of Hager, Hüeber & Wohlmuth (IJNME 73, 2008), built cell by cell

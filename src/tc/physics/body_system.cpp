@@ -22,13 +22,14 @@ std::vector<PetscInt> keys(const std::map<PetscInt, TimeTable>& m) {
   return out;
 }
 
-/// The rows of an undecomposed body's M_u and K_u spread as its factor will be (one rule:
-/// core::ranks_sharing_a_factor), so that no rank holds them whole; whole otherwise.
-core::RowBlocks u_rows(const Problem& problem, const Body& body) {
+/// The dofs of an undecomposed body (`per_node` a node) in the blocks its factor will have
+/// (one rule: core::ranks_sharing_a_factor), so that no rank holds M_u, K_u or K_uθ whole;
+/// none otherwise.
+core::RowBlocks spread_rows(const Problem& problem, const Body& body, int per_node) {
   if (body.subdomains > 1 || core::ranks_sharing_a_factor(problem.solver.factorization) <= 1)
     return {};
   return core::RowBlocks::over(PETSC_COMM_WORLD,
-                               static_cast<PetscInt>(problem.dimension) * body.mesh.n_nodes());
+                               static_cast<PetscInt>(per_node) * body.mesh.n_nodes());
 }
 
 const core::RowBlocks* spread(const core::RowBlocks& r) {
@@ -40,8 +41,9 @@ const core::RowBlocks* spread(const core::RowBlocks& r) {
 BodySystem::BodySystem(const Problem& problem, int index)
     : body_(&problem.bodies.at(index)),
       dim_(problem.dimension),
-      u_rows_(u_rows(problem, *body_)),
-      m_(fem::assemble_body(body_->mesh, body_->material, spread(u_rows_))),
+      u_rows_(spread_rows(problem, *body_, problem.dimension)),
+      theta_rows_(spread_rows(problem, *body_, 1)),
+      m_(fem::assemble_body(body_->mesh, body_->material, spread(u_rows_), spread(theta_rows_))),
       volumes_(fem::volume_integrals(body_->mesh)) {
   for (int k = 0; k < dim_; ++k)
     u_loads_.push_back({body_->body_force[k], k, sparse_weights(volumes_)});

@@ -29,8 +29,8 @@ class BodySystem {
   [[nodiscard]] int dim() const { return dim_; }
   [[nodiscard]] PetscInt n_u() const { return dim_ * body_->mesh.n_nodes(); }
   [[nodiscard]] PetscInt n_theta() const { return body_->mesh.n_nodes(); }
-  /// M_u and K_u have their rows spread over the ranks (core::SparseMatrix::over_ranks) when
-  /// the body is undecomposed and its factor is spread (core::ranks_sharing_a_factor > 1).
+  /// M_u, K_u and K_uθ have their rows spread over the ranks (core::SparseMatrix::over_ranks)
+  /// when the body is undecomposed and its factor is spread (core::ranks_sharing_a_factor > 1).
   [[nodiscard]] const fem::BodyMatrices& matrices() const { return m_; }
 
   [[nodiscard]] const std::vector<PetscInt>& u_dirichlet_dofs() const { return u_dofs_; }
@@ -121,6 +121,7 @@ class BodySystem {
   // The rows of M_u and K_u held by this rank: spread over the ranks as the body's factor is
   // (an undecomposed body on several ranks with MUMPS), else whole.
   core::RowBlocks u_rows_;
+  core::RowBlocks theta_rows_;  // K_uθ's columns then, the temperature dofs in blocks
   fem::BodyMatrices m_;
   std::vector<double> volumes_;
   std::map<PetscInt, TimeTable> u_prescribed_, th_prescribed_;  // a later [[boundary]] wins
