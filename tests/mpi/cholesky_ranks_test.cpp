@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "support/vectors.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/dof_compliance.hpp"
@@ -50,19 +51,6 @@ core::SparseMatrix grid_operator(int n) {
       }
   a.assemble();
   return a;
-}
-
-core::Vector some_vector(PetscInt n, double phase) {
-  core::Vector v(n);
-  auto w = v.view();
-  for (PetscInt i = 0; i < n; ++i) w[i] = std::cos(phase + 0.11 * static_cast<double>(i));
-  return v;
-}
-
-double max_abs_diff(const core::Vector& a, const core::Vector& b) {
-  auto d = a.clone();
-  d.axpy(-1.0, b);
-  return d.max_abs();
 }
 
 // Both factors are direct, each exact to a backward error of a few ε: their solutions differ

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "support/problems.hpp"
+#include "support/vectors.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/mesh/box.hpp"
@@ -23,19 +24,6 @@ namespace {
 // rank or place shows.
 mesh::Mesh some_mesh() {
   return mesh::make_box(3, {0.0, 0.0, 0.0}, {1.0, 0.7, 0.4}, {5, 4, 3});
-}
-
-core::Vector some_vector(PetscInt n, double phase) {
-  core::Vector v(n);
-  auto w = v.view();
-  for (PetscInt i = 0; i < n; ++i) w[i] = std::cos(phase + 0.11 * static_cast<double>(i));
-  return v;
-}
-
-double max_abs_diff(const core::Vector& a, const core::Vector& b) {
-  auto d = a.clone();
-  d.axpy(-1.0, b);
-  return d.max_abs();
 }
 
 bool same_on_every_rank(const core::Vector& x) {
@@ -63,6 +51,29 @@ Pair both() {
   return {fem::assemble_body(m, mat), fem::assemble_body(m, mat, &blocks, &theta)};
 }
 
+// y = A x, y += A x and y = Aᵀx of the spread b against the whole a (square or not).
+void expect_products_agree(const core::SparseMatrix& a, const core::SparseMatrix& b) {
+  const PetscInt rows = a.rows(), cols = a.cols();
+  const auto x = some_vector(cols, 0.3);
+  core::Vector y(rows), z(rows);
+  a.mult(x, y);
+  b.mult(x, z);
+  EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
+  EXPECT_TRUE(same_on_every_rank(z));
+  y = some_vector(rows, 2.0);
+  z = y.clone();
+  a.mult_add(x, y);
+  b.mult_add(x, z);
+  EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
+  EXPECT_TRUE(same_on_every_rank(z));
+  const auto u = some_vector(rows, 1.7);
+  core::Vector s(cols), t(cols);
+  a.mult_transpose(u, s);
+  b.mult_transpose(u, t);
+  EXPECT_LT(max_abs_diff(s, t), kProduct * s.max_abs());
+  EXPECT_TRUE(same_on_every_rank(t));
+}
+
 TEST(MatrixOverRanks, ProductsAreTheWholeMatrixsGatheredOnEveryRank) {
   const auto [whole, spread] = both();
   int size = 1;
@@ -71,49 +82,17 @@ TEST(MatrixOverRanks, ProductsAreTheWholeMatrixsGatheredOnEveryRank) {
   ASSERT_TRUE(spread.coupling_u_theta.distributed());
   EXPECT_FALSE(spread.mass_theta.distributed());  // the heat matrices stay whole
   EXPECT_EQ(spread.stiffness_u.row_blocks().here() == spread.stiffness_u.rows(), size == 1);
-  const PetscInt n = whole.stiffness_u.rows();
-  for (const auto* pair : {&whole.stiffness_u, &whole.mass_u}) {
-    const auto& a = *pair;
-    const auto& b = pair == &whole.stiffness_u ? spread.stiffness_u : spread.mass_u;
-    const auto x = some_vector(n, 0.3);
-    core::Vector y(n), z(n), w(n);
-    a.mult(x, y);
-    b.mult(x, z);
-    EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
-    EXPECT_TRUE(same_on_every_rank(z));
-    a.mult_transpose(x, y);
-    b.mult_transpose(x, z);
-    EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
-    y = some_vector(n, 2.0);
-    z = y.clone();
-    a.mult_add(x, y);
-    b.mult_add(x, z);
-    EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
-    EXPECT_TRUE(same_on_every_rank(z));
-    const double qa = a.quadratic_form(x, w), qb = b.quadratic_form(x, w);
+  // K_uθ is rectangular: its columns are dealt as the temperature dofs (u ← θ and θ ← u).
+  expect_products_agree(whole.coupling_u_theta, spread.coupling_u_theta);
+  for (const auto& [a, b] :
+       {std::pair{&whole.stiffness_u, &spread.stiffness_u}, {&whole.mass_u, &spread.mass_u}}) {
+    expect_products_agree(*a, *b);
+    const auto x = some_vector(a->rows(), 0.3);
+    core::Vector w(a->rows());
+    const double qa = a->quadratic_form(x, w), qb = b->quadratic_form(x, w);
     EXPECT_NEAR(qa, qb, kProduct * std::abs(qa));
-    EXPECT_NEAR(core::mean_diagonal(a), core::mean_diagonal(b), 1e-14 * core::mean_diagonal(a));
+    EXPECT_NEAR(core::mean_diagonal(*a), core::mean_diagonal(*b), 1e-14 * core::mean_diagonal(*a));
   }
-  // K_uθ, rectangular: its columns are dealt as the temperature dofs, u ← θ and θ ← u.
-  const auto& ka = whole.coupling_u_theta;
-  const auto& kb = spread.coupling_u_theta;
-  const PetscInt nt = ka.cols();
-  const auto theta = some_vector(nt, 0.9);
-  core::Vector y(n), z(n);
-  ka.mult(theta, y);
-  kb.mult(theta, z);
-  EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
-  y = some_vector(n, 0.2);
-  z = y.clone();
-  ka.mult_add(theta, y);
-  kb.mult_add(theta, z);
-  EXPECT_LT(max_abs_diff(y, z), kProduct * y.max_abs());
-  const auto u = some_vector(n, 1.7);
-  core::Vector ta(nt), tb(nt);
-  ka.mult_transpose(u, ta);
-  kb.mult_transpose(u, tb);
-  EXPECT_LT(max_abs_diff(ta, tb), kProduct * ta.max_abs());
-  EXPECT_TRUE(same_on_every_rank(tb));
 }
 
 TEST(MatrixOverRanks, OperatorsFormedAndConstrainedAsTheWholeOnes) {

@@ -320,22 +320,27 @@ Handle<::Vec, VecDestroy> block_view(const RowBlocks& r, const double* data) {
   return v;
 }
 
-// op(A, x_block, y_block) on this rank's blocks of the replicated x (dealt in rx) and y (in
-// ry), then y gathered.
+// op(x_block, y_block) on this rank's blocks of the replicated x (dealt in rx) and y (in ry),
+// then y gathered: a product, a solve or CG on a matrix or factor spread over the ranks.
 template <class Op>
-void spread_product(const RowBlocks& rx, const RowBlocks& ry, const Vector& x, Vector& y, Op op) {
+void on_blocks(const RowBlocks& rx, const RowBlocks& ry, ::Vec x, ::Vec y, Op op) {
   const PetscScalar* xp = nullptr;
   PetscScalar* yp = nullptr;
-  TC_PETSC(VecGetArrayRead(x.get(), &xp));
-  TC_PETSC(VecGetArray(y.get(), &yp));
+  TC_PETSC(VecGetArrayRead(x, &xp));
+  TC_PETSC(VecGetArray(y, &yp));
   {
     const auto xl = block_view(rx, xp);
     const auto yl = block_view(ry, yp);
     op(xl.get(), yl.get());
   }
   ry.gather(yp);
-  TC_PETSC(VecRestoreArray(y.get(), &yp));
-  TC_PETSC(VecRestoreArrayRead(x.get(), &xp));
+  TC_PETSC(VecRestoreArray(y, &yp));
+  TC_PETSC(VecRestoreArrayRead(x, &xp));
+}
+
+template <class Op>
+void spread_product(const RowBlocks& rx, const RowBlocks& ry, const Vector& x, Vector& y, Op op) {
+  on_blocks(rx, ry, x.get(), y.get(), op);
 }
 
 }  // namespace
@@ -664,19 +669,8 @@ void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const Pe
 }
 
 void CholeskySolver::solve_over_ranks(::Vec b, ::Vec x) const {
-  const auto& r = ranks_;
-  const PetscScalar* bp = nullptr;
-  PetscScalar* xp = nullptr;
-  TC_PETSC(VecGetArrayRead(b, &bp));
-  TC_PETSC(VecGetArray(x, &xp));
-  {
-    const auto bl = block_view(r, bp);  // this rank's rows of the replicated vectors
-    const auto xl = block_view(r, xp);
-    TC_PETSC(MatSolve(factor_.get(), bl.get(), xl.get()));
-  }
-  r.gather(xp);
-  TC_PETSC(VecRestoreArray(x, &xp));
-  TC_PETSC(VecRestoreArrayRead(b, &bp));
+  on_blocks(ranks_, ranks_, b, x,
+            [&](::Vec bl, ::Vec xl) { TC_PETSC(MatSolve(factor_.get(), bl, xl)); });
 }
 
 void CholeskySolver::solve_many_over_ranks(::Mat b, ::Mat x) const {
@@ -820,20 +814,10 @@ double jacobi_cg_on(::Mat a, ::Vec b, ::Vec x, double rtol, int max_iterations, 
 double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol, int max_iterations,
                  int& iterations) {
   if (a.distributed()) {  // on this rank's blocks of b and x, x gathered after
-    const auto& r = a.row_blocks();
     double reached = 0;
-    const PetscScalar* bp = nullptr;
-    PetscScalar* xp = nullptr;
-    TC_PETSC(VecGetArrayRead(b.get(), &bp));
-    TC_PETSC(VecGetArray(x.get(), &xp));
-    {
-      const auto bl = block_view(r, bp);
-      const auto xl = block_view(r, xp);
-      reached = jacobi_cg_on(a.get(), bl.get(), xl.get(), rtol, max_iterations, iterations);
-    }
-    r.gather(xp);
-    TC_PETSC(VecRestoreArray(x.get(), &xp));
-    TC_PETSC(VecRestoreArrayRead(b.get(), &bp));
+    on_blocks(a.row_blocks(), a.row_blocks(), b.get(), x.get(), [&](::Vec bl, ::Vec xl) {
+      reached = jacobi_cg_on(a.get(), bl, xl, rtol, max_iterations, iterations);
+    });
     return reached;
   }
   return jacobi_cg_on(a.get(), b.get(), x.get(), rtol, max_iterations, iterations);
