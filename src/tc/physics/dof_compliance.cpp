@@ -93,7 +93,10 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
     forward_.reset();
   }
   const auto n = static_cast<PetscInt>(index_.size());
-  const Eigen::Index step = solver_.unit_rows_at_once() ? t - old : block;
+  // Unit rows at once (MUMPS's selected inverse over the ranks, asked 1024 columns at a time
+  // by the factor): as many here, so that `part` is |T| × 1024, not a second S.
+  constexpr Eigen::Index at_once = 1024;
+  const Eigen::Index step = solver_.unit_rows_at_once() ? std::min(t - old, at_once) : block;
   for (Eigen::Index j0 = old; j0 < t; j0 += step) {
     const auto k = std::min(step, t - j0);
     part.resize(static_cast<size_t>(t * k));
@@ -133,10 +136,14 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
     TC_PETSC(MatDenseRestoreArrayRead(sol.get(), &x));
   }
   // The block of new dofs with itself was filled from both sides; make it exactly symmetric
-  // (its two halves differ by the solver's round-off only).
-  auto fresh = s_.bottomRightCorner(t - old, t - old);
-  const Eigen::MatrixXd sym = 0.5 * (fresh + fresh.transpose());
-  fresh = sym;
+  // (its two halves differ by the solver's round-off only), in place: a copy would be as large
+  // as S on the first cover.
+  for (Eigen::Index j = old; j < t; ++j)
+    for (Eigen::Index i = old; i < j; ++i) {
+      const double v = 0.5 * (s_(i, j) + s_(j, i));  // the same bits as 0.5 (F + Fᵀ)
+      s_(i, j) = v;
+      s_(j, i) = v;
+    }
   return static_cast<PetscInt>(t - old);
 }
 
