@@ -338,11 +338,6 @@ void on_blocks(const RowBlocks& rx, const RowBlocks& ry, ::Vec x, ::Vec y, Op op
   TC_PETSC(VecRestoreArrayRead(x, &xp));
 }
 
-template <class Op>
-void spread_product(const RowBlocks& rx, const RowBlocks& ry, const Vector& x, Vector& y, Op op) {
-  on_blocks(rx, ry, x.get(), y.get(), op);
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------- SparseMatrix
@@ -422,27 +417,26 @@ SparseMatrix SparseMatrix::share() const {
 
 void SparseMatrix::mult(const Vector& x, Vector& y) const {
   if (distributed())
-    return spread_product(col_blocks_, blocks_, x, y,
-                          [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMult(get(), xl, yl)); });
+    return on_blocks(col_blocks_, blocks_, x.get(), y.get(),
+                     [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMult(get(), xl, yl)); });
   TC_PETSC(MatMult(get(), x.get(), y.get()));
 }
 void SparseMatrix::mult_add(const Vector& x, Vector& y) const {
   if (distributed())
-    return spread_product(col_blocks_, blocks_, x, y,
-                          [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultAdd(get(), xl, yl, yl)); });
+    return on_blocks(col_blocks_, blocks_, x.get(), y.get(),
+                     [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultAdd(get(), xl, yl, yl)); });
   TC_PETSC(MatMultAdd(get(), x.get(), y.get(), y.get()));
 }
 void SparseMatrix::mult_transpose(const Vector& x, Vector& y) const {
   if (distributed())
-    return spread_product(blocks_, col_blocks_, x, y,
-                          [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultTranspose(get(), xl, yl)); });
+    return on_blocks(blocks_, col_blocks_, x.get(), y.get(),
+                     [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultTranspose(get(), xl, yl)); });
   TC_PETSC(MatMultTranspose(get(), x.get(), y.get()));
 }
 void SparseMatrix::mult_transpose_add(const Vector& x, Vector& y) const {
   if (distributed())
-    return spread_product(blocks_, col_blocks_, x, y, [&](::Vec xl, ::Vec yl) {
-      TC_PETSC(MatMultTransposeAdd(get(), xl, yl, yl));
-    });
+    return on_blocks(blocks_, col_blocks_, x.get(), y.get(),
+                     [&](::Vec xl, ::Vec yl) { TC_PETSC(MatMultTransposeAdd(get(), xl, yl, yl)); });
   TC_PETSC(MatMultTransposeAdd(get(), x.get(), y.get(), y.get()));
 }
 void SparseMatrix::axpy(double a, const SparseMatrix& x) {
@@ -808,22 +802,6 @@ void CholeskySolver::inverse_entries_chunk(std::span<const PetscInt> asked,
 }
 
 namespace {
-double jacobi_cg_on(::Mat a, ::Vec b, ::Vec x, double rtol, int max_iterations, int& iterations);
-}  // namespace
-
-double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol, int max_iterations,
-                 int& iterations) {
-  if (a.distributed()) {  // on this rank's blocks of b and x, x gathered after
-    double reached = 0;
-    on_blocks(a.row_blocks(), a.row_blocks(), b.get(), x.get(), [&](::Vec bl, ::Vec xl) {
-      reached = jacobi_cg_on(a.get(), bl, xl, rtol, max_iterations, iterations);
-    });
-    return reached;
-  }
-  return jacobi_cg_on(a.get(), b.get(), x.get(), rtol, max_iterations, iterations);
-}
-
-namespace {
 
 double jacobi_cg_on(::Mat a, ::Vec b, ::Vec x, double rtol, int max_iterations, int& iterations) {
   MPI_Comm comm = MPI_COMM_NULL;
@@ -849,5 +827,17 @@ double jacobi_cg_on(::Mat a, ::Vec b, ::Vec x, double rtol, int max_iterations, 
 }
 
 }  // namespace
+
+double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol, int max_iterations,
+                 int& iterations) {
+  if (a.distributed()) {  // on this rank's blocks of b and x, x gathered after
+    double reached = 0;
+    on_blocks(a.row_blocks(), a.row_blocks(), b.get(), x.get(), [&](::Vec bl, ::Vec xl) {
+      reached = jacobi_cg_on(a.get(), bl, xl, rtol, max_iterations, iterations);
+    });
+    return reached;
+  }
+  return jacobi_cg_on(a.get(), b.get(), x.get(), rtol, max_iterations, iterations);
+}
 
 }  // namespace tc::core

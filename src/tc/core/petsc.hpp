@@ -141,7 +141,6 @@ class Vector {
   Handle<::Vec, VecDestroy> v_;
 };
 
-/// A sequential sparse matrix (AIJ) with exact preallocation given per row.
 /// The rows 0..n−1 dealt to the ranks of `comm` in contiguous blocks, the first n mod size
 /// ranks one row more: the layout of a factor spread over the ranks and of the matrices whose
 /// rows are spread with it (SparseMatrix::over_ranks), so that each rank's rows of the
@@ -177,7 +176,6 @@ class SparseMatrix {
                                                std::span<const PetscInt> off_diagonal);
   [[nodiscard]] bool distributed() const { return blocks_.spread(); }
   [[nodiscard]] const RowBlocks& row_blocks() const { return blocks_; }
-  [[nodiscard]] const RowBlocks& column_blocks() const { return col_blocks_; }
   /// Whether this rank holds row r (every row when the matrix is whole).
   [[nodiscard]] bool owns_row(PetscInt r) const { return !distributed() || blocks_.owns(r); }
 

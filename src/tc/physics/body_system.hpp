@@ -118,8 +118,8 @@ class BodySystem {
 
   const Body* body_;
   int dim_;
-  // The rows of M_u and K_u held by this rank: spread over the ranks as the body's factor is
-  // (an undecomposed body on several ranks with MUMPS), else whole.
+  // The rows of M_u, K_u and K_uθ held by this rank: spread over the ranks as the body's
+  // factor is (an undecomposed body on several ranks with MUMPS), else whole.
   core::RowBlocks u_rows_;
   core::RowBlocks theta_rows_;  // K_uθ's columns then, the temperature dofs in blocks
   fem::BodyMatrices m_;
