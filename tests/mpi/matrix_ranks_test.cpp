@@ -1,6 +1,6 @@
 // Matrices with their rows spread over the ranks (core::SparseMatrix::over_ranks, assembled by
-// fem::assemble with RowBlocks: M_u, K_u and the rectangular K_uθ) against the same matrices
-// assembled whole on each rank: every
+// fem::assemble with RowBlocks: M_u, K_u, the rectangular K_uθ, M_θ, K_θ, a film's boundary
+// mass, a lumped M_θ) against the same matrices assembled whole on each rank: every
 // product the time loop takes, the operations forming and constraining an operator, CG on the
 // mass matrix, and the constrained solver on a spread operator. Run at 1 and 2 ranks (label
 // mpi): at 1 rank the spread matrix is an MPIAIJ holding every row, at 2 each holds half.
@@ -80,12 +80,15 @@ TEST(MatrixOverRanks, ProductsAreTheWholeMatrixsGatheredOnEveryRank) {
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   ASSERT_TRUE(spread.stiffness_u.distributed());
   ASSERT_TRUE(spread.coupling_u_theta.distributed());
-  EXPECT_FALSE(spread.mass_theta.distributed());  // the heat matrices stay whole
+  ASSERT_TRUE(spread.mass_theta.distributed());
+  ASSERT_TRUE(spread.stiffness_theta.distributed());
   EXPECT_EQ(spread.stiffness_u.row_blocks().here() == spread.stiffness_u.rows(), size == 1);
   // K_uθ is rectangular: its columns are dealt as the temperature dofs (u ← θ and θ ← u).
   expect_products_agree(whole.coupling_u_theta, spread.coupling_u_theta);
-  for (const auto& [a, b] :
-       {std::pair{&whole.stiffness_u, &spread.stiffness_u}, {&whole.mass_u, &spread.mass_u}}) {
+  for (const auto& [a, b] : {std::pair{&whole.stiffness_u, &spread.stiffness_u},
+                             {&whole.mass_u, &spread.mass_u},
+                             {&whole.mass_theta, &spread.mass_theta},
+                             {&whole.stiffness_theta, &spread.stiffness_theta}}) {
     expect_products_agree(*a, *b);
     const auto x = some_vector(a->rows(), 0.3);
     core::Vector w(a->rows());
@@ -143,6 +146,38 @@ TEST(MatrixOverRanks, ConjugateGradientsOnTheSpreadMassMatrix) {
   EXPECT_LT(max_abs_diff(xa, xb), 1e-10 * xa.max_abs());
   EXPECT_TRUE(same_on_every_rank(xb));
   EXPECT_NEAR(ia, ib, 2);
+}
+
+TEST(MatrixOverRanks, LumpedMassAndFilmMatrixAsTheWholeOnes) {
+  // Row sums and a film's h∫N_aN_b dS on the face z = 0: the same rows as the whole ones',
+  // which the products show (a misplaced sum or facet changes entries by their own size).
+  const auto m = some_mesh();
+  const auto theta = core::RowBlocks::over(PETSC_COMM_WORLD, m.n_nodes());
+  auto [whole, spread] = both();
+  core::Vector ones(m.n_nodes()), work(m.n_nodes());
+  ones.fill(1.0);
+  const double total = whole.mass_theta.quadratic_form(ones, work);  // ∫ρc dx, kept by lumping
+  fem::lump_rows(whole.mass_theta);
+  fem::lump_rows(spread.mass_theta);
+  expect_products_agree(whole.mass_theta, spread.mass_theta);
+  EXPECT_NEAR(spread.mass_theta.quadratic_form(ones, work), total, 1e-13 * total);
+  // diagonal alone: a unit vector's product is its row sum on that row, nothing elsewhere
+  core::Vector e(m.n_nodes()), y(m.n_nodes());
+  e.view()[7] = 1.0;
+  spread.mass_theta.mult(e, y);
+  EXPECT_GT(y.read()[7], 0.0);
+  EXPECT_EQ(y.max_abs(), y.read()[7]);
+  EXPECT_EQ(y.sum(), y.read()[7]);
+  std::vector<fem::WeightedFacet> film;
+  for (const auto& f : m.boundary("zmin")) film.push_back({f, 25.0});
+  const auto a = fem::boundary_mass(m, film), b = fem::boundary_mass(m, film, &theta);
+  ASSERT_TRUE(b.distributed());
+  expect_products_agree(a, b);
+  auto sum = whole.mass_theta.copy();
+  sum.axpy(1.0, a);
+  auto spread_sum = spread.mass_theta.copy();
+  spread_sum.axpy(1.0, b);  // A_θ + H: the patterns shared over the ranks too
+  expect_products_agree(sum, spread_sum);
 }
 
 }  // namespace

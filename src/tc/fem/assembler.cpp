@@ -8,6 +8,7 @@
 #include <cassert>
 #include <cmath>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::fem {
@@ -106,24 +107,32 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
       for (int k = 0; k < row_block; ++k) nnz[row_block * a + k] = col_block * g.degree(a);
     out = core::SparseMatrix(row_block * m.n_nodes(), col_block * m.n_nodes(), nnz);
   }
-  std::vector<PetscInt> rows, cols;
-  RowMajor ke;
-  for (int c = 0; c < m.n_cells(); ++c) {
-    const auto nodes = m.cell(c);
-    rows.clear();
-    cols.clear();
-    for (const int a : nodes) {
-      for (int k = 0; k < row_block; ++k) rows.push_back(row_block * a + k);
-      for (int k = 0; k < col_block; ++k) cols.push_back(col_block * a + k);
+  const auto add_cells = [&] {
+    std::vector<PetscInt> rows, cols;
+    RowMajor ke;
+    for (int c = 0; c < m.n_cells(); ++c) {
+      const auto nodes = m.cell(c);
+      rows.clear();
+      cols.clear();
+      for (const int a : nodes) {
+        for (int k = 0; k < row_block; ++k) rows.push_back(row_block * a + k);
+        for (int k = 0; k < col_block; ++k) cols.push_back(col_block * a + k);
+      }
+      if (spread &&
+          std::none_of(rows.begin(), rows.end(), [&](PetscInt r) { return spread->owns(r); }))
+        continue;  // another rank's cell
+      ke = kernel(c, m.cell_type(c), cell_coords(m, c));
+      assert(ke.rows() == static_cast<Eigen::Index>(rows.size()) &&
+             ke.cols() == static_cast<Eigen::Index>(cols.size()));
+      out.add_values(rows, cols, ke.data());
     }
-    if (spread &&
-        std::none_of(rows.begin(), rows.end(), [&](PetscInt r) { return spread->owns(r); }))
-      continue;  // another rank's cell
-    ke = kernel(c, m.cell_type(c), cell_coords(m, c));
-    assert(ke.rows() == static_cast<Eigen::Index>(rows.size()) &&
-           ke.cols() == static_cast<Eigen::Index>(cols.size()));
-    out.add_values(rows, cols, ke.data());
-  }
+  };
+  // Spread, a kernel that throws on one rank's cells (a bad cell) must stop every rank, not
+  // leave the others in the assembly's communication.
+  if (spread)
+    core::collective_check(spread->comm, "assembly", add_cells);
+  else
+    add_cells();
   out.assemble();
   return out;
 }
@@ -145,12 +154,16 @@ BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat, const core:
   b.coupling_u_theta = assemble(
       m, g, d, 1, [&](int, CellType t, const Coords& x) { return coupling_u_theta(t, x, beta); },
       spread && spread_theta ? spread : nullptr, spread_theta);
-  b.mass_theta = assemble(m, g, 1, 1, [&](int, CellType t, const Coords& x) {
-    return mass_theta(t, x, mat.heat_capacity());
-  });
-  b.stiffness_theta = assemble(m, g, 1, 1, [&](int, CellType t, const Coords& x) {
-    return stiffness_theta(t, x, mat.thermal_conductivity);
-  });
+  b.mass_theta = assemble(
+      m, g, 1, 1,
+      [&](int, CellType t, const Coords& x) { return mass_theta(t, x, mat.heat_capacity()); },
+      spread_theta);
+  b.stiffness_theta = assemble(
+      m, g, 1, 1,
+      [&](int, CellType t, const Coords& x) {
+        return stiffness_theta(t, x, mat.thermal_conductivity);
+      },
+      spread_theta);
   return b;
 }
 
@@ -201,29 +214,56 @@ core::SparseMatrix singular_mass_u(const mesh::Mesh& m, const Material& mat,
       spread);
 }
 
-core::SparseMatrix boundary_mass(const mesh::Mesh& m, const std::vector<WeightedFacet>& facets) {
+core::SparseMatrix boundary_mass(const mesh::Mesh& m, const std::vector<WeightedFacet>& facets,
+                                 const core::RowBlocks* spread) {
   std::vector<std::vector<const WeightedFacet*>> by_cell(static_cast<size_t>(m.n_cells()));
   for (const auto& f : facets) by_cell.at(static_cast<size_t>(f.facet.cell)).push_back(&f);
-  return assemble(m, node_graph(m), 1, 1, [&](int c, CellType, const Coords&) {
-    const auto nodes = m.cell(c);
-    const auto n = static_cast<Eigen::Index>(nodes.size());
-    Eigen::MatrixXd me = Eigen::MatrixXd::Zero(n, n);  // zeros keep the node graph's pattern
-    for (const auto* f : by_cell[static_cast<size_t>(c)]) {
-      const auto fn = f->facet.node_span();
-      const Eigen::MatrixXd hf = f->weight * facet_mass(f->facet.type, facet_coords(m, f->facet));
-      std::vector<Eigen::Index> local;
-      for (const int a : fn) {
-        const auto it = std::find(nodes.begin(), nodes.end(), a);
-        if (it == nodes.end())
-          throw Error(fmt::format("film: facet node {} is not a node of its cell {}", a, c));
-        local.push_back(it - nodes.begin());
-      }
-      for (size_t i = 0; i < local.size(); ++i)
-        for (size_t j = 0; j < local.size(); ++j)
-          me(local[i], local[j]) += hf(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
-    }
-    return me;
-  });
+  return assemble(
+      m, node_graph(m), 1, 1,
+      [&](int c, CellType, const Coords&) {
+        const auto nodes = m.cell(c);
+        const auto n = static_cast<Eigen::Index>(nodes.size());
+        Eigen::MatrixXd me = Eigen::MatrixXd::Zero(n, n);  // zeros keep the node graph's pattern
+        for (const auto* f : by_cell[static_cast<size_t>(c)]) {
+          const auto fn = f->facet.node_span();
+          const Eigen::MatrixXd hf =
+              f->weight * facet_mass(f->facet.type, facet_coords(m, f->facet));
+          std::vector<Eigen::Index> local;
+          for (const int a : fn) {
+            const auto it = std::find(nodes.begin(), nodes.end(), a);
+            if (it == nodes.end())
+              throw Error(fmt::format("film: facet node {} is not a node of its cell {}", a, c));
+            local.push_back(it - nodes.begin());
+          }
+          for (size_t i = 0; i < local.size(); ++i)
+            for (size_t j = 0; j < local.size(); ++j)
+              me(local[i], local[j]) +=
+                  hf(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+        }
+        return me;
+      },
+      spread);
+}
+
+void lump_rows(core::SparseMatrix& m) {
+  // Each rank sums the rows it holds (all of them when m is whole).
+  PetscInt first = 0, end = 0;
+  TC_PETSC(MatGetOwnershipRange(m.get(), &first, &end));
+  std::vector<double> sums;
+  sums.reserve(static_cast<size_t>(end - first));
+  for (PetscInt r = first; r < end; ++r) {
+    PetscInt n = 0;
+    const PetscScalar* v = nullptr;
+    TC_PETSC(MatGetRow(m.get(), r, &n, nullptr, &v));
+    double sum = 0;
+    for (PetscInt k = 0; k < n; ++k) sum += v[k];
+    TC_PETSC(MatRestoreRow(m.get(), r, &n, nullptr, &v));
+    sums.push_back(sum);
+  }
+  TC_PETSC(MatZeroEntries(m.get()));
+  for (PetscInt r = first; r < end; ++r)
+    TC_PETSC(MatSetValue(m.get(), r, r, sums[static_cast<size_t>(r - first)], INSERT_VALUES));
+  m.assemble();
 }
 
 std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f) {

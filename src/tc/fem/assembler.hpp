@@ -36,8 +36,8 @@ struct BodyMatrices {
   core::SparseMatrix mass_u, stiffness_u, coupling_u_theta, mass_theta, stiffness_theta;
 };
 /// With `spread` (the displacement dofs' blocks), M_u and K_u have their rows spread over the
-/// ranks, and with `spread_theta` (the temperature dofs') K_uθ too, its columns dealt in
-/// `spread_theta`; M_θ and K_θ stay whole.
+/// ranks; with `spread_theta` (the temperature dofs'), M_θ and K_θ, and with both K_uθ, its
+/// columns dealt in `spread_theta`.
 [[nodiscard]] BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat,
                                          const core::RowBlocks* spread = nullptr,
                                          const core::RowBlocks* spread_theta = nullptr);
@@ -61,9 +61,15 @@ struct WeightedFacet {
 };
 /// Σ weight ∫ N_a N_b dS over the facets (the film term h∫θv of a Robin boundary), assembled
 /// cell by cell with the node graph's pattern: the pattern of M_θ and K_θ, so that
-/// a·M_θ + b·K_θ + H is formed with the same nonzeros.
+/// a·M_θ + b·K_θ + H is formed with the same nonzeros (and the same rows, spread over the
+/// ranks in `spread` as theirs are).
 [[nodiscard]] core::SparseMatrix boundary_mass(const mesh::Mesh& m,
-                                               const std::vector<WeightedFacet>& facets);
+                                               const std::vector<WeightedFacet>& facets,
+                                               const core::RowBlocks* spread = nullptr);
+
+/// Row-sum lumping in place: each row's sum on its diagonal, the other entries zero but kept
+/// in the pattern (so a·M + b·K still shares it with K); whole or spread over the ranks.
+void lump_rows(core::SparseMatrix& m);
 
 /// ∫ f N_a dx per node (length n_nodes); f = 1 when empty.
 [[nodiscard]] std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f = {});

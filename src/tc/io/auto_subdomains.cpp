@@ -11,10 +11,11 @@ double direct_memory(int dim, double u_dofs, int factor_ranks) {
     return 2.93e3 * u_dofs * std::log2(std::max(u_dofs, 2.0)) / std::log2(181202.0);
   // 3D: the factor, 1.1 GB at 108 k dofs (bench/assembly), grows as dofs^1.31; the rest (the
   // matrices, the vectors) as the dofs: 27.8 k dofs 0.38 GB, 108 k 1.74 GB measured. Over
-  // ranks, each holds its share of the factor and of M_u and K_u (81 entries of 12 bytes a
-  // row each: 1.9 kB of the 5.9 kB per dof), the rest whole.
+  // ranks, each holds its share of the factor and of the body's matrices: M_u and K_u (81
+  // entries of 12 bytes a row each), K_uθ (27 a row), M_θ, K_θ and A_θ (27 a row of a third
+  // as many rows): 2.6 kB of the 5.9 kB per dof; the rest whole.
   const double ranks = std::max(factor_ranks, 1);
-  return (5.9e3 - 1.9e3 * (1.0 - 1.0 / ranks)) * u_dofs +
+  return (5.9e3 - 2.6e3 * (1.0 - 1.0 / ranks)) * u_dofs +
          1.1e9 * std::pow(u_dofs / 107811.0, 1.31) / ranks;
 }
 

@@ -23,7 +23,7 @@ std::vector<PetscInt> keys(const std::map<PetscInt, TimeTable>& m) {
 }
 
 /// The dofs of an undecomposed body (`per_node` a node) in the blocks its factor will have
-/// (one rule: core::ranks_sharing_a_factor), so that no rank holds M_u, K_u or K_uθ whole;
+/// (one rule: core::ranks_sharing_a_factor), so that no rank holds a matrix of the body whole;
 /// none otherwise.
 core::RowBlocks spread_rows(const Problem& problem, const Body& body, int per_node) {
   if (body.subdomains > 1 || core::ranks_sharing_a_factor(problem.solver.factorization) <= 1)
@@ -51,11 +51,11 @@ BodySystem::BodySystem(const Problem& problem, int index)
   for (const auto& bc : problem.boundaries)
     if (bc.body == index) add_boundary(bc, body_->name);
   if (!constant_film_facets_.empty())
-    constant_film_ = fem::boundary_mass(body_->mesh, constant_film_facets_);
+    constant_film_ = fem::boundary_mass(body_->mesh, constant_film_facets_, spread(theta_rows_));
   u_dofs_ = keys(u_prescribed_);
   th_dofs_ = keys(th_prescribed_);
   lumped_ = problem.physics.lumped_heat_capacity;
-  if (lumped_) lump(m_.mass_theta);
+  if (lumped_) fem::lump_rows(m_.mass_theta);
   if (problem.time.scheme == Scheme::dynamic &&
       problem.time.contact_scheme == ContactScheme::modified_mass)
     for (const auto& c : problem.contacts)  // every contact surface of the body, of any pair
@@ -78,8 +78,9 @@ BodySystem::BodySystem(const Problem& problem, int index)
 
 fem::BodyMatrices BodySystem::subdomain_matrices(int s) const {
   auto m = fem::assemble_body(subdomains_.at(static_cast<size_t>(s)).mesh, body_->material);
-  if (lumped_) lump(m.mass_theta);  // row sums are additive over cells: Σ_s lumped = lumped
-  if (!massless_.empty()) {         // cell by cell, so Σ_s of the subdomains' is the body's
+  if (lumped_)
+    fem::lump_rows(m.mass_theta);  // row sums are additive over cells: Σ_s lumped = lumped
+  if (!massless_.empty()) {        // cell by cell, so Σ_s of the subdomains' is the body's
     const auto& sub = subdomains_.at(static_cast<size_t>(s));
     std::vector<char> local(sub.global_node.size());
     for (size_t a = 0; a < local.size(); ++a)
@@ -172,14 +173,6 @@ void BodySystem::for_each_radiated(double t, const core::Vector& theta, Visit&& 
   }
 }
 
-void BodySystem::lump(core::SparseMatrix& m) {
-  // Row sums on the diagonal, the pattern kept (so a·M + b·K still shares it with K).
-  core::Vector sums(m.rows());
-  TC_PETSC(MatGetRowSum(m.get(), sums.get()));
-  TC_PETSC(MatZeroEntries(m.get()));
-  TC_PETSC(MatDiagonalSet(m.get(), sums.get(), INSERT_VALUES));
-}
-
 void BodySystem::add_boundary(const BoundaryCondition& bc, const std::string& body_name) {
   const auto& mesh = body_->mesh;
   const auto nodes = mesh.boundary_nodes(bc.where);
@@ -216,7 +209,7 @@ void BodySystem::add_boundary(const BoundaryCondition& bc, const std::string& bo
       if (f.constant)
         constant_film_facets_.insert(constant_film_facets_.end(), facets.begin(), facets.end());
       else
-        f.unit = fem::boundary_mass(mesh, facets);
+        f.unit = fem::boundary_mass(mesh, facets, spread(theta_rows_));
       films_.push_back(std::move(f));
     }
     if (bc.radiation) radiation_.push_back({*bc.radiation, weights});

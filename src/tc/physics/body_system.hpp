@@ -29,8 +29,9 @@ class BodySystem {
   [[nodiscard]] int dim() const { return dim_; }
   [[nodiscard]] PetscInt n_u() const { return dim_ * body_->mesh.n_nodes(); }
   [[nodiscard]] PetscInt n_theta() const { return body_->mesh.n_nodes(); }
-  /// M_u, K_u and K_uθ have their rows spread over the ranks (core::SparseMatrix::over_ranks)
-  /// when the body is undecomposed and its factor is spread (core::ranks_sharing_a_factor > 1).
+  /// All five have their rows spread over the ranks (core::SparseMatrix::over_ranks) when the
+  /// body is undecomposed and its factors are spread (core::ranks_sharing_a_factor > 1): M_u,
+  /// K_u and K_uθ in the displacement dofs' blocks, M_θ and K_θ in the temperature dofs'.
   [[nodiscard]] const fem::BodyMatrices& matrices() const { return m_; }
 
   [[nodiscard]] const std::vector<PetscInt>& u_dirichlet_dofs() const { return u_dofs_; }
@@ -113,15 +114,15 @@ class BodySystem {
     Radiation radiation;
     std::vector<std::pair<PetscInt, double>> weights;  // ∫N_a dS
   };
-  static void lump(core::SparseMatrix& m);  // row-sum lumping, in place
   static void apply(const std::vector<NodalLoad>& loads, int block, double t, core::Vector& f);
 
   const Body* body_;
   int dim_;
-  // The rows of M_u, K_u and K_uθ held by this rank: spread over the ranks as the body's
-  // factor is (an undecomposed body on several ranks with MUMPS), else whole.
+  // The rows of the matrices held by this rank: spread over the ranks as the body's factors
+  // are (an undecomposed body on several ranks with MUMPS), else whole. theta_rows_ also
+  // deals K_uθ's columns, and the film matrices' rows.
   core::RowBlocks u_rows_;
-  core::RowBlocks theta_rows_;  // K_uθ's columns then, the temperature dofs in blocks
+  core::RowBlocks theta_rows_;
   fem::BodyMatrices m_;
   std::vector<double> volumes_;
   std::map<PetscInt, TimeTable> u_prescribed_, th_prescribed_;  // a later [[boundary]] wins
