@@ -1,8 +1,9 @@
 // A factor spread over the ranks (core::CholeskySolver with FactorRanks::all_ranks: MUMPS over
 // PETSC_COMM_WORLD) against the same matrix factorised on each rank alone: its solves, its
 // block solves, its selected entries of A⁻¹, and the Dirichlet-constrained solver and the
-// contact compliance built on them. Run at 1 and 2 ranks (label mpi): at 1 rank both factors
-// are the rank's own, at 2 the first is MUMPS's over both ranks.
+// contact compliance built on them (whole on every rank, or its rows dealt over the ranks). Run at
+// 1 and 2 ranks (label mpi): at 1 rank both factors are the rank's own, at 2 the first is MUMPS's
+// over both ranks.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -176,6 +177,28 @@ TEST(CholeskyOverRanks, ConstrainedSolverAndComplianceAgreeWithTheRanksOwn) {
   const double scale = s_own.matrix().cwiseAbs().maxCoeff();
   EXPECT_LT((s_spread.matrix() - s_own.matrix()).cwiseAbs().maxCoeff(), kTolerance * scale);
   EXPECT_EQ(s_spread.matrix(), s_spread.matrix().transpose());  // exactly symmetric
+
+  // Its rows dealt over the ranks: each rank keeps the rows q ≡ rank (mod ranks) of the same
+  // columns, and the new block's means are taken the same way, so that the rows gathered are
+  // s_spread's S to the bit. On one rank (or a rank's own factor) S stays whole.
+  physics::DofCompliance s_rows(spread, n, true);
+  s_rows.cover(top);
+  s_rows.cover(side);
+  EXPECT_EQ(s_rows.rows_spread(), world_size() > 1);
+  const auto t = s_spread.matrix().rows();
+  ASSERT_EQ(s_rows.matrix().cols(), t);
+  ASSERT_EQ(s_rows.matrix().rows(), static_cast<Eigen::Index>(s_rows.rows().size()));
+  Eigen::MatrixXd gathered = Eigen::MatrixXd::Zero(t, t);
+  for (size_t j = 0; j < s_rows.rows().size(); ++j) {
+    const auto q = static_cast<Eigen::Index>(s_rows.rows()[j]);
+    EXPECT_EQ(s_rows.row_of(q), static_cast<PetscInt>(j));
+    gathered.row(q) = s_rows.matrix().row(static_cast<Eigen::Index>(j));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, gathered.data(), static_cast<int>(t * t), MPI_DOUBLE, MPI_SUM,
+                PETSC_COMM_WORLD);  // each row from one rank, zeros from the others: exact
+  EXPECT_EQ(gathered, s_spread.matrix());
+  physics::DofCompliance s_whole(own, n, true);  // a rank's own factor: nothing to deal
+  EXPECT_FALSE(s_whole.rows_spread());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstring>
@@ -33,9 +34,13 @@ void sum_over_ranks(MPI_Comm comm, double* data, long n, const char* who) {
   if (MPI_Comm_size(comm, &size) != MPI_SUCCESS)
     throw Error(fmt::format("{}: MPI_Comm_size failed", who));
   if (size == 1) return;
-  if (MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, comm) !=
-      MPI_SUCCESS)
-    throw Error(fmt::format("{}: MPI_Allreduce failed", who));
+  // In pieces of 8 MB: MPI's own buffers for a large sum would be as large as the data (an
+  // explicit F of 3 000 rows is 72 MB), and a count must fit an int.
+  constexpr long piece = 1L << 20;
+  for (long at = 0; at < n; at += piece)
+    if (MPI_Allreduce(MPI_IN_PLACE, data + at, static_cast<int>(std::min(piece, n - at)),
+                      MPI_DOUBLE, MPI_SUM, comm) != MPI_SUCCESS)
+      throw Error(fmt::format("{}: MPI_Allreduce failed", who));
 }
 
 void collective_check(MPI_Comm comm, const char* what, const std::function<void()>& phase) {

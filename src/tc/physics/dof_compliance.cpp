@@ -1,7 +1,9 @@
 #include "tc/physics/dof_compliance.hpp"
 
 #include <algorithm>
+#include <cassert>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::physics {
@@ -31,8 +33,42 @@ using dense::assemble;
 using dense::Dense;
 using dense::zero_dense;
 
-DofCompliance::DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs)
-    : solver_(solver), index_(static_cast<size_t>(n_dofs), -1) {}
+DofCompliance::DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs, bool rows_over_ranks)
+    : solver_(solver), index_(static_cast<size_t>(n_dofs), -1) {
+  // The factor spread over PETSC_COMM_WORLD's ranks gives every rank every new column at once
+  // (the selected inverse): each keeps its rows of them.
+  if (rows_over_ranks && solver.unit_rows_at_once()) {
+    core::check_mpi(MPI_Comm_size(PETSC_COMM_WORLD, &ranks_), "MPI_Comm_size");
+    core::check_mpi(MPI_Comm_rank(PETSC_COMM_WORLD, &rank_), "MPI_Comm_rank");
+  }
+}
+
+template <class Column>
+void DofCompliance::store(Eigen::Index first, Eigen::Index k, Eigen::Index old, Column&& column) {
+  // Row j of this rank holds T-position rows_[j] = rank_ + ranks_·j. An entry of two new dofs
+  // comes from both their columns (equal up to the solver's round-off): it is their mean,
+  // summed as a/2 + b/2 into the zeroed block (the bits of (a + b)/2), so that S is exactly
+  // symmetric.
+  const auto t = static_cast<Eigen::Index>(dofs_.size());
+  const auto n_rows = static_cast<Eigen::Index>(rows_.size());
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const Eigen::Index at = first + c;
+    for (Eigen::Index j = 0; j < n_rows; ++j) {
+      const auto q = static_cast<Eigen::Index>(rows_[static_cast<size_t>(j)]);
+      if (q < old)
+        s_(j, at) = column(q, c);
+      else
+        s_(j, at) += 0.5 * column(q, c);
+    }
+    if (at % ranks_ != rank_) continue;
+    const Eigen::Index row = at / ranks_;  // the new column's own row, by symmetry
+    for (Eigen::Index q = 0; q < t; ++q)
+      if (q < old)
+        s_(row, q) = column(q, c);
+      else
+        s_(row, q) += 0.5 * column(q, c);
+  }
+}
 
 PetscInt DofCompliance::missing(std::span<const PetscInt> dofs) const {
   std::vector<PetscInt> fresh;
@@ -65,7 +101,13 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
   const auto t = static_cast<Eigen::Index>(dofs_.size());
   if (t == old) return 0;
   chunks_.push_back(static_cast<PetscInt>(t - old));
-  s_.conservativeResize(t, t);
+  const auto old_rows = static_cast<Eigen::Index>(rows_.size());
+  for (Eigen::Index q = old; q < t; ++q)
+    if (q % ranks_ == rank_) rows_.push_back(static_cast<PetscInt>(q));
+  const auto n_rows = static_cast<Eigen::Index>(rows_.size());
+  s_.conservativeResize(n_rows, t);
+  s_.bottomRows(n_rows - old_rows).setZero();
+  s_.rightCols(t - old).setZero();
   constexpr Eigen::Index block = 64;  // bounds the dense work space to n × block
   std::vector<double> part;           // the new columns on T, when the factor gives them directly
   // The restricted solves' backward pass visits every supernode of T for each block of new
@@ -75,19 +117,17 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
     forward_.reset();
     by_forward_ = solver_.forward_compliance_pays(dofs_, static_cast<int>(block));
   }
-  if (by_forward_) {
+  if (by_forward_) {  // CHOLMOD's factor, on this rank alone: S whole
+    assert(ranks_ == 1);
     const auto fresh = std::span(dofs_).subspan(static_cast<size_t>(old));
     if (old == 0 && solver_.forward_compliance(forward_, fresh, s_.data()))
       return static_cast<PetscInt>(t);  // S(T, T), exactly symmetric
     part.resize(static_cast<size_t>(t * (t - old)));
     if (old > 0 && solver_.forward_compliance(forward_, fresh, part.data())) {
-      for (Eigen::Index c = 0; c < t - old; ++c)
-        for (Eigen::Index a = 0; a < t; ++a) {
-          const double v = part[static_cast<size_t>(a + c * t)];
-          s_(a, old + c) = v;
-          if (a < old) s_(old + c, a) = v;
-        }
-      return static_cast<PetscInt>(t - old);  // the fresh block exactly symmetric already
+      // the fresh block exactly symmetric already: its means are its entries
+      store(old, t - old, old,
+            [&](Eigen::Index a, Eigen::Index c) { return part[static_cast<size_t>(a + c * t)]; });
+      return static_cast<PetscInt>(t - old);
     }
     by_forward_ = false;  // the factor cannot (not expected after a first success)
     forward_.reset();
@@ -103,12 +143,8 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
     if (solver_.solve_unit_rows(
             std::span(dofs_).subspan(static_cast<size_t>(j0), static_cast<size_t>(k)),
             std::span(dofs_).first(static_cast<size_t>(t)), part.data())) {
-      for (Eigen::Index c = 0; c < k; ++c)
-        for (Eigen::Index a = 0; a < t; ++a) {
-          const double v = part[static_cast<size_t>(a + c * t)];
-          s_(a, j0 + c) = v;
-          if (a < old) s_(j0 + c, a) = v;
-        }
+      store(j0, k, old,
+            [&](Eigen::Index a, Eigen::Index c) { return part[static_cast<size_t>(a + c * t)]; });
       continue;
     }
     Dense rhs = zero_dense(n, k), sol = zero_dense(n, k);
@@ -127,23 +163,9 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
     TC_PETSC(MatDenseGetArrayRead(sol.get(), &x));
     PetscInt ld = n;
     TC_PETSC(MatDenseGetLDA(sol.get(), &ld));
-    for (Eigen::Index c = 0; c < k; ++c)
-      for (Eigen::Index a = 0; a < t; ++a) {
-        const double v = x[c * ld + dofs_[a]];
-        s_(a, j0 + c) = v;
-        if (a < old) s_(j0 + c, a) = v;  // the new row of the old dofs: S symmetric
-      }
+    store(j0, k, old, [&](Eigen::Index a, Eigen::Index c) { return x[c * ld + dofs_[a]]; });
     TC_PETSC(MatDenseRestoreArrayRead(sol.get(), &x));
   }
-  // The block of new dofs with itself was filled from both sides; make it exactly symmetric
-  // (its two halves differ by the solver's round-off only), in place: a copy would be as large
-  // as S on the first cover.
-  for (Eigen::Index j = old; j < t; ++j)
-    for (Eigen::Index i = old; i < j; ++i) {
-      const double v = 0.5 * (s_(i, j) + s_(j, i));  // the same bits as 0.5 (F + Fᵀ)
-      s_(i, j) = v;
-      s_(j, i) = v;
-    }
   return static_cast<PetscInt>(t - old);
 }
 
@@ -154,6 +176,7 @@ void DofCompliance::replay(std::span<const PetscInt> dofs, std::span<const Petsc
   for (const PetscInt d : dofs_) index_[d] = -1;
   dofs_.clear();
   chunks_.clear();
+  rows_.clear();
   s_.resize(0, 0);
   size_t at = 0;
   for (const PetscInt k : chunks) {

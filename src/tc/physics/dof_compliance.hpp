@@ -28,9 +28,13 @@ void assemble(::Mat a);
 /// factorisation (ConstrainedSolver::forward_compliance_pays, at the first cover), S is grown
 /// by forward solves alone instead (S = YᵀY, ConstrainedSolver::forward_compliance), keeping
 /// Y: fewer flops, the same S to round-off but not to the bit.
+///
+/// With `rows_over_ranks` and a factor spread over the ranks (ConstrainedSolver::
+/// unit_rows_at_once, more than one rank), each rank holds the rows of S at the T-positions
+/// q ≡ rank (mod ranks) only, S(T_rank, T): S is not replicated. Otherwise every rank holds S.
 class DofCompliance {
  public:
-  DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs);
+  DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs, bool rows_over_ranks = false);
   /// The dofs of `dofs` not yet in T (each counted once).
   [[nodiscard]] PetscInt missing(std::span<const PetscInt> dofs) const;
   /// Adds the dofs not yet in T; returns the number of solves spent.
@@ -40,7 +44,15 @@ class DofCompliance {
   [[nodiscard]] PetscInt size() const { return static_cast<PetscInt>(dofs_.size()); }
   /// The body's dofs (the range of T).
   [[nodiscard]] PetscInt n_dofs() const { return static_cast<PetscInt>(index_.size()); }
+  /// S, or this rank's rows of it (rows_over_ranks): |rows()| × |T|, column-major; S is
+  /// symmetric, so column q holds S(q, ·) on this rank's rows.
   [[nodiscard]] const Eigen::MatrixXd& matrix() const { return s_; }
+  /// Whether the rows are dealt over the ranks, and the T-position of each row this rank holds
+  /// (all of T, in order, when not).
+  [[nodiscard]] bool rows_spread() const { return ranks_ > 1; }
+  [[nodiscard]] const std::vector<PetscInt>& rows() const { return rows_; }
+  /// The row of matrix() holding T-position q, or −1 when another rank holds it.
+  [[nodiscard]] PetscInt row_of(PetscInt q) const { return q % ranks_ == rank_ ? q / ranks_ : -1; }
   /// T in the order added, and the number of dofs each cover() added: enough to rebuild S
   /// with the same solves in the same blocks, hence the same bits (restart).
   [[nodiscard]] const std::vector<PetscInt>& dofs() const { return dofs_; }
@@ -55,7 +67,14 @@ class DofCompliance {
   void replay(std::span<const PetscInt> dofs, std::span<const PetscInt> chunks);
 
  private:
+  // The new columns S(T, fresh) given by `column(a, c)` (row a of T, column c of the fresh
+  // ones, from `first` on) into this rank's rows, and their rows on the old columns by symmetry.
+  template <class Column>
+  void store(Eigen::Index first, Eigen::Index k, Eigen::Index old, Column&& column);
+
   const ConstrainedSolver& solver_;
+  int ranks_ = 1, rank_ = 0;    // over which rows are dealt (1: S whole here)
+  std::vector<PetscInt> rows_;  // T-positions of this rank's rows of S
   // Whether S is grown by forward solves alone (decided at the first cover, by its cost), and
   // their Y for the columns added later.
   bool by_forward_ = false;

@@ -11,6 +11,7 @@
 #include <thread>
 #include <utility>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::physics {
@@ -23,13 +24,18 @@ DualContactSolver::DualContactSolver(std::vector<const ConstrainedSolver*> bodie
                                      std::vector<PetscInt> n_u, DualContactSettings settings)
     : bodies_(std::move(bodies)), settings_(std::move(settings)) {
   assert(bodies_.size() == n_u.size());
+  // S's rows dealt over the ranks when every body's factor is (all or none: F is then summed
+  // over the ranks, each rank's part from its rows of every S).
+  const bool over_ranks = std::all_of(bodies_.begin(), bodies_.end(),
+                                      [](const auto* b) { return b->unit_rows_at_once(); });
   for (int i = 0; i < n_bodies(); ++i) {
-    compliance_.emplace_back(*bodies_[i], n_u[i]);
+    compliance_.emplace_back(*bodies_[i], n_u[i], over_ranks);
     w_in_.emplace_back(n_u[i]);
     y_.emplace_back(n_u[i]);
   }
   s_used_.resize(bodies_.size());
-  s_used_size_.assign(bodies_.size(), 0);
+  s_used_rows_.assign(bodies_.size(), 0);
+  used_row_.resize(bodies_.size());
 }
 
 DualContactSolver::DualContactSolver(const ConstrainedSolver& slave,
@@ -252,6 +258,10 @@ bool DualContactSolver::form_from_compliance() {
   PetscInt ldf = m;
   TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ldf));
   form_bands(bt, fv, ldf);
+  // Each rank's part of G from its rows of the S_i (DofCompliance::rows_spread), summed: the
+  // same G on every rank.
+  if (compliance_.front().rows_spread())
+    core::sum_over_ranks(PETSC_COMM_WORLD, fv, static_cast<long>(ldf) * m, "the explicit F");
   // F = ½(G + Gᵀ) in place by tiles: exactly symmetric, as dsymv reads one triangle
   constexpr PetscInt tile = 64;
   for (PetscInt j0 = 0; j0 < m; j0 += tile)
@@ -274,6 +284,8 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
   // cache while every column c passes, straight into F's storage. The bands write disjoint
   // rows of F and are dealt to settings_.form_threads threads (by default the rank's BLAS
   // threads, its CPUs): every entry is the same sum in the same order whatever the threads.
+  // With S's rows dealt over the ranks, q runs over this rank's rows of S only in W_i and in
+  // F_i: each rank forms its part of G, which the caller sums.
   const PetscInt m = n_rows();
   const int nb = n_bodies();
   constexpr PetscInt band = 32;
@@ -287,7 +299,7 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
       for (int i = 0; i < nb; ++i) {
         // S_UU, or S itself where the rows reach all of T (no copy)
         const double* sm = s_used_[i].empty() ? compliance_[i].matrix().data() : s_used_[i].data();
-        const auto t = static_cast<size_t>(s_used_size_[i]);
+        const auto t = static_cast<size_t>(s_used_rows_[i]);  // this rank's rows of S_UU
         const auto& r = bt[i];
         row_major.assign(static_cast<size_t>(nr) * t, 0.0);
         for (PetscInt k = 0; k < nr; ++k) {
@@ -308,11 +320,13 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
         double sum[band] = {};  // Σ_i F_i(r, c), summed body by body
         for (int i = 0; i < nb; ++i) {
           const auto& r = bt[i];
+          const auto& row_of = used_row_[static_cast<size_t>(i)];
           double acc[band] = {};
           for (PetscInt e = r.start[c]; e < r.start[c + 1]; ++e) {
+            const PetscInt q = row_of[static_cast<size_t>(r.pos[static_cast<size_t>(e)])];
+            if (q < 0) continue;  // another rank's row of S
             const double v = r.value[static_cast<size_t>(e)];
-            const double* wq = w[static_cast<size_t>(i)].data() +
-                               static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * band;
+            const double* wq = w[static_cast<size_t>(i)].data() + static_cast<size_t>(q) * band;
             for (PetscInt k = 0; k < nr; ++k) acc[k] += v * wq[k];
           }
           for (PetscInt k = 0; k < nr; ++k) sum[k] = i == 0 ? acc[k] : sum[k] + acc[k];
@@ -350,8 +364,9 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
 }
 
 void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {
-  const auto& full = compliance_[i].matrix();
-  const auto t = static_cast<size_t>(compliance_[i].size());
+  const auto& comp = compliance_[i];
+  const auto& full = comp.matrix();  // this rank's rows of S (all of them unless spread)
+  const auto t = static_cast<size_t>(comp.size());
   std::vector<PetscInt> at(t, -1);  // T-position → U-position
   for (const PetscInt q : pos) at[static_cast<size_t>(q)] = 0;
   std::vector<PetscInt> used;
@@ -361,7 +376,16 @@ void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {
       used.push_back(static_cast<PetscInt>(q));
     }
   const size_t u = used.size();
-  s_used_size_[i] = static_cast<PetscInt>(u);
+  // This rank's rows of S_UU: U-position → its row, or −1; the rows of S they are.
+  auto& row_of = used_row_[static_cast<size_t>(i)];
+  row_of.assign(u, -1);
+  std::vector<PetscInt> kept;
+  for (size_t b = 0; b < u; ++b)
+    if (const PetscInt r = comp.row_of(used[b]); r >= 0) {
+      row_of[b] = static_cast<PetscInt>(kept.size());
+      kept.push_back(r);
+    }
+  s_used_rows_[i] = static_cast<PetscInt>(kept.size());
   auto& su = s_used_[i];
   if (u == t) {  // U = T: the positions stay, S is used as it is
     su.clear();
@@ -369,10 +393,12 @@ void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {
     return;
   }
   for (auto& q : pos) q = at[static_cast<size_t>(q)];
-  su.resize(u * u);
+  const size_t rows = kept.size();
+  const auto ld = static_cast<size_t>(full.rows());
+  su.resize(rows * u);
   for (size_t b = 0; b < u; ++b) {
-    const double* col = full.data() + static_cast<size_t>(used[b]) * t;
-    for (size_t a = 0; a < u; ++a) su[b * u + a] = col[used[a]];
+    const double* col = full.data() + static_cast<size_t>(used[b]) * ld;
+    for (size_t a = 0; a < rows; ++a) su[b * rows + a] = col[kept[a]];
   }
 }
 

@@ -196,10 +196,12 @@ class DualContactSolver {
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
   std::vector<DofCompliance> compliance_;  // per body
-  // form_from_compliance: S_i on the T-positions the rows reach, when they are fewer than T
-  // (else empty)
+  // form_from_compliance: S_i on the T-positions U the rows reach, when they are fewer than T
+  // (else empty), this rank's rows of it (all unless S's rows are spread), their number, and
+  // each U-position's row (−1: another rank's)
   std::vector<std::vector<double>> s_used_;
-  std::vector<PetscInt> s_used_size_;
+  std::vector<PetscInt> s_used_rows_;
+  std::vector<std::vector<PetscInt>> used_row_;
   mutable std::vector<core::Vector> w_in_, y_;  // per body: B_iᵀx and A_i⁻¹B_iᵀx
 };
 
