@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cassert>
 
-#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::physics {
@@ -38,8 +37,8 @@ DofCompliance::DofCompliance(const ConstrainedSolver& solver, PetscInt n_dofs, b
   // The factor spread over PETSC_COMM_WORLD's ranks gives every rank every new column at once
   // (the selected inverse): each keeps its rows of them.
   if (rows_over_ranks && solver.unit_rows_at_once()) {
-    core::check_mpi(MPI_Comm_size(PETSC_COMM_WORLD, &ranks_), "MPI_Comm_size");
-    core::check_mpi(MPI_Comm_rank(PETSC_COMM_WORLD, &rank_), "MPI_Comm_rank");
+    ranks_ = core::PetscSession::size();
+    rank_ = core::PetscSession::rank();
   }
 }
 
