@@ -34,8 +34,10 @@ TEST(ExplicitFOverRanks, IsTheRanksOwnFToRoundOffAndTheSameOnEveryRank) {
                                             core::FactorRanks::all_ranks);
   const physics::ConstrainedSolver spread_m(master.matrices.stiffness_u, master.dirichlet, "",
                                             core::FactorRanks::all_ranks);
-  physics::DualContactSolver over(spread_s, spread_m, n_s, n_m, {});
-  physics::DualContactSolver own(*slave.solver, *master.solver, n_s, n_m, {});
+  physics::DualContactSettings settings;
+  settings.scale = false;  // explicit_matrix() is then F itself
+  physics::DualContactSolver over(spread_s, spread_m, n_s, n_m, settings);
+  physics::DualContactSolver own(*slave.solver, *master.solver, n_s, n_m, settings);
   // The second rows overlap the first and reach new dofs; the third are the first again: no
   // new dof, and U (the dofs they reach) smaller than T.
   const std::tuple<int, PetscInt, PetscInt> cases[] = {{6, 0, 7}, {8, 11, 5}, {6, 0, 7}};

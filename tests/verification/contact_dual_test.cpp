@@ -12,6 +12,7 @@
 #include "support/contact_rows.hpp"
 #include "support/problems.hpp"
 #include "support/roller_blocks.hpp"
+#include "support/vectors.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/physics/dual_contact.hpp"
 
@@ -119,6 +120,7 @@ TEST(ExplicitF, FromTheComplianceEqualsTheSolvesToRoundOff) {
   const PetscInt n_s = slave.u_prescribed.size(), n_m = master.u_prescribed.size();
   physics::DualContactSettings with, without;
   without.compliance_limit = 0;
+  with.scale = without.scale = false;  // explicit_matrix() is then F itself
   physics::DualContactSolver a(*slave.solver, *master.solver, n_s, n_m, with);
   physics::DualContactSolver b(*slave.solver, *master.solver, n_s, n_m, without);
   // Three sets of rows: the second overlaps the first and reaches new dofs, the third is the
@@ -159,6 +161,36 @@ TEST(ExplicitF, FromTheComplianceEqualsTheSolvesToRoundOff) {
   EXPECT_GT(solves[1], 0);
   EXPECT_LT(solves[1], solves[0] + 24 + 72);
   EXPECT_EQ(solves[2], 0);
+}
+
+TEST(ExplicitF, ScaledInPlaceGivesTheSameConstraintValues) {
+  // With the QP scaled, Σ F Σ takes F's place and B u − Fλ is formed as B u − Σ⁻¹(Σ F Σ)Σ⁻¹λ:
+  // the same values as from F itself and from the matrix-free F (two solves per body), to the
+  // round-off of the products (1e-12 of the largest term; a σ applied once or twice, or on
+  // the wrong side, changes them by O(1) relative).
+  auto slave = make_block(3, {0, 0, 1}, {1, 1, 1.5}, {3, 3, 2}, "zmax", 0.0, "");
+  auto master = make_block(3, {0, 0, 0}, {1, 1, 1}, {3, 3, 3}, "", 0.0, "zmin");
+  const PetscInt n_s = slave.u_prescribed.size(), n_m = master.u_prescribed.size();
+  physics::DualContactSettings scaled, plain, free;
+  plain.scale = false;
+  free.explicit_limit = 0;  // matrix-free
+  physics::DualContactSolver a(*slave.solver, *master.solver, n_s, n_m, scaled);
+  physics::DualContactSolver b(*slave.solver, *master.solver, n_s, n_m, plain);
+  physics::DualContactSolver c(*slave.solver, *master.solver, n_s, n_m, free);
+  constexpr int nodes = 8;
+  for (auto* d : {&a, &b, &c}) d->set_rows(scattered_rows(n_s, n_m, nodes, 11, 5));
+  ASSERT_EQ(c.kind(), physics::DualOperator::matrix_free);
+  ASSERT_EQ(a.kind(), physics::DualOperator::explicit_schur);
+  const auto us = some_vector(n_s, 0.2), um = some_vector(n_m, 0.9);
+  const auto lambda = some_vector(3 * nodes, 1.3);
+  core::Vector va, vb, vc;
+  a.constraint_values(us, um, lambda, va);
+  b.constraint_values(us, um, lambda, vb);
+  c.constraint_values(us, um, lambda, vc);
+  const double scale = vb.max_abs();
+  ASSERT_GT(scale, 0.0);
+  EXPECT_LT(max_abs_diff(va, vb), 1e-12 * scale);
+  EXPECT_LT(max_abs_diff(va, vc), 1e-12 * scale);
 }
 
 TEST(ExplicitF, FormedByThreadsIsTheSerialFToTheBit) {

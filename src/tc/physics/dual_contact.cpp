@@ -180,16 +180,15 @@ void DualContactSolver::form_scaled() {
     for (int l = 1; l < dim; ++l)
       if (t > 0) sigma_[n + l] = 1.0 / std::sqrt(t);
   }
-  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_scaled_.out()));
-  PetscScalar* g = nullptr;
-  TC_PETSC(MatDenseGetArray(f_scaled_.get(), &g));
-  PetscInt ldg = m;
-  TC_PETSC(MatDenseGetLDA(f_scaled_.get(), &ldg));
-  for (PetscInt j = 0; j < m; ++j)
-    for (PetscInt i = 0; i < m; ++i) g[j * ldg + i] = sigma_[i] * f[j * ld + i] * sigma_[j];
-  TC_PETSC(MatDenseRestoreArray(f_scaled_.get(), &g));
   TC_PETSC(MatDenseRestoreArrayRead(f_dense_.get(), &f));
-  assemble(f_scaled_.get());
+  // Σ F Σ in F's place: the QP needs no other, and a second m × m matrix would be the dual's
+  // largest structure again (F λ is Σ⁻¹(Σ F Σ)Σ⁻¹λ, constraint_values).
+  PetscScalar* g = nullptr;
+  TC_PETSC(MatDenseGetArray(f_dense_.get(), &g));
+  for (PetscInt j = 0; j < m; ++j)
+    for (PetscInt i = 0; i < m; ++i) g[j * ld + i] = sigma_[i] * g[j * ld + i] * sigma_[j];
+  TC_PETSC(MatDenseRestoreArray(f_dense_.get(), &g));
+  assemble(f_dense_.get());
 }
 
 void DualContactSolver::save_compliance(std::vector<std::vector<int>>& record) const {
@@ -532,7 +531,7 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
   if (rtol > 0) opt.rtol = rtol;
   qp::QpResult r;
   if (kind_ == DualOperator::explicit_schur) {
-    qp::SymmetricDenseOperator f(scaled ? f_scaled_.get() : f_dense_.get());
+    qp::SymmetricDenseOperator f(f_dense_.get());  // Σ F Σ when scaled
     r = qp::Mpgp(f, set, opt).solve(d, lambda);
   } else {
     qp::FunctionOperator f([this](const core::Vector& x, core::Vector& y) { apply_f(x, y); }, d);
@@ -572,10 +571,20 @@ void DualContactSolver::constraint_values(BodyVectors u_free, const core::Vector
   bu = core::Vector(m);
   if (m == 0) return;
   core::Vector f_lambda(m);
-  if (kind_ == DualOperator::explicit_schur)
+  if (kind_ == DualOperator::explicit_schur && settings_.scale) {  // Σ⁻¹(Σ F Σ)(Σ⁻¹λ)
+    core::Vector x = lambda.clone();
+    {
+      auto xv = x.view();
+      for (PetscInt i = 0; i < m; ++i) xv[i] /= sigma_[i];
+    }
+    TC_PETSC(MatMult(f_dense_.get(), x.get(), f_lambda.get()));
+    auto fv = f_lambda.view();
+    for (PetscInt i = 0; i < m; ++i) fv[i] /= sigma_[i];
+  } else if (kind_ == DualOperator::explicit_schur) {
     TC_PETSC(MatMult(f_dense_.get(), lambda.get(), f_lambda.get()));
-  else
+  } else {
     apply_f(lambda, f_lambda);
+  }
   for (int i = 0; i < n_bodies(); ++i)
     if (i == 0)
       b_[i].mult(*u_free[i], bu);

@@ -92,7 +92,8 @@ class DualContactSolver {
   [[nodiscard]] PetscInt n_nodes() const { return offsets_.back(); }
   [[nodiscard]] PetscInt n_rows() const { return dim_ * n_nodes(); }
   [[nodiscard]] DualOperator kind() const { return kind_; }
-  /// The explicit F (dense m × m) of the last set_rows; null when matrix-free.
+  /// The explicit F (dense m × m) of the last set_rows, Σ F Σ in its place when the QP is
+  /// scaled (DualContactSettings::scale); null when matrix-free.
   [[nodiscard]] ::Mat explicit_matrix() const {
     return kind_ == DualOperator::explicit_schur ? f_dense_.get() : nullptr;
   }
@@ -163,7 +164,7 @@ class DualContactSolver {
  private:
   [[nodiscard]] int n_bodies() const { return static_cast<int>(bodies_.size()); }
   void stack_rows();            // b_ from pairs_
-  void form_scaled();           // Σ and Σ F Σ from f_dense_
+  void form_scaled();           // Σ, and Σ F Σ in f_dense_'s place
   void form_by_solves();        // F column blocks by multi-right-hand-side solves
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
   /// S_i on U, the T-positions in `pos` (into s_used_[i]), and `pos` renumbered into U; where
@@ -189,9 +190,8 @@ class DualContactSolver {
   std::vector<double> normal_floor_;   // per node; empty: 0
   std::vector<char> held_;             // per node; empty: none held
   DualOperator kind_ = DualOperator::matrix_free;
-  core::Handle<::Mat, MatDestroy> f_dense_;
-  core::Handle<::Mat, MatDestroy> f_scaled_;  // Σ F Σ (explicit and settings_.scale)
-  std::vector<double> sigma_;                 // the diagonal of Σ, per row
+  core::Handle<::Mat, MatDestroy> f_dense_;  // F, or Σ F Σ (explicit and settings_.scale)
+  std::vector<double> sigma_;                // the diagonal of Σ, per row
   int setup_solves_ = 0;
   double lambda_max_ = 0;  // reused while the number of rows does not change
   PetscInt lambda_max_rows_ = -1;
