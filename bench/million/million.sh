@@ -13,8 +13,9 @@
 # TC_ARGS; TC_BENCH_WORK=<dir> keeps the runs there. BLAS threads: THREADS for this build,
 # BASELINE_THREADS for the baseline (default 1 each). MPI ranks: RANKS for this build,
 # BASELINE_RANKS for the baseline (default 1: no launcher; N > 1 runs `mpirun -n N
-# --oversubscribe`, and the peak RSS is then that of the largest rank). Needs ~14.3 GiB at
-# K = 5.3 on one rank.
+# --oversubscribe`, and the peak RSS is then that of the largest rank). SUBDOMAINS=<n> sets
+# `subdomains = n` on both bodies (1: solved directly whatever "auto" would choose for the
+# ranks). Needs ~14.5 GiB at K = 5.3 on one rank, ~5.0 GiB per rank on 4 with SUBDOMAINS=1.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 steps=${1:-10}
@@ -33,6 +34,7 @@ k = $k
 print(','.join(str(round(c * k)) for c in (8, 30, 6)), round(6 * k))")
   sed -e "s/cells = \[8, 30, 6\]/cells = [$master]/" -e "s/cells = \[6, 6, 6\]/cells = [$slave, $slave, $slave]/" \
     -e "s/^end = 1.0/end = $end/" "$ex" >"$work/k$k.toml"
+  [[ -z ${SUBDOMAINS:-} ]] || sed -i "s/^\(name = \"\(master\|slave\)\"\)$/\1\nsubdomains = $SUBDOMAINS/" "$work/k$k.toml"
   for who in "${whos[@]}"; do
     bin=$root/build/bin/thermocontact threads=${THREADS:-1} ranks=${RANKS:-1}
     [[ $who == current ]] || bin=$BASELINE threads=${BASELINE_THREADS:-1} ranks=${BASELINE_RANKS:-1}
