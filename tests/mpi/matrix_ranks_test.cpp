@@ -12,6 +12,7 @@
 
 #include "support/problems.hpp"
 #include "support/vectors.hpp"
+#include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/mesh/box.hpp"
@@ -178,6 +179,22 @@ TEST(MatrixOverRanks, LumpedMassAndFilmMatrixAsTheWholeOnes) {
   auto spread_sum = spread.mass_theta.copy();
   spread_sum.axpy(1.0, b);  // A_θ + H: the patterns shared over the ranks too
   expect_products_agree(sum, spread_sum);
+}
+
+TEST(MatrixOverRanks, AKernelThrowingOnOneRanksCellsStopsEveryRank) {
+  // The last cell's rows belong to the last rank only: its kernel throws there alone. Every
+  // rank must throw (collective_check), none wait in the assembly's communication: without
+  // it the other ranks hang there and ctest's timeout (120 s, tests/CMakeLists.txt) fails the
+  // test.
+  const auto m = some_mesh();
+  const auto theta = core::RowBlocks::over(PETSC_COMM_WORLD, m.n_nodes());
+  const auto g = fem::node_graph(m);
+  const int bad = m.n_cells() - 1;
+  const fem::CellKernel kernel = [&](int c, auto, const auto&) -> Eigen::MatrixXd {
+    if (c == bad) throw Error("a bad cell");
+    return Eigen::MatrixXd::Identity(8, 8);
+  };
+  EXPECT_THROW((void)fem::assemble(m, g, 1, 1, kernel, &theta), Error);
 }
 
 }  // namespace
