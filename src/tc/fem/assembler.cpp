@@ -246,24 +246,12 @@ core::SparseMatrix boundary_mass(const mesh::Mesh& m, const std::vector<Weighted
 }
 
 void lump_rows(core::SparseMatrix& m) {
-  // Each rank sums the rows it holds (all of them when m is whole).
-  PetscInt first = 0, end = 0;
-  TC_PETSC(MatGetOwnershipRange(m.get(), &first, &end));
-  std::vector<double> sums;
-  sums.reserve(static_cast<size_t>(end - first));
-  for (PetscInt r = first; r < end; ++r) {
-    PetscInt n = 0;
-    const PetscScalar* v = nullptr;
-    TC_PETSC(MatGetRow(m.get(), r, &n, nullptr, &v));
-    double sum = 0;
-    for (PetscInt k = 0; k < n; ++k) sum += v[k];
-    TC_PETSC(MatRestoreRow(m.get(), r, &n, nullptr, &v));
-    sums.push_back(sum);
-  }
+  // PETSc's row sums into a vector laid out as m's rows (each rank's own when m is spread).
+  core::Handle<::Vec, VecDestroy> sums;
+  TC_PETSC(MatCreateVecs(m.get(), nullptr, sums.out()));
+  TC_PETSC(MatGetRowSum(m.get(), sums.get()));
   TC_PETSC(MatZeroEntries(m.get()));
-  for (PetscInt r = first; r < end; ++r)
-    TC_PETSC(MatSetValue(m.get(), r, r, sums[static_cast<size_t>(r - first)], INSERT_VALUES));
-  m.assemble();
+  TC_PETSC(MatDiagonalSet(m.get(), sums.get(), INSERT_VALUES));
 }
 
 std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f) {
