@@ -1,11 +1,16 @@
 #!/usr/bin/env bash
-# Issue 22's "no cliff" goal: examples/07-pin-on-plate refined (case-refined.toml, Gmsh Tet4 made
-# here from the example's .geo files: 147 648 dofs, 2 205 multipliers) against the committed
-# coarse case (15 108 dofs, 492 multipliers), both for the first STEPS steps (default 13: the
-# press and three strokes), one after the other with this build, THREADS BLAS threads
-# (default 1). Prints, per case, the wall
-# seconds of the first step (it holds the factorisation and the dual set-up), the mean of the
-# others, and the refined/coarse ratio of both. BASELINE=<binary> runs it too, before this
+# Issue 22's "no cliff" goal: the refined pin-on-plate's time per step against the coarse one's,
+# both for the first STEPS steps (default 13: the press and three strokes), one after the other
+# with this build, THREADS BLAS threads (default 1). Two pairs of examples/07-pin-on-plate, Gmsh
+# Tet4 made here from the example's .geo files (hc of the pin's face / of the plate's track):
+#   PAIR=example (default): the committed case (0.5 / 0.4 mm: 15 108 dofs, 492 multipliers)
+#     against case-refined.toml (0.22 / 0.17 mm: 147 648 dofs, 2 205 multipliers), 9.8× the dofs;
+#   PAIR=issue: the sizes issue 22 names (29 064 dofs, 492 multipliers against 145 060 dofs,
+#     1 740 multipliers): 0.5 / 0.303 mm (29 276 dofs, 492 multipliers) against 0.25 / 0.168 mm
+#     (147 792 dofs, 1 743 multipliers), 5.05× the dofs and 3.54× the multipliers (the issue's
+#     4.99× and 3.54×).
+# Prints, per case, the wall seconds of the first step (it holds the dual set-up), the mean of
+# the others, and the refined/coarse ratio of both. BASELINE=<binary> runs it too, before this
 # build on each case, and prints the same for it (BASELINE_THREADS, default THREADS). Needs
 # gmsh; ~1.9 GiB.
 #   bench/cliff/per_step.sh [STEPS]
@@ -16,11 +21,26 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 ex=$root/examples/07-pin-on-plate
 end=$(python3 -c "print(round(0.025 * $steps, 6))")
-gmsh -3 -format msh41 -setnumber hc 0.22e-3 "$ex/pin.geo" -o "$work/pin-refined.msh" >/dev/null
-gmsh -3 -format msh41 -setnumber hc 0.17e-3 "$ex/plate.geo" -o "$work/plate-refined.msh" >/dev/null
-sed -e "s/^end = 3.025 .*/end = $end/" "$ex/case-refined.toml" >"$work/refined.toml"
-sed -e "s/^end = 3.025 .*/end = $end/" "$ex/case.toml" >"$work/coarse.toml"
-cp "$ex/pin.msh" "$ex/plate.msh" "$work/"
+mesh() {  # mesh NAME PIN_HC PLATE_HC: NAME-pin.msh, NAME-plate.msh
+  gmsh -3 -format msh41 -setnumber hc "$2" "$ex/pin.geo" -o "$work/$1-pin.msh" >/dev/null
+  gmsh -3 -format msh41 -setnumber hc "$3" "$ex/plate.geo" -o "$work/$1-plate.msh" >/dev/null
+}
+case ${PAIR:-example} in
+  example)
+    mesh refined 0.22e-3 0.17e-3
+    cp "$ex/pin.msh" "$work/coarse-pin.msh"
+    cp "$ex/plate.msh" "$work/coarse-plate.msh"
+    ;;
+  issue)
+    mesh refined 0.25e-3 0.168e-3
+    mesh coarse 0.5e-3 0.303e-3
+    ;;
+  *) echo "PAIR must be example or issue" >&2; exit 2 ;;
+esac
+for c in coarse refined; do  # the committed case with this pair's meshes
+  sed -e "s/^end = 3.025 .*/end = $end/" -e "s/\"pin.msh\"/\"$c-pin.msh\"/" \
+    -e "s/\"plate.msh\"/\"$c-plate.msh\"/" "$ex/case.toml" >"$work/$c.toml"
+done
 whos=(current)
 [[ -z ${BASELINE:-} ]] || whos=(baseline current)
 for c in coarse refined; do
