@@ -163,6 +163,65 @@ TEST(ExplicitF, FromTheComplianceEqualsTheSolvesToRoundOff) {
   EXPECT_EQ(solves[2], 0);
 }
 
+TEST(ExplicitF, OnTheRowsNodeStructureEqualsTheRowsThemselves) {
+  // Mortar rows are B = V(C ⊗ I): F is then formed as V (Σ Ĉ_i S_i Ĉ_iᵀ) Vᵀ on a dim-th of
+  // B's entries. Against the same B without its structure (directions cleared: F from B's
+  // rows) and against the definition (apply_f, two solves), in 2D and 3D, one pair and two
+  // stacked pairs (the second's nodes after the first's). Both are sums of the same products
+  // in another order: 1e-12 of F's largest entry; a rotation by V_kᵀ instead of V_k, a block
+  // of the wrong node or a lost sign is O(1).
+  for (const int dim : {2, 3}) {
+    const auto lo = [&](double z) {
+      return dim == 3 ? mesh::Point{0, 0, z} : mesh::Point{0, z, 0};
+    };
+    const auto hi = [&](double z) {
+      return dim == 3 ? mesh::Point{1, 1, z} : mesh::Point{1, z, 0};
+    };
+    const std::string top = dim == 3 ? "zmax" : "ymax", bottom = dim == 3 ? "zmin" : "ymin";
+    auto slave = make_block(dim, lo(1), hi(1.5), {3, 3, 2}, top, 0.0, "");
+    auto master = make_block(dim, lo(0), hi(1), {3, 3, 3}, "", 0.0, bottom);
+    const PetscInt n_s = slave.u_prescribed.size(), n_m = master.u_prescribed.size();
+    for (const int pairs : {1, 2}) {
+      physics::DualContactSettings plain;
+      plain.scale = false;  // explicit_matrix() is then F itself
+      physics::DualContactSolver a(*slave.solver, *master.solver, n_s, n_m, plain);
+      physics::DualContactSolver b(*slave.solver, *master.solver, n_s, n_m, plain);
+      std::vector<physics::ContactRows> structured, unstructured;
+      for (int p = 0; p < pairs; ++p) {
+        structured.push_back(node_structured_rows(dim, n_s / dim, n_m / dim, 7, 2 + 5 * p, 3));
+        ASSERT_TRUE(structured.back().node_structured());
+        unstructured.push_back(node_structured_rows(dim, n_s / dim, n_m / dim, 7, 2 + 5 * p, 3));
+        unstructured.back().directions.clear();
+      }
+      const std::vector<physics::PairBodies> bodies(static_cast<size_t>(pairs));
+      a.set_rows(std::move(structured), bodies);
+      b.set_rows(std::move(unstructured), bodies);
+      ASSERT_NE(a.explicit_matrix(), nullptr);
+      ASSERT_NE(b.explicit_matrix(), nullptr);
+      const PetscInt m = a.n_rows();
+      core::Vector e(m), column(m);
+      double scale = 0, worst_rows = 0, worst_apply = 0;
+      for (PetscInt j = 0; j < m; ++j) {
+        e.zero();
+        e.view()[j] = 1.0;
+        a.apply_f(e, column);
+        const auto exact = column.to_std();
+        for (PetscInt i = 0; i < m; ++i) {
+          PetscScalar fa = 0, fb = 0;
+          TC_PETSC(MatGetValue(a.explicit_matrix(), i, j, &fa));
+          TC_PETSC(MatGetValue(b.explicit_matrix(), i, j, &fb));
+          scale = std::max(scale, std::abs(exact[i]));
+          worst_apply = std::max(worst_apply, std::abs(fa - exact[i]));
+          worst_rows = std::max(worst_rows, std::abs(fa - fb));
+        }
+      }
+      ASSERT_GT(scale, 0.0);
+      EXPECT_LE(worst_rows, 1e-12 * scale) << dim << "D, " << pairs << " pair(s)";
+      EXPECT_LE(worst_apply, 1e-12 * scale) << dim << "D, " << pairs << " pair(s)";
+    }
+  }
+}
+
 TEST(ExplicitF, ScaledInPlaceGivesTheSameConstraintValues) {
   // With the QP scaled, Σ F Σ takes F's place and B u − Fλ is formed as B u − Σ⁻¹(Σ F Σ)Σ⁻¹λ:
   // the same values as from F itself and from the matrix-free F (two solves per body), to the

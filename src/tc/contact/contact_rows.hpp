@@ -16,8 +16,20 @@ struct ContactRows {
   std::vector<double> gap;      // weighted gap g_k ≥ 0 when open, in the configuration of B
   std::vector<double> weights;  // ∫ψ_k over the contact: λ_k × weight_k is a force
   std::vector<int> nodes;       // slave mesh node of each contact node (may be empty)
+  // The rows' node structure, when known (the mortar pair's rows; empty otherwise):
+  // B_s = V (D ⊗ I) and B_m = −V (M ⊗ I), V = diag(V_k) with V_k's rows the directions of
+  // node k's rows (normal, then tangents: dim × dim, row-major), D and M of (4.3) by contact
+  // node (rows) and body node (columns). The explicit dual forms its products on D and M,
+  // a dim-th of B's entries (physics::DualContactSolver::form_from_compliance).
+  std::vector<double> directions;
+  core::SparseMatrix d, m;
   [[nodiscard]] PetscInt n_nodes() const { return static_cast<PetscInt>(gap.size()); }
   [[nodiscard]] PetscInt n_rows() const { return dim * n_nodes(); }
+  /// Whether directions, D and M are there and fit the rows.
+  [[nodiscard]] bool node_structured() const {
+    return directions.size() == static_cast<size_t>(dim * dim * n_nodes()) && d.get() && m.get() &&
+           d.rows() == n_nodes() && m.rows() == n_nodes();
+  }
 };
 
 }  // namespace tc::contact

@@ -338,6 +338,14 @@ ContactRows MortarPair::rows() const {
   r.gap = gap_;
   r.weights = weights_;
   r.nodes = contact_nodes_;
+  r.directions.reserve(static_cast<size_t>(dim_ * dim_) * normals_.size());
+  for (size_t k = 0; k < normals_.size(); ++k)
+    for (int row = 0; row < dim_; ++row) {
+      const Vec3& dir = row == 0 ? normals_[k] : tangents_[row - 1][k];
+      r.directions.insert(r.directions.end(), dir.begin(), dir.begin() + dim_);
+    }
+  r.d = d_.copy();
+  r.m = m_.copy();
   return r;
 }
 

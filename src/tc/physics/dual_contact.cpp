@@ -156,6 +156,64 @@ std::vector<Eigen::Triplet<double, PetscInt>> nonzeros(const core::SparseMatrix&
   return out;
 }
 
+/// The nonzeros of Ĉ_i = ±(C ⊗ I) stacked over the pairs, in the stacked rows of B_i (row
+/// dim·k + c is node k's Cartesian component c): D for the pairs whose slave body i is, −M for
+/// those whose master it is. Row by row, as nonzeros() gives B_i's.
+std::vector<Eigen::Triplet<double, PetscInt>> node_nonzeros(std::span<const ContactRows> pairs,
+                                                            std::span<const PairBodies> bodies,
+                                                            std::span<const PetscInt> offsets,
+                                                            int body) {
+  std::vector<Eigen::Triplet<double, PetscInt>> out;
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const bool slave = bodies[p].slave == body, master = bodies[p].master == body;
+    if (!slave && !master) continue;
+    const auto& r = pairs[p];
+    const core::SparseMatrix& c = slave ? r.d : r.m;
+    const double sign = slave ? 1.0 : -1.0;  // B_s = V(D ⊗ I), B_m = −V(M ⊗ I)
+    for (PetscInt k = 0; k < r.n_nodes(); ++k) {
+      PetscInt nz = 0;
+      const PetscInt* cols = nullptr;
+      const PetscScalar* vals = nullptr;
+      TC_PETSC(MatGetRow(c.get(), k, &nz, &cols, &vals));
+      for (int comp = 0; comp < r.dim; ++comp)
+        for (PetscInt q = 0; q < nz; ++q)
+          if (vals[q] != 0.0)
+            out.emplace_back(r.dim * (offsets[p] + k) + comp, r.dim * cols[q] + comp,
+                             sign * vals[q]);
+      TC_PETSC(MatRestoreRow(c.get(), k, &nz, &cols, &vals));
+    }
+  }
+  return out;
+}
+
+/// F = V G Vᵀ in place, node block by node block: F_kl = V_k G_kl V_lᵀ (`v`: dim × dim per
+/// node, row-major).
+void rotate_blocks(double* f, PetscInt ld, PetscInt n_nodes, int dim, std::span<const double> v) {
+  const auto d = static_cast<PetscInt>(dim);
+  double g[9], h[9];
+  for (PetscInt l = 0; l < n_nodes; ++l) {
+    const double* vl = v.data() + l * d * d;
+    for (PetscInt k = 0; k < n_nodes; ++k) {
+      const double* vk = v.data() + k * d * d;
+      double* blk = f + (d * l) * ld + d * k;  // G_kl(c, c') at blk[c' ld + c]
+      for (PetscInt c2 = 0; c2 < d; ++c2)
+        for (PetscInt c = 0; c < d; ++c) g[c * d + c2] = blk[c2 * ld + c];
+      for (PetscInt r = 0; r < d; ++r)  // h = V_k G
+        for (PetscInt c2 = 0; c2 < d; ++c2) {
+          double sum = 0;
+          for (PetscInt c = 0; c < d; ++c) sum += vk[r * d + c] * g[c * d + c2];
+          h[r * d + c2] = sum;
+        }
+      for (PetscInt r = 0; r < d; ++r)  // F_kl = h V_lᵀ
+        for (PetscInt s2 = 0; s2 < d; ++s2) {
+          double sum = 0;
+          for (PetscInt c2 = 0; c2 < d; ++c2) sum += h[r * d + c2] * vl[s2 * d + c2];
+          blk[s2 * ld + r] = sum;
+        }
+    }
+  }
+}
+
 }  // namespace
 
 void DualContactSolver::form_scaled() {
@@ -212,12 +270,18 @@ void DualContactSolver::replay_compliance(std::span<const std::vector<int>> reco
 bool DualContactSolver::form_from_compliance() {
   // F = Σ_i B_i,T S_i B_i,Tᵀ: W = B_i,T S_i (nnz(B_i)·|T| flops), then W B_i,Tᵀ
   // (m · nnz(B_i)); no solve unless the rows reach new dofs.
+  // With the rows' node structure (ContactRows::node_structured), B_i = V Ĉ_i, Ĉ_i = ±(C ⊗ I):
+  // G = Σ_i Ĉ_i S_i Ĉ_iᵀ, then F = V G Vᵀ node block by node block. A row of Ĉ_i has a dim-th
+  // of the entries of a row of B_i (each body node once, not once per direction), so both
+  // products cost a dim-th; the rotation adds 2·dim flops per entry of F.
   const PetscInt m = n_rows();
   const int nb = n_bodies();
+  const bool by_nodes = std::all_of(pairs_.begin(), pairs_.end(),
+                                    [](const ContactRows& r) { return r.node_structured(); });
   std::vector<std::vector<Eigen::Triplet<double, PetscInt>>> entries(nb);
   std::vector<std::vector<PetscInt>> cols(nb);
   for (int i = 0; i < nb; ++i) {  // every body checked before any spends a solve
-    entries[i] = nonzeros(b_[i]);
+    entries[i] = by_nodes ? node_nonzeros(pairs_, pair_bodies_, offsets_, i) : nonzeros(b_[i]);
     cols[i].reserve(entries[i].size());
     for (const auto& e : entries[i]) cols[i].push_back(e.col());
     if (compliance_[i].size() + compliance_[i].missing(cols[i]) > settings_.compliance_limit)
@@ -261,6 +325,12 @@ bool DualContactSolver::form_from_compliance() {
   // same G on every rank.
   if (compliance_.front().rows_spread())
     core::sum_over_ranks(PETSC_COMM_WORLD, fv, static_cast<long>(ldf) * m, "the explicit F");
+  if (by_nodes) {
+    std::vector<double> v;
+    v.reserve(static_cast<size_t>(dim_) * static_cast<size_t>(m));
+    for (const auto& r : pairs_) v.insert(v.end(), r.directions.begin(), r.directions.end());
+    rotate_blocks(fv, ldf, n_nodes(), dim_, v);
+  }
   // F = ½(G + Gᵀ) in place by tiles: exactly symmetric, as dsymv reads one triangle
   constexpr PetscInt tile = 64;
   for (PetscInt j0 = 0; j0 < m; j0 += tile)
