@@ -288,8 +288,8 @@ bool DualContactSolver::form_from_compliance() {
       return false;
   }
   for (int i = 0; i < nb; ++i) setup_solves_ += static_cast<int>(compliance_[i].cover(cols[i]));
-  // B_i,T row by row, T-positions ascending: the order in which the sparse products summed
-  // before (Eigen's setFromTriplets sorts them), which keeps every entry of F to the bit.
+  // B_i,T (Ĉ_i,T on nodes) row by row, T-positions ascending: the order in which the sparse
+  // products summed before (Eigen's setFromTriplets sorts them), so B's F keeps its bits.
   // Positions are then renumbered into U_i ⊆ T, the T-positions this step's rows reach: S
   // grows with every dof the rows have ever touched (a sliding pin's track), the products below
   // need only S_UU, and U's order is T's, so every sum runs over the same terms in the same
