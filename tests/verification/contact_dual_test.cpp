@@ -112,6 +112,34 @@ TEST(ExplicitF, BeyondTheExplicitLimitTheCoveredRowsStayExplicitWithTheSameMulti
 
 // ------------------------------------------- explicit F from the compliance on touched dofs
 
+/// How far a's explicit F is from its definition (apply_f: two solves per column, F e_j =
+/// Σ B_i A_i⁻¹ B_iᵀ e_j) and from b's explicit F, entry by entry; scale = the largest |F_ij|.
+struct FDifferences {
+  double scale = 0, to_apply = 0, to_other = 0;
+};
+
+FDifferences explicit_differences(const physics::DualContactSolver& a,
+                                  const physics::DualContactSolver& b) {
+  const PetscInt m = a.n_rows();
+  core::Vector e(m), column(m);
+  FDifferences d;
+  for (PetscInt j = 0; j < m; ++j) {
+    e.zero();
+    e.view()[j] = 1.0;
+    a.apply_f(e, column);
+    const auto exact = column.to_std();
+    for (PetscInt i = 0; i < m; ++i) {
+      PetscScalar fa = 0, fb = 0;
+      TC_PETSC(MatGetValue(a.explicit_matrix(), i, j, &fa));
+      TC_PETSC(MatGetValue(b.explicit_matrix(), i, j, &fb));
+      d.scale = std::max(d.scale, std::abs(exact[i]));
+      d.to_apply = std::max(d.to_apply, std::abs(fa - exact[i]));
+      d.to_other = std::max(d.to_other, std::abs(fa - fb));
+    }
+  }
+  return d;
+}
+
 TEST(ExplicitF, FromTheComplianceEqualsTheSolvesToRoundOff) {
   // The slave block has its top face's vertical dofs prescribed: rows that reach them must
   // see zero compliance there, as the solves do.
@@ -134,26 +162,12 @@ TEST(ExplicitF, FromTheComplianceEqualsTheSolvesToRoundOff) {
     solves.push_back(a.setup_solves());
     const PetscInt m = 3 * nodes;
     EXPECT_EQ(b.setup_solves(), 2 * m);
-    core::Vector e(m), column(m);
-    double scale = 0, worst_solves = 0, worst_apply = 0;
-    for (PetscInt j = 0; j < m; ++j) {
-      e.zero();
-      e.view()[j] = 1.0;
-      a.apply_f(e, column);  // two solves: the definition F e_j = Σ B_i A_i⁻¹ B_iᵀ e_j
-      const auto exact = column.to_std();
-      for (PetscInt i = 0; i < m; ++i) {
-        PetscScalar fa = 0, fb = 0;
-        TC_PETSC(MatGetValue(a.explicit_matrix(), i, j, &fa));
-        TC_PETSC(MatGetValue(b.explicit_matrix(), i, j, &fb));
-        scale = std::max(scale, std::abs(exact[i]));
-        worst_apply = std::max(worst_apply, std::abs(fa - exact[i]));
-        worst_solves = std::max(worst_solves, std::abs(fa - fb));
-      }
-    }
+    ASSERT_EQ(a.n_rows(), m);
+    const auto d = explicit_differences(a, b);
     // Both are the same sums of products of the direct solver's solutions, in another order:
     // they agree to the round-off of a few hundred operations on O(scale) numbers.
-    EXPECT_LE(worst_apply, 1e-12 * scale);
-    EXPECT_LE(worst_solves, 1e-12 * scale);
+    EXPECT_LE(d.to_apply, 1e-12 * d.scale);
+    EXPECT_LE(d.to_other, 1e-12 * d.scale);
   }
   // Solves spent on columns: all dofs of the first rows, the new ones of the second, none on
   // the third. The first set touches 18 slave dofs and ≤ 54 master dofs.
@@ -198,26 +212,10 @@ TEST(ExplicitF, OnTheRowsNodeStructureEqualsTheRowsThemselves) {
       b.set_rows(std::move(unstructured), bodies);
       ASSERT_NE(a.explicit_matrix(), nullptr);
       ASSERT_NE(b.explicit_matrix(), nullptr);
-      const PetscInt m = a.n_rows();
-      core::Vector e(m), column(m);
-      double scale = 0, worst_rows = 0, worst_apply = 0;
-      for (PetscInt j = 0; j < m; ++j) {
-        e.zero();
-        e.view()[j] = 1.0;
-        a.apply_f(e, column);
-        const auto exact = column.to_std();
-        for (PetscInt i = 0; i < m; ++i) {
-          PetscScalar fa = 0, fb = 0;
-          TC_PETSC(MatGetValue(a.explicit_matrix(), i, j, &fa));
-          TC_PETSC(MatGetValue(b.explicit_matrix(), i, j, &fb));
-          scale = std::max(scale, std::abs(exact[i]));
-          worst_apply = std::max(worst_apply, std::abs(fa - exact[i]));
-          worst_rows = std::max(worst_rows, std::abs(fa - fb));
-        }
-      }
-      ASSERT_GT(scale, 0.0);
-      EXPECT_LE(worst_rows, 1e-12 * scale) << dim << "D, " << pairs << " pair(s)";
-      EXPECT_LE(worst_apply, 1e-12 * scale) << dim << "D, " << pairs << " pair(s)";
+      const auto d = explicit_differences(a, b);
+      ASSERT_GT(d.scale, 0.0);
+      EXPECT_LE(d.to_other, 1e-12 * d.scale) << dim << "D, " << pairs << " pair(s)";
+      EXPECT_LE(d.to_apply, 1e-12 * d.scale) << dim << "D, " << pairs << " pair(s)";
     }
   }
 }
