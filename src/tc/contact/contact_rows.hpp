@@ -25,6 +25,13 @@ struct ContactRows {
   core::SparseMatrix d, m;
   [[nodiscard]] PetscInt n_nodes() const { return static_cast<PetscInt>(gap.size()); }
   [[nodiscard]] PetscInt n_rows() const { return dim * n_nodes(); }
+  /// The same rows with the matrices shared, not copied (the vectors are copied).
+  [[nodiscard]] ContactRows shared() const {
+    ContactRows s{dim, slave.share(), master.share(), gap, weights, nodes, directions, {}, {}};
+    if (d.get()) s.d = d.share();
+    if (m.get()) s.m = m.share();
+    return s;
+  }
   /// Whether directions, D and M are there and fit the rows.
   [[nodiscard]] bool node_structured() const {
     return directions.size() == static_cast<size_t>(dim * dim * n_nodes()) && d.get() && m.get() &&

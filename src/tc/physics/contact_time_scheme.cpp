@@ -65,16 +65,7 @@ void StabilisedNewmarkContact::prepare(const BodyGroup& group, DualContactSolver
   const auto u_k = group.state(&BodyState::u);
   const auto normal_targets = dual.targets(u_k, u_k);
   std::vector<ContactRows> rows;
-  for (int q = 0; q < dual.n_pairs(); ++q) {
-    const auto& r = dual.pair_rows(q);
-    rows.push_back(
-        {r.dim, r.slave.share(), r.master.share(), r.gap, r.weights, r.nodes, {}, {}, {}});
-    if (r.node_structured()) {  // the projection's F formed on D and M too
-      rows.back().directions = r.directions;
-      rows.back().d = r.d.share();
-      rows.back().m = r.m.share();
-    }
-  }
+  for (int q = 0; q < dual.n_pairs(); ++q) rows.push_back(dual.pair_rows(q).shared());
   projection_->set_rows(std::move(rows), dual.pair_bodies());
   projection_->hold_at_zero(dual.held());  // the crosspoints of the contact QP here too
   core::Vector multipliers(dual.n_rows());
