@@ -255,8 +255,8 @@ class CholeskySolver {
                        double* out) const;
   /// Whether forward_compliance is worth it for a first cover of `dofs`: with CHOLMOD's
   /// supernodal factor, when unit_solve_rows in blocks of `block` columns would cost more flops
-  /// than this factorisation did (issue 22's bound on the set-up) and more than the forward
-  /// solves. Below that, the restricted solves keep the set-up's bits as they were.
+  /// than the forward solves and more than a third of a second. Below that, the restricted
+  /// solves keep the set-up's bits as they were.
   [[nodiscard]] bool forward_compliance_pays(std::span<const PetscInt> dofs, int block) const;
   /// Grows S = (A⁻¹)_TT by the forward solve alone: S = YᵀY with Y = L⁻¹P E_T (A = PᵀLLᵀP,
   /// E_T the unit columns of T), each supernode once with all the columns that reach it, and

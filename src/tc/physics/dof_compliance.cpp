@@ -110,8 +110,8 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
   constexpr Eigen::Index block = 64;  // bounds the dense work space to n × block
   std::vector<double> part;           // the new columns on T, when the factor gives them directly
   // The restricted solves' backward pass visits every supernode of T for each block of new
-  // columns; when that would cost more than the factorisation (decided once, at the first
-  // cover), S is grown by the forward solve alone, S = YᵀY, for this and every later cover.
+  // columns; when that costs more flops than the forward solve alone (decided once, at the
+  // first cover), S is grown by the latter, S = YᵀY, for this and every later cover.
   if (old == 0) {
     forward_.reset();
     by_forward_ = solver_.forward_compliance_pays(dofs_, static_cast<int>(block));

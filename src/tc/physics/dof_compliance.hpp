@@ -24,10 +24,10 @@ void assemble(::Mat a);
 /// costs sparse-dense products and no solve for rows on dofs seen before. A new dof costs one
 /// solve (in blocks of right-hand sides, restricted to the supernodes they reach when the
 /// factor allows: ConstrainedSolver::solve_unit_rows); its column's entries on the old T give
-/// the new row too, by the symmetry of A. When those solves would cost more than the
-/// factorisation (ConstrainedSolver::forward_compliance_pays, at the first cover), S is grown
-/// by forward solves alone instead (S = YᵀY, ConstrainedSolver::forward_compliance), keeping
-/// Y: fewer flops, the same S to round-off but not to the bit.
+/// the new row too, by the symmetry of A. When those solves would cost more flops than the
+/// forward solves alone (ConstrainedSolver::forward_compliance_pays, at the first cover), S is
+/// grown by them instead (S = YᵀY, ConstrainedSolver::forward_compliance), keeping Y: the same
+/// S to round-off but not to the bit.
 ///
 /// With `rows_over_ranks` and a factor spread over the ranks (ConstrainedSolver::
 /// unit_rows_at_once, more than one rank), each rank holds the rows of S at the T-positions
