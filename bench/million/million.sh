@@ -5,9 +5,9 @@
 # each K it runs a baseline binary (if given) and this build, one after the other. K = 2, 3,
 # 4, 5.3 give 62 712, 200 336, 461 800 and 1 046 232 dofs (with the temperature). Prints per
 # run the dofs, the multipliers, the peak RSS, the set-up (wall time before step 1: assembly,
-# factorisations), the mean and the largest step time, the phases; then the growth exponent
-# of the mean step time of this build between consecutive K and over all, and per K the
-# baseline/current ratio of the mean step time.
+# factorisations), the mean and the largest step time, the phases; then the growth exponents
+# of the mean step time of this build, of all steps and of steps 2–, between consecutive K and
+# over all, and per K the baseline/current ratio of the mean step time.
 #   bench/million/million.sh [STEPS] [K ...]        e.g. million.sh 10 2 3 4 5.3
 # BASELINE=<binary> adds the baseline runs; extra arguments to `thermocontact run` go in
 # TC_ARGS; TC_BENCH_WORK=<dir> keeps the runs there. BLAS threads: THREADS for this build,
@@ -57,7 +57,7 @@ for k in ks:
         rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", tm).group(1)) / 2**20
         h, m, sec = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (?:(\d+):)?(\d+):([\d.]+)", tm).groups()
         wall = 3600 * int(h or 0) + 60 * int(m) + float(sec)
-        mean[who, k] = (s["dofs"], sum(t) / len(t))
+        mean[who, k] = (s["dofs"], sum(t) / len(t), sum(t[1:]) / len(t[1:]) if len(t) > 1 else t[0])
         print(f"K = {k} {who}: {s['dofs']} dofs, {s['multipliers']} multipliers, {s['subdomains']} subdomains, "
               f"peak RSS {rss:.2f} GiB, wall {wall:.1f} s, set-up {wall - sum(t):.1f} s, {len(t)} steps: "
               f"first {t[0]:.2f} s, mean {sum(t) / len(t):.2f} s/step, mean of steps 2– {sum(t[1:]) / len(t[1:]):.2f} s, "
@@ -65,10 +65,15 @@ for k in ks:
         print("    phases (s):", ", ".join(f"{n} {v:.2f}" for n, v in s["wall_seconds"].items() if v >= 0.01))
     if "baseline" in whos:
         print(f"K = {k}: mean step time baseline / current {mean['baseline', k][1] / mean['current', k][1]:.2f}x")
+# Growth exponents of the mean time per step, of all steps (the first holds the one-time set-up
+# of the contact dual) and of steps 2– (the steps a longer run is made of).
+def slope(a, b, c):
+    return math.log(b[c] / a[c]) / math.log(b[0] / a[0])
 rows = [mean["current", k] for k in ks]
-for (n0, t0), (n1, t1) in zip(rows, rows[1:]):
-    print(f"growth {n0} → {n1} dofs: mean step time as dofs^{math.log(t1 / t0) / math.log(n1 / n0):.2f}")
+for a, b in zip(rows, rows[1:]):
+    print(f"growth {a[0]} → {b[0]} dofs: mean step time as dofs^{slope(a, b, 1):.2f}, "
+          f"steps 2– as dofs^{slope(a, b, 2):.2f}")
 if len(rows) > 2:
-    print(f"growth {rows[0][0]} → {rows[-1][0]} dofs: dofs^"
-          f"{math.log(rows[-1][1] / rows[0][1]) / math.log(rows[-1][0] / rows[0][0]):.2f}")
+    print(f"growth {rows[0][0]} → {rows[-1][0]} dofs: dofs^{slope(rows[0], rows[-1], 1):.2f}, "
+          f"steps 2– dofs^{slope(rows[0], rows[-1], 2):.2f}")
 PY
