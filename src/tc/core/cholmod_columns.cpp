@@ -120,6 +120,25 @@ void backward_one(const cholmod_factor& l, int s, double* y, double* e) {
   dtrsv_("L", "C", "N", &nscol, l1, &nsrow, y + k1, &inc);
 }
 
+/// Supernode s's step of the forward solve y ← L⁻¹y for one right-hand side (permuted), with
+/// CHOLMOD's calls: y_s ← L_11⁻¹ y_s, then E = y below the diagonal block, E −= L_21 y_s, and
+/// E back into y. `e` holds at least the factor's maxesize entries.
+void forward_one(const cholmod_factor& l, int s, double* y, double* e) {
+  const auto* super = static_cast<const int*>(l.super);
+  const auto* lpi = static_cast<const int*>(l.pi);
+  const auto* lpx = static_cast<const int*>(l.px);
+  const auto* ls = static_cast<const int*>(l.s);
+  const double* l1 = static_cast<const double*>(l.x) + lpx[s];
+  const int k1 = super[s], nscol = super[s + 1] - k1;
+  const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
+  const double one = 1.0, minus_one = -1.0;
+  const int inc = 1;
+  for (int ii = 0; ii < nsrow2; ++ii) e[ii] = y[ls[ps2 + ii]];
+  dtrsv_("L", "N", "N", &nscol, l1, &nsrow, y + k1, &inc);
+  dgemv_("N", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, y + k1, &inc, &one, e, &inc);
+  for (int ii = 0; ii < nsrow2; ++ii) y[ls[ps2 + ii]] = e[ii];
+}
+
 /// The supernodes of `rows` (permuted) and all their ancestors, ascending.
 std::vector<int> reach(CholeskyColumns& c, std::span<const PetscInt> dofs) {
   std::vector<int> out;
@@ -163,7 +182,6 @@ bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<c
       y[static_cast<size_t>(c->pinv[static_cast<size_t>(cols[static_cast<size_t>(j)])]) +
         static_cast<size_t>(j) * static_cast<size_t>(n)] = 1.0;
   const double one = 1.0, minus_one = -1.0;
-  const int inc = 1;
   // E = the rows of Y below a supernode's diagonal block (its ancestors' rows), CHOLMOD's E.
   const auto gather_below = [&](int ps2, int nsrow2) {
     for (int ii = 0; ii < nsrow2; ++ii)
@@ -177,16 +195,15 @@ bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<c
     const int k1 = super[s], nscol = super[s + 1] - k1;
     const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
     const double* l1 = lx + lpx[s];
-    gather_below(ps2, nsrow2);
     if (k == 1) {
-      dtrsv_("L", "N", "N", &nscol, l1, &nsrow, y + k1, &inc);
-      dgemv_("N", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, y + k1, &inc, &one, e, &inc);
-    } else {
-      dtrsm_("L", "L", "N", "N", &nscol, &k, &one, l1, &nsrow, y + k1, &n);
-      if (nsrow2 > 0)
-        dgemm_("N", "N", &nsrow2, &k, &nscol, &minus_one, l1 + nscol, &nsrow, y + k1, &n, &one, e,
-               &nsrow2);
+      forward_one(l, s, y, e);
+      continue;
     }
+    gather_below(ps2, nsrow2);
+    dtrsm_("L", "L", "N", "N", &nscol, &k, &one, l1, &nsrow, y + k1, &n);
+    if (nsrow2 > 0)
+      dgemm_("N", "N", &nsrow2, &k, &nscol, &minus_one, l1 + nscol, &nsrow, y + k1, &n, &one, e,
+             &nsrow2);
     for (int ii = 0; ii < nsrow2; ++ii)
       for (int j = 0; j < k; ++j)
         y[static_cast<size_t>(ls[ps2 + ii]) + static_cast<size_t>(j) * n] = e[ii + j * nsrow2];
@@ -507,22 +524,70 @@ bool CholeskySolver::forward_compliance(ForwardColumnsPtr& kept, std::span<const
   return true;
 }
 
-bool CholeskySolver::solve_from_forward(const ForwardColumns& kept, std::span<const double> w,
-                                        double* x) const {
+bool CholeskySolver::forward_half(std::span<const double> b, std::vector<double>& z) const {
   CholeskyColumns* c = columns_of(factor_.get(), columns_);
-  if (!c || kept.factor != c->factor || w.size() != kept.size) return false;
+  if (!c || b.size() != c->factor->n) return false;
+  const cholmod_factor& l = *c->factor;
+  const auto* perm = static_cast<const int*>(l.Perm);
+  const auto n = static_cast<size_t>(l.n);
+  z.resize(n);
+  for (size_t k = 0; k < n; ++k) z[k] = b[static_cast<size_t>(perm[k])];  // P b
+  c->e.resize(std::max<size_t>(1, l.maxesize));
+  for (int s = 0; s < static_cast<int>(l.nsuper); ++s) forward_one(l, s, z.data(), c->e.data());
+  return true;
+}
+
+bool CholeskySolver::forward_values(const ForwardColumns& kept, std::span<const double> z,
+                                    std::span<double> out) const {
+  CholeskyColumns* c = columns_of(factor_.get(), columns_);
+  if (!c || kept.factor != c->factor || z.size() != c->factor->n || out.size() != kept.size)
+    return false;
+  const auto* super = static_cast<const int*>(c->factor->super);
+  const auto ns = static_cast<size_t>(c->factor->nsuper);
+  std::fill(out.begin(), out.end(), 0.0);
+  const double one = 1.0, zero = 0.0;
+  const int inc = 1;
+  std::vector<double> t;
+  // (Yᵀz)_q = Σ_s Y_s(:, q)ᵀ z_s over the supernodes column q reaches.
+  for (const auto& cover : kept.covers) {
+    const auto& cols = cover.columns;
+    for (size_t s = 0; s < ns; ++s) {
+      const int cnt = cols.count(s);
+      const auto& ys = cover.y[s];
+      if (cnt == 0 || ys.empty()) continue;
+      const int nscol = super[s + 1] - super[s];
+      t.resize(static_cast<size_t>(cnt));
+      dgemv_("T", &nscol, &cnt, &one, ys.data(), &nscol, z.data() + super[s], &inc, &zero, t.data(),
+             &inc);
+      for (int q = 0; q < cnt; ++q)
+        out[cover.offset + static_cast<size_t>(cols.order[static_cast<size_t>(cols.lo[s] + q)])] +=
+            t[static_cast<size_t>(q)];
+    }
+  }
+  return true;
+}
+
+bool CholeskySolver::solve_from_forward(const ForwardColumns& kept, std::span<const double> w,
+                                        double* x, std::span<const double> z) const {
+  CholeskyColumns* c = columns_of(factor_.get(), columns_);
+  if (!c || kept.factor != c->factor || w.size() != kept.size ||
+      (!z.empty() && z.size() != c->factor->n))
+    return false;
   const cholmod_factor& l = *c->factor;
   const int n = static_cast<int>(l.n);
   const auto* super = static_cast<const int*>(l.super);
   const auto ns = static_cast<int>(l.nsuper);
-  c->y.assign(static_cast<size_t>(n), 0.0);
+  if (z.empty())
+    c->y.assign(static_cast<size_t>(n), 0.0);
+  else
+    c->y.assign(z.begin(), z.end());
   c->e.resize(std::max<size_t>(1, l.maxesize));
   double* y = c->y.data();
   double* e = c->e.data();
   const double one = 1.0;
   const int inc = 1;
-  // Y w, supernode by supernode: block s of a cover holds L⁻¹P E (rows of s's diagonal block)
-  // for the cover's sorted columns [lo[s], hi[s]), which are T's offset + order[q].
+  // y += Y w, supernode by supernode: block s of a cover holds L⁻¹P E (rows of s's diagonal
+  // block) for the cover's sorted columns [lo[s], hi[s]), which are T's offset + order[q].
   std::vector<double> ws;
   for (const auto& cover : kept.covers) {
     const auto& cols = cover.columns;
@@ -559,8 +624,15 @@ bool CholeskySolver::forward_compliance(ForwardColumnsPtr&, std::span<const Pets
                                         double*) const {
   return false;
 }
-bool CholeskySolver::solve_from_forward(const ForwardColumns&, std::span<const double>,
-                                        double*) const {
+bool CholeskySolver::forward_half(std::span<const double>, std::vector<double>&) const {
+  return false;
+}
+bool CholeskySolver::forward_values(const ForwardColumns&, std::span<const double>,
+                                    std::span<double>) const {
+  return false;
+}
+bool CholeskySolver::solve_from_forward(const ForwardColumns&, std::span<const double>, double*,
+                                        std::span<const double>) const {
   return false;
 }
 

@@ -268,11 +268,21 @@ class CholeskySolver {
   /// nothing, with another package or another factor than kept's.
   bool forward_compliance(ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
                           double* out) const;
-  /// x = A⁻¹ E_T w for w given on T (kept's dofs, in their order): Y w = L⁻¹P E_T w from the
-  /// kept columns, then the backward solve alone, x = PᵀL⁻ᵀ(Y w). Half a solve plus one pass
-  /// over Y; equal to solve() on that right-hand side to round-off. Returns false, writing
-  /// nothing, without CHOLMOD or for another factor than kept's.
-  bool solve_from_forward(const ForwardColumns& kept, std::span<const double> w, double* x) const;
+  /// x = A⁻¹(b + E_T w) for w given on T (kept's dofs, in their order) and z = L⁻¹P b from
+  /// forward_half (empty: b = 0): Y w = L⁻¹P E_T w from the kept columns, then the backward
+  /// solve alone, x = PᵀL⁻ᵀ(z + Y w). Half a solve plus one pass over Y; equal to solve() on
+  /// that right-hand side to round-off. Returns false, writing nothing, without CHOLMOD or for
+  /// another factor than kept's.
+  bool solve_from_forward(const ForwardColumns& kept, std::span<const double> w, double* x,
+                          std::span<const double> z = {}) const;
+  /// The first half of solve(): z = L⁻¹P b (CHOLMOD's supernodal factor, its own BLAS calls),
+  /// for solve_from_forward to finish. False, z untouched, without CHOLMOD.
+  bool forward_half(std::span<const double> b, std::vector<double>& z) const;
+  /// (A⁻¹b)_T = Yᵀz for z = forward_half(b) without the backward solve: one pass over Y
+  /// (E_Tᵀ A⁻¹ = (L⁻¹P E_T)ᵀ L⁻¹P). out is on T in kept's order; a dof of T given as −1 to
+  /// forward_compliance gets 0. False, out untouched, as solve_from_forward.
+  bool forward_values(const ForwardColumns& kept, std::span<const double> z,
+                      std::span<double> out) const;
   [[nodiscard]] const std::string& package() const { return package_; }
   /// Whether the factor is spread over the ranks (see the class comment).
   [[nodiscard]] bool distributed() const { return ranks_.comm != MPI_COMM_NULL; }

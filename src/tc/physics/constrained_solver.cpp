@@ -95,10 +95,11 @@ void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
     feti_->solve(b, x);
     return;
   }
-  if (dofs_.empty()) {
-    factor_.solve(b, x);
-    return;
-  }
+  factor_.solve(lifted(b, x), x);
+}
+
+const core::Vector& ConstrainedSolver::lifted(const core::Vector& b, const core::Vector& x) const {
+  if (dofs_.empty()) return b;
   // rhs = b − A(:, D) x_D on the free rows (A x_D summed first, row by row in column order, as
   // a product with A would), diag · x_D on the constrained ones.
   lift_.zero();
@@ -119,7 +120,31 @@ void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
     auto rv = rhs_.view();
     for (const PetscInt d : dofs_) rv[d] = diag_ * xv[d];
   }
-  factor_.solve(rhs_, x);
+  return rhs_;
+}
+
+bool ConstrainedSolver::solve_forward_half(const core::ForwardColumns& kept,
+                                           std::span<const PetscInt> t, const core::Vector& b,
+                                           core::Vector& x, std::vector<double>& z) const {
+  if (feti_) return false;
+  {
+    const auto rv = lifted(b, x).read();
+    if (!factor_.forward_half(rv.span(), z)) return false;
+  }
+  std::vector<double> on_t(t.size());
+  if (!factor_.forward_values(kept, z, on_t)) return false;
+  auto xv = x.view();  // a constrained dof of T keeps its prescribed value
+  for (size_t q = 0; q < t.size(); ++q)
+    if (!std::binary_search(dofs_.begin(), dofs_.end(), t[q])) xv[t[q]] = on_t[q];
+  return true;
+}
+
+bool ConstrainedSolver::solve_backward_half(const core::ForwardColumns& kept,
+                                            std::span<const double> z, std::span<const double> w,
+                                            core::Vector& x) const {
+  if (feti_) return false;
+  auto xv = x.view();  // every entry, the constrained ones from z (= x_D to round-off, as solve)
+  return factor_.solve_from_forward(kept, w, xv.span().data(), z);
 }
 
 }  // namespace tc::physics

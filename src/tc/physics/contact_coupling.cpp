@@ -353,9 +353,17 @@ int ContactCoupling::couple(int step) {
     if (enforcement.qp_gives_displacements()) {      // the loads only: the QP solves for u itself
       auto scope = timers_.scope("mechanical_solve");
       for (const int b : group_.members) steps_.mech_load(b, step);
-    } else {
-      // u_free = A⁻¹f with the Dirichlet data
+    } else if (tresca.defer) {  // u_free = A⁻¹f with the Dirichlet data
       for (const int b : group_.members) steps_.mech_step(b, step, iteration);
+    } else {
+      // The same, by halves where that saves a backward solve: finish_qps recovers u at once.
+      auto scope = timers_.scope("mechanical_solve");
+      for (int i = 0; i < g.size(); ++i) {
+        steps_.mech_load(group_.members[static_cast<size_t>(i)], step);
+        auto& f = *g.fields[i];
+        enforcement.dual().solve_free(i, f.rhs_u, f.u_new, lambda_);
+        require_finite(f.u_new, "displacement", step, iteration);
+      }
     }
     // Nested: γ = λ_n(γ) to convergence at this θ, Aitken restarted (the map changed with θ);
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.

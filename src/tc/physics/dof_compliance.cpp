@@ -77,17 +77,30 @@ PetscInt DofCompliance::missing(std::span<const PetscInt> dofs) const {
   return static_cast<PetscInt>(std::unique(fresh.begin(), fresh.end()) - fresh.begin());
 }
 
+bool DofCompliance::on_t(const core::Vector& w, double scale, std::vector<double>& wt) const {
+  wt.resize(dofs_.size());
+  const auto wv = w.read();
+  const auto n = static_cast<PetscInt>(index_.size());
+  for (PetscInt i = 0; i < n; ++i)
+    if (wv[i] != 0.0 && index_[i] < 0) return false;
+  for (size_t q = 0; q < dofs_.size(); ++q) wt[q] = scale * wv[dofs_[q]];
+  return true;
+}
+
 bool DofCompliance::solve(const core::Vector& w, core::Vector& x) const {
-  if (!by_forward_ || !forward_) return false;
-  std::vector<double> wt(dofs_.size());
-  {
-    const auto wv = w.read();
-    const auto n = static_cast<PetscInt>(index_.size());
-    for (PetscInt i = 0; i < n; ++i)
-      if (wv[i] != 0.0 && index_[i] < 0) return false;
-    for (size_t q = 0; q < dofs_.size(); ++q) wt[q] = wv[dofs_[q]];
-  }
-  return solver_.solve_from_forward(*forward_, wt, x);
+  std::vector<double> wt;
+  return keeps_forward() && on_t(w, 1.0, wt) && solver_.solve_from_forward(*forward_, wt, x);
+}
+
+bool DofCompliance::solve_forward_half(const core::Vector& b, core::Vector& x,
+                                       std::vector<double>& z) const {
+  return keeps_forward() && solver_.solve_forward_half(*forward_, dofs_, b, x, z);
+}
+
+bool DofCompliance::solve_backward_half(std::span<const double> z, const core::Vector& w,
+                                        core::Vector& x) const {
+  std::vector<double> wt;
+  return keeps_forward() && on_t(w, -1.0, wt) && solver_.solve_backward_half(*forward_, z, wt, x);
 }
 
 PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {

@@ -62,11 +62,20 @@ class DofCompliance {
   /// (ConstrainedSolver::solve_from_forward). False, x untouched, otherwise (S grown by
   /// restricted solves, or w nonzero off T).
   bool solve(const core::Vector& w, core::Vector& x) const;
+  /// Whether S is grown by forward solves and their Y kept (solve() and the halves can work).
+  [[nodiscard]] bool keeps_forward() const { return by_forward_ && forward_ != nullptr; }
+  /// The body's solve A x = b (Dirichlet data in x) in two halves by the kept Y
+  /// (ConstrainedSolver::solve_forward_half, solve_backward_half): x on T, with z, now; all of
+  /// x = A⁻¹(b − w), w vanishing off T, later. False, x untouched, as solve().
+  bool solve_forward_half(const core::Vector& b, core::Vector& x, std::vector<double>& z) const;
+  bool solve_backward_half(std::span<const double> z, const core::Vector& w, core::Vector& x) const;
   /// Rebuilds S from scratch by replaying the recorded cover() calls (nothing to do when the
   /// record is already this one's).
   void replay(std::span<const PetscInt> dofs, std::span<const PetscInt> chunks);
 
  private:
+  // scale · w on T, in T's order; false if w is nonzero off T.
+  bool on_t(const core::Vector& w, double scale, std::vector<double>& wt) const;
   // The new columns S(T, fresh) given by `column(a, c)` (row a of T, column c of the fresh
   // ones, from `first` on) into this rank's rows, and their rows on the old columns by symmetry.
   template <class Column>

@@ -33,6 +33,8 @@ DualContactSolver::DualContactSolver(std::vector<const ConstrainedSolver*> bodie
     w_in_.emplace_back(n_u[i]);
     y_.emplace_back(n_u[i]);
   }
+  half_z_.resize(bodies_.size());
+  half_done_.assign(bodies_.size(), 0);
   s_used_.resize(bodies_.size());
   s_used_rows_.assign(bodies_.size(), 0);
   used_row_.resize(bodies_.size());
@@ -618,10 +620,34 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
   return r;
 }
 
+void DualContactSolver::solve_free(int i, const core::Vector& b, core::Vector& u,
+                                   const core::Vector& lambda) {
+  const auto k = static_cast<size_t>(i);
+  half_done_[k] = 0;
+  if (compliance_[k].keeps_forward() && n_rows() > 0) {
+    b_[k].mult_transpose(lambda, w_in_[k]);
+    // Unloaded (before the first touch) recover() has no backward solve to share.
+    if (w_in_[k].max_abs() != 0.0 && compliance_[k].solve_forward_half(b, u, half_z_[k])) {
+      half_done_[k] = 1;
+      return;
+    }
+  }
+  bodies_[k]->solve(b, u);
+}
+
 void DualContactSolver::recover(const core::Vector& lambda, BodyVectorsOut u) const {
-  if (n_rows() == 0) return;
   for (int i = 0; i < n_bodies(); ++i) {  // u_i −= A_i⁻¹ B_iᵀ λ
-    b_[i].mult_transpose(lambda, w_in_[i]);
+    const auto k = static_cast<size_t>(i);
+    if (n_rows() > 0)
+      b_[i].mult_transpose(lambda, w_in_[i]);
+    else
+      w_in_[i].zero();
+    if (half_done_[k]) {  // u_i = A_i⁻¹(b_i − B_iᵀλ): the backward half of solve_free
+      half_done_[k] = 0;
+      if (!compliance_[k].solve_backward_half(half_z_[k], w_in_[i], *u[i]))
+        throw Error("internal: the backward half of a split body solve failed");
+      continue;
+    }
     // No contact force on the body (every step before the first touch): A⁻¹0 = 0 exactly,
     // and the solve would cost as much as the step's own.
     if (w_in_[i].max_abs() == 0.0) continue;

@@ -140,8 +140,17 @@ class DualContactSolver {
   [[nodiscard]] bool held_at_zero(PetscInt k) const {
     return !held_.empty() && held_[static_cast<size_t>(k)] != 0;
   }
-  /// u_i −= A_i⁻¹ B_iᵀ λ (a solve per body): what solve() skips with recover = false.
+  /// u_i −= A_i⁻¹ B_iᵀ λ (a solve per body): what solve() skips with recover = false. A solve
+  /// left half done by solve_free is finished here: u_i = A_i⁻¹(b_i − B_iᵀλ), all of it.
   void recover(const core::Vector& lambda, BodyVectorsOut u) const;
+  /// u_i = A_i⁻¹b with the Dirichlet data in u_i, as body i's ConstrainedSolver::solve, when
+  /// recover() follows before anything reads u_i off the contact dofs: where body i's
+  /// compliance keeps its forward columns Y and λ (the current iterate) loads the body, only
+  /// the forward half is done, u_i on T = Yᵀz (all that B_i and the QP read), and recover()
+  /// forms u_i = PᵀL⁻ᵀ(z − Y(B_iᵀλ)_T): one forward and one backward solve per body for both
+  /// u_free and A⁻¹B_iᵀλ, not one forward and two backward. Until then u_i off T is stale.
+  /// Whether a body is split depends on λ alone, so a restarted run takes the same path.
+  void solve_free(int i, const core::Vector& b, core::Vector& u, const core::Vector& lambda);
   void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const {
     recover(lambda, std::array{&u_slave, &u_master});
   }
@@ -203,6 +212,9 @@ class DualContactSolver {
   std::vector<PetscInt> s_used_rows_;
   std::vector<std::vector<PetscInt>> used_row_;
   mutable std::vector<core::Vector> w_in_, y_;  // per body: B_iᵀx and A_i⁻¹B_iᵀx
+  // Per body: z = L⁻¹P b of a solve_free left for recover() to finish, and whether it is.
+  std::vector<std::vector<double>> half_z_;
+  mutable std::vector<char> half_done_;
 };
 
 }  // namespace tc::physics
