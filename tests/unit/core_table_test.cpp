@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "support/grid_laplacian.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/core/table.hpp"
@@ -86,29 +87,7 @@ TEST(Petsc, CholeskySolvesAnSpdSystem) {
   }
 }
 
-/// A 3D Laplacian on a g³ grid (7 points, diagonal shifted to 6.5: SPD), large enough at g = 14
-/// for CHOLMOD's supernodal factor.
-tc::core::SparseMatrix shifted_laplacian(PetscInt g) {
-  const PetscInt n = g * g * g;
-  std::vector<PetscInt> nnz(n, 7);
-  tc::core::SparseMatrix a(n, n, nnz);
-  const auto id = [&](PetscInt x, PetscInt y, PetscInt z) { return x + g * (y + g * z); };
-  for (PetscInt z = 0; z < g; ++z)
-    for (PetscInt y = 0; y < g; ++y)
-      for (PetscInt x = 0; x < g; ++x) {
-        const PetscInt i = id(x, y, z);
-        const double d = 6.5, o = -1.0;
-        a.add_values(std::span(&i, 1), std::span(&i, 1), &d);
-        for (const PetscInt j : {x + 1 < g ? id(x + 1, y, z) : -1, y + 1 < g ? id(x, y + 1, z) : -1,
-                                 z + 1 < g ? id(x, y, z + 1) : -1})
-          if (j >= 0) {
-            a.add_values(std::span(&i, 1), std::span(&j, 1), &o);
-            a.add_values(std::span(&j, 1), std::span(&i, 1), &o);
-          }
-      }
-  a.assemble();
-  return a;
-}
+using tc::test::shifted_laplacian;
 
 TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
   // A 3D Laplacian (7 points, shifted) large enough for CHOLMOD's supernodal factor: the rows

@@ -18,11 +18,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 
 #include "support/body_energy.hpp"
+#include "support/grid_laplacian.hpp"
 #include "support/problems.hpp"
 #include "tc/physics/simulation.hpp"
 
@@ -160,6 +163,79 @@ TEST(InterfaceHeatSolver, RefinesWithTheLastLuWhileLStaysOnItsNodes) {
     check(part, true, 6, 4);  // L on fewer nodes than J: J kept (L moved far: a new LU)
     check(part, false, 4, 5);
   }
+}
+
+TEST(InterfaceHeatSolver, ByForwardColumnsGivesTheSameTemperaturesInOneSolvePerBody) {
+  // Two 3D grids (shifted Laplacians, 14³ and 13³: CHOLMOD's supernodal factors) joined on a
+  // 6 × 6 patch of their facing sides, a Dirichlet node on each patch, L random SPD over the
+  // patches. With -tc_forward_compliance S comes from Y = L⁻¹P E_T and each solve shares its
+  // halves (P G(b) = Yᵀz, θ = PᵀL⁻ᵀ(z − Y Pᵀ L_Γ y)): the same θ as the two full solves per
+  // body to round-off, 1e-12 of the largest temperature (κ of the grids and of I + S L is
+  // O(10²)). Exactly equal would mean the halves were not taken.
+  const auto& packages = core::available_cholesky_packages();
+  if (std::find(packages.begin(), packages.end(), std::string(MATSOLVERCHOLMOD)) == packages.end())
+    GTEST_SKIP() << "no CHOLMOD";
+  const PetscInt gs = 14, gm = 13, side = 6;
+  const auto as = shifted_laplacian(gs), am = shifted_laplacian(gm);
+  std::vector<int> ps, pm;  // the slave's top patch, the master's bottom one, in the same order
+  for (PetscInt y = 0; y < side; ++y)
+    for (PetscInt x = 0; x < side; ++x) {
+      ps.push_back(static_cast<int>(x + gs * (y + gs * (gs - 1))));
+      pm.push_back(static_cast<int>(x + gm * y));
+    }
+  const physics::ConstrainedSolver solver_s{as, {ps[7]}, MATSOLVERCHOLMOD},
+      solver_m{am, {pm[20]}, MATSOLVERCHOLMOD};
+  const PetscInt ns = gs * gs * gs, nm = gm * gm * gm;
+  const auto np = static_cast<Eigen::Index>(ps.size());
+  const Eigen::MatrixXd g = Eigen::MatrixXd::Random(2 * np, 2 * np);
+  const Eigen::MatrixXd lg = 0.5 * g * g.transpose();
+  const auto block = [&](PetscInt rows, PetscInt cols, const std::vector<int>& r,
+                         const std::vector<int>& c, Eigen::Index r0, Eigen::Index c0) {
+    core::SparseMatrix m(rows, cols,
+                         std::vector<PetscInt>(static_cast<size_t>(rows), 2 * side * side));
+    for (Eigen::Index a = 0; a < np; ++a)
+      for (Eigen::Index b = 0; b < np; ++b) {
+        const PetscInt i = r[static_cast<size_t>(a)], j = c[static_cast<size_t>(b)];
+        const double v = lg(r0 + a, c0 + b);
+        m.add_values(std::span(&i, 1), std::span(&j, 1), &v);
+      }
+    m.assemble();
+    return m;
+  };
+  const contact::ThermalContact l{block(ns, ns, ps, ps, 0, 0), block(ns, nm, ps, pm, 0, np),
+                                  block(nm, ns, pm, ps, np, 0), block(nm, nm, pm, pm, np, np)};
+  const auto solve = [&](bool forward) {
+    if (forward) TC_PETSC(PetscOptionsSetValue(nullptr, "-tc_forward_compliance", nullptr));
+    physics::InterfaceHeatSolver solver(solver_s, ns, ps, solver_m, nm, pm);
+    solver.set_conductance(l);  // S's first cover: the path is chosen here
+    if (forward) TC_PETSC(PetscOptionsClearValue(nullptr, "-tc_forward_compliance"));
+    core::Vector bs(ns), bm(nm), xs(ns), xm(nm);
+    {
+      auto bv = bs.view();
+      for (PetscInt i = 0; i < ns; ++i) bv[i] = std::sin(0.1 * static_cast<double>(i));
+      auto cv = bm.view();
+      for (PetscInt i = 0; i < nm; ++i) cv[i] = std::cos(0.2 * static_cast<double>(i));
+    }
+    xs.view()[ps[7]] = 300.0;
+    xm.view()[pm[20]] = 310.0;
+    solver.solve(bs, bm, xs, xm);
+    auto x = xs.to_std();
+    const auto m = xm.to_std();
+    x.insert(x.end(), m.begin(), m.end());
+    return x;
+  };
+  const auto full = solve(false), halves = solve(true);
+  double scale = 0, diff = 0;
+  for (size_t i = 0; i < full.size(); ++i) {
+    scale = std::max(scale, std::abs(full[i]));
+    diff = std::max(diff, std::abs(full[i] - halves[i]));
+  }
+  for (const auto* x : {&full, &halves}) {  // θ_D back from diag·θ_D / diag, to round-off
+    EXPECT_NEAR((*x)[static_cast<size_t>(ps[7])], 300.0, 1e-12 * scale);
+    EXPECT_NEAR((*x)[static_cast<size_t>(ns + pm[20])], 310.0, 1e-12 * scale);
+  }
+  EXPECT_LE(diff, 1e-12 * scale);
+  EXPECT_GT(diff, 0.0) << "the forward-solve path was not taken";
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -102,41 +102,51 @@ CholeskyColumns* columns_of(::Mat f, std::shared_ptr<CholeskyColumns>& cache) {
   return cache.get();
 }
 
+/// Supernode s of the factor: its first column k1 and nscol columns, the diagonal block L_11
+/// at l1 (leading dimension nsrow) with L_21 below it, and the nsrow2 rows below the block
+/// (ls[ps2 + ii]: its ancestors' rows).
+struct Supernode {
+  const double* l1;
+  const int* ls;
+  int k1, nscol, nsrow, nsrow2, ps2;
+  Supernode(const cholmod_factor& l, int s)
+      : l1(static_cast<const double*>(l.x) + static_cast<const int*>(l.px)[s]),
+        ls(static_cast<const int*>(l.s)) {
+    const auto* super = static_cast<const int*>(l.super);
+    const auto* lpi = static_cast<const int*>(l.pi);
+    k1 = super[s];
+    nscol = super[s + 1] - k1;
+    nsrow = lpi[s + 1] - lpi[s];
+    nsrow2 = nsrow - nscol;
+    ps2 = lpi[s] + nscol;
+  }
+};
+
 /// Supernode s's step of the backward solve y ← L⁻ᵀy for one right-hand side (permuted), with
 /// CHOLMOD's calls: E = y below the diagonal block (the ancestors' rows), y_s −= L_21ᵀE, then
 /// y_s ← L_11⁻ᵀ y_s. `e` holds at least the factor's maxesize entries.
 void backward_one(const cholmod_factor& l, int s, double* y, double* e) {
-  const auto* super = static_cast<const int*>(l.super);
-  const auto* lpi = static_cast<const int*>(l.pi);
-  const auto* lpx = static_cast<const int*>(l.px);
-  const auto* ls = static_cast<const int*>(l.s);
-  const double* l1 = static_cast<const double*>(l.x) + lpx[s];
-  const int k1 = super[s], nscol = super[s + 1] - k1;
-  const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
+  const Supernode n(l, s);
   const double one = 1.0, minus_one = -1.0;
   const int inc = 1;
-  for (int ii = 0; ii < nsrow2; ++ii) e[ii] = y[ls[ps2 + ii]];
-  dgemv_("C", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, e, &inc, &one, y + k1, &inc);
-  dtrsv_("L", "C", "N", &nscol, l1, &nsrow, y + k1, &inc);
+  for (int ii = 0; ii < n.nsrow2; ++ii) e[ii] = y[n.ls[n.ps2 + ii]];
+  dgemv_("C", &n.nsrow2, &n.nscol, &minus_one, n.l1 + n.nscol, &n.nsrow, e, &inc, &one, y + n.k1,
+         &inc);
+  dtrsv_("L", "C", "N", &n.nscol, n.l1, &n.nsrow, y + n.k1, &inc);
 }
 
 /// Supernode s's step of the forward solve y ← L⁻¹y for one right-hand side (permuted), with
 /// CHOLMOD's calls: y_s ← L_11⁻¹ y_s, then E = y below the diagonal block, E −= L_21 y_s, and
 /// E back into y. `e` holds at least the factor's maxesize entries.
 void forward_one(const cholmod_factor& l, int s, double* y, double* e) {
-  const auto* super = static_cast<const int*>(l.super);
-  const auto* lpi = static_cast<const int*>(l.pi);
-  const auto* lpx = static_cast<const int*>(l.px);
-  const auto* ls = static_cast<const int*>(l.s);
-  const double* l1 = static_cast<const double*>(l.x) + lpx[s];
-  const int k1 = super[s], nscol = super[s + 1] - k1;
-  const int psi = lpi[s], nsrow = lpi[s + 1] - psi, nsrow2 = nsrow - nscol, ps2 = psi + nscol;
+  const Supernode n(l, s);
   const double one = 1.0, minus_one = -1.0;
   const int inc = 1;
-  for (int ii = 0; ii < nsrow2; ++ii) e[ii] = y[ls[ps2 + ii]];
-  dtrsv_("L", "N", "N", &nscol, l1, &nsrow, y + k1, &inc);
-  dgemv_("N", &nsrow2, &nscol, &minus_one, l1 + nscol, &nsrow, y + k1, &inc, &one, e, &inc);
-  for (int ii = 0; ii < nsrow2; ++ii) y[ls[ps2 + ii]] = e[ii];
+  for (int ii = 0; ii < n.nsrow2; ++ii) e[ii] = y[n.ls[n.ps2 + ii]];
+  dtrsv_("L", "N", "N", &n.nscol, n.l1, &n.nsrow, y + n.k1, &inc);
+  dgemv_("N", &n.nsrow2, &n.nscol, &minus_one, n.l1 + n.nscol, &n.nsrow, y + n.k1, &inc, &one, e,
+         &inc);
+  for (int ii = 0; ii < n.nsrow2; ++ii) y[n.ls[n.ps2 + ii]] = e[ii];
 }
 
 /// The supernodes of `rows` (permuted) and all their ancestors, ascending.

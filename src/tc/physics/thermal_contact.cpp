@@ -28,6 +28,7 @@ InterfaceHeatSolver::InterfaceHeatSolver(std::vector<const ConstrainedSolver*> s
     rhs_.emplace_back(n_[i]);
     compliance_.emplace_back(*solver_[i], n_[i]);
   }
+  z_.resize(static_cast<size_t>(n_bodies()));
 }
 
 int InterfaceHeatSolver::body_of(int g) const {
@@ -177,7 +178,15 @@ void InterfaceHeatSolver::interface_solve(Eigen::VectorXd& y) const {
 
 void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
                                 std::span<core::Vector* const> x) const {
-  for (int i = 0; i < n_bodies(); ++i) solver_[i]->solve(*b[i], *x[i]);  // x = G(b): P x = y₀
+  // x = G(b), P x = y₀. Where body i's S keeps its forward columns Y (DofCompliance), the
+  // forward half alone gives x on T ⊇ J (Yᵀz), and the second solve's backward half gives
+  // θ = PᵀL⁻ᵀ(z − Y(Pᵀ L_Γ y)): one solve per body instead of two.
+  std::vector<char> half(static_cast<size_t>(n_bodies()), 0);
+  for (int i = 0; i < n_bodies(); ++i) {
+    const auto k = static_cast<size_t>(i);
+    half[k] = !active_.empty() && compliance_[k].solve_forward_half(*b[i], *x[i], z_[k]);
+    if (!half[k]) solver_[i]->solve(*b[i], *x[i]);
+  }
   if (active_.empty()) return;
   const auto na = static_cast<Eigen::Index>(active_.size());
   Eigen::VectorXd y0(na);
@@ -191,18 +200,30 @@ void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
   interface_solve(y0);
   const Eigen::VectorXd c = l_active_ * y0;  // L_Γ y
   std::vector<char> touched(static_cast<size_t>(n_bodies()), 0);
-  for (int i = 0; i < n_bodies(); ++i) rhs_[i].copy_from(*b[i]);
   for (int i = 0; i < n_bodies(); ++i) {
+    // b − Pᵀ L_Γ y, or Pᵀ L_Γ y alone for the backward half, which subtracts it from b
+    const double sign = half[static_cast<size_t>(i)] ? 1.0 : -1.0;
+    if (half[static_cast<size_t>(i)])
+      rhs_[i].zero();
+    else
+      rhs_[i].copy_from(*b[i]);
     auto rv = rhs_[i].view();
     for (Eigen::Index a = 0; a < na; ++a) {
       const int g = active_[a];
       if (c(a) == 0.0 || g < offset_[i] || g >= offset_[i + 1]) continue;
-      rv[nodes_[i][g - offset_[i]]] -= c(a);
+      rv[nodes_[i][g - offset_[i]]] += sign * c(a);
       touched[i] = 1;
     }
   }
-  for (int i = 0; i < n_bodies(); ++i)
-    if (touched[i]) solver_[i]->solve(rhs_[i], *x[i]);  // θ = G(b − Pᵀ L_Γ y)
+  for (int i = 0; i < n_bodies(); ++i) {
+    const auto k = static_cast<size_t>(i);
+    if (half[k]) {
+      if (!compliance_[k].solve_backward_half(z_[k], rhs_[i], *x[i]))
+        throw Error("internal: the backward half of a split heat solve failed");
+    } else if (touched[i]) {
+      solver_[i]->solve(rhs_[i], *x[i]);  // θ = G(b − Pᵀ L_Γ y)
+    }
+  }
 }
 
 }  // namespace tc::physics

@@ -14,7 +14,9 @@
 //   (I + S L_Γ) y = P G(b),   then   θ = G(b − Pᵀ L_Γ y),
 //
 // an exact solve of the coupled system (Woodbury's identity written on the interface) with two
-// solves per body and one dense LU of the nodes that L touches: A is never refactorised.
+// solves per body and one dense LU of the nodes that L touches: A is never refactorised. Where
+// S comes from the forward solves Y = L⁻¹P E_T (DofCompliance), the two solves share their
+// halves: P G(b) = Yᵀz after the forward solve z = L⁻¹P b, θ = PᵀL⁻ᵀ(z − Y(Pᵀ L_Γ y)).
 // I + S L_Γ is similar to I + S^½ L_Γ S^½ (on the free nodes), so its eigenvalues are ≥ 1.
 //
 // L changes little from one iteration of (6.3) to the next (γ = λ_n moves by the fixed point's
@@ -117,6 +119,7 @@ class InterfaceHeatSolver {
   mutable bool lu_current_ = false;  // the LU is of the current L
   mutable long factorizations_ = 0, refinement_steps_ = 0;
   mutable std::vector<core::Vector> rhs_;
+  mutable std::vector<std::vector<double>> z_;  // per body: L⁻¹P b of a solve by halves
 };
 
 }  // namespace tc::physics
