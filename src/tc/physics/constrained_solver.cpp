@@ -134,8 +134,9 @@ bool ConstrainedSolver::solve_forward_half(const core::ForwardColumns& kept,
   std::vector<double> on_t(t.size());
   if (!factor_.forward_values(kept, z, on_t)) return false;
   auto xv = x.view();  // a constrained dof of T keeps its prescribed value
+  const auto free = free_or_none(t, dofs_);
   for (size_t q = 0; q < t.size(); ++q)
-    if (!std::binary_search(dofs_.begin(), dofs_.end(), t[q])) xv[t[q]] = on_t[q];
+    if (free[q] >= 0) xv[free[q]] = on_t[q];
   return true;
 }
 
