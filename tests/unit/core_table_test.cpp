@@ -89,6 +89,29 @@ TEST(Petsc, CholeskySolvesAnSpdSystem) {
 
 using tc::test::shifted_laplacian;
 
+TEST(Petsc, CholeskyZeroRightHandSideIsTheSolvesOwnZeros) {
+  // solve() takes A⁻¹0 = 0 without the factor (a body at rest before a touch): the result must
+  // be the factor's own for b = 0, +0 in every entry, whatever x held before.
+  const auto a = tc::test::shifted_laplacian(12);  // supernodal in CHOLMOD
+  const PetscInt n = a.rows();
+  for (const auto& package : tc::core::available_cholesky_packages()) {
+    tc::core::CholeskySolver solver(a, package);
+    tc::core::Vector zero(n), x(n), by_factor(n);
+    x.fill(7.0);
+    by_factor.fill(7.0);
+    solver.solve(zero, x);
+    solver.solve_raw(zero.get(), by_factor.get());
+    const auto xv = x.read();
+    const auto fv = by_factor.read();
+    for (PetscInt i = 0; i < n; ++i) {
+      EXPECT_EQ(xv[i], 0.0) << package << " entry " << i;
+      EXPECT_FALSE(std::signbit(xv[i])) << package << " entry " << i;
+      EXPECT_EQ(std::signbit(xv[i]), std::signbit(fv[i])) << package << " entry " << i;
+      EXPECT_EQ(xv[i], fv[i]) << package << " entry " << i;
+    }
+  }
+}
+
 TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
   // A 3D Laplacian (7 points, shifted) large enough for CHOLMOD's supernodal factor: the rows
   // of A⁻¹[e_c] from unit_solve_rows, which visits only the supernodes they need, against the

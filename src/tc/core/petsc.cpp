@@ -556,6 +556,15 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> 
 // MatSolve and MatMatSolve on the factor are what KSPPREONLY with PCCHOLESKY calls: the same
 // bits as solving through the KSP.
 void CholeskySolver::solve(const Vector& b, Vector& x) const {
+  // A⁻¹0 = 0 without reading the factor (the solve's own result, +0 everywhere): a body at rest
+  // with no load, before a touch, would otherwise be solved at every coupling iteration. Over
+  // the ranks b is replicated; they agree all the same before leaving a collective solve.
+  int zero = b.max_abs() == 0.0 ? 1 : 0;
+  if (distributed()) TC_MPI(MPI_Allreduce(MPI_IN_PLACE, &zero, 1, MPI_INT, MPI_LAND, ranks_.comm));
+  if (zero) {
+    x.zero();
+    return;
+  }
   solve_raw(b.get(), x.get());
 }
 

@@ -131,9 +131,33 @@ BodyField::BodyField(const Problem& p, const BodySystem& sys) {
   heating = p.physics.thermoelastic_heating && coupled_material;
   for (auto* v : {&f_u, &rhs_u_base, &rhs_u, &u_new, &u_prev, &velocity, &work_u, &u_pred})
     *v = core::Vector(sys.n_u());
-  for (auto* v :
-       {&f_theta, &rhs_theta_base, &rhs_theta, &theta_new, &theta_prev, &dtheta, &work_theta})
+  for (auto* v : {&f_theta, &rhs_theta_base, &rhs_theta, &theta_new, &theta_prev, &dtheta,
+                  &work_theta, &theta0_load})
     *v = core::Vector(sys.n_theta());
+  // M_θ's part formed as begin_step forms M_θ θ^k/τ (θ^k/τ, then added to a vector by the same
+  // product): for a body at θ₀ everywhere the two cancel to the bit.
+  const double theta0 = p.physics.reference_temperature;
+  work_theta.fill(theta0);
+  work_theta.scale(1.0 / p.time.step);
+  m.mass_theta.mult_add(work_theta, theta0_load);
+  if (const auto* film = sys.constant_film()) {
+    work_theta.fill(theta0);
+    film->mult_add(work_theta, theta0_load);
+  }
+}
+
+bool deviation_applies(const BodyField& s) {
+  return !s.heat->feti();
+}
+
+void heat_to_deviation(double theta0, BodyField& s) {
+  s.rhs_theta.axpy(-1.0, s.theta0_load);
+  s.theta_new.shift(-theta0);
+}
+
+void heat_from_deviation(double theta0, const BodySystem& sys, double t, BodyField& s) {
+  s.theta_new.shift(theta0);
+  sys.prescribe_theta(t, s.theta_new);
 }
 
 void solve_initial_acceleration(const BodySystem& sys, const core::Vector& r, core::Vector& a) {

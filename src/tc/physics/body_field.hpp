@@ -44,6 +44,9 @@ struct BodyField {
   // g^k = f^k − K_u u^k − K_uθ(θ^k − θ₀) that replaces M_u ü^k (which holds the contact force).
   std::unique_ptr<ConstrainedSolver> mass;
   core::Vector g_free;
+  // θ₀(M_θ/τ + H_film)1, A_θ θ₀ without K_θ θ₀ (zero in exact arithmetic): the linear heat
+  // solves are for ϑ = θ − θ₀ (heat_to_deviation).
+  core::Vector theta0_load;
   bool expansion = false;  // θ drives u (thermal expansion on, α ≠ 0)
   bool heating = false;    // u̇ drives θ (thermoelastic heating on, α ≠ 0)
 };
@@ -53,6 +56,18 @@ struct BodyField {
 /// A_u's and which would coexist with it at the run's memory peak. Throws NumericalError
 /// (step 0) when CG does not converge.
 void solve_initial_acceleration(const BodySystem& sys, const core::Vector& r, core::Vector& a);
+
+/// The heat step (5.6) solved for ϑ = θ − θ₀ (docs/choices.md, "The heat step solved for
+/// θ − θ₀"): A_θ ϑ = b − θ₀ A_θ1 with K_θ1 = 0 taken exactly, so that a body at θ₀ with no
+/// heat coming in has a right-hand side of exact zeros, and so a temperature of exactly θ₀
+/// and no thermal load on its mechanics (whose solves are then skipped: CholeskySolver::solve).
+/// heat_to_deviation: rhs_theta −= theta0_load, theta_new −= θ₀ (its prescribed values with
+/// it); heat_from_deviation: theta_new += θ₀, the prescribed values of time t set again. Only
+/// for factorised heat operators (deviation_applies): FETI's stopping test is relative to the
+/// right-hand side, which the shift would shrink.
+[[nodiscard]] bool deviation_applies(const BodyField& s);
+void heat_to_deviation(double theta0, BodyField& s);
+void heat_from_deviation(double theta0, const BodySystem& sys, double t, BodyField& s);
 
 /// f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with s's scratch vectors.
 void subtract_thermal_force(const Problem& p, const BodySystem& sys, BodyField& s,

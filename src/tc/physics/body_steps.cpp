@@ -32,7 +32,11 @@ void BodySteps::heat_step(int b, int step, int iteration) {
   const double t = step * problem_.time.step;
   sys.prescribe_theta(t, s.theta_new);
   if (!sys.has_boundary_term()) {
+    const double theta0 = problem_.physics.reference_temperature;
+    const bool deviation = deviation_applies(s);
+    if (deviation) heat_to_deviation(theta0, s);
     s.heat->solve(s.rhs_theta, s.theta_new);
+    if (deviation) heat_from_deviation(theta0, sys, t, s);
   } else {  // radiation or a film with h(t): Newton (boundary_heat.hpp)
     const auto& settings = problem_.solver;
     const auto o = solve_boundary_heat(sys, s.a_theta, *s.heat, t, s.rhs_theta, s.theta_new,

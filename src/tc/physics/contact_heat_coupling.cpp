@@ -129,10 +129,18 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
   if (boundary_term) {
     group_boundary_heat(p, group, implicit, t, step, iteration);
   } else if (implicit) {
+    // In θ itself: L_Γθ₀1 vanishes only where the mortar's jump of a constant does.
     interface_heat_->solve(group.field_in(&BodyField::rhs_theta),
                            group.field(&BodyField::theta_new));
-  } else {
-    for (auto* f : group.fields) f->heat->solve(f->rhs_theta, f->theta_new);
+  } else {  // each body alone: for θ − θ₀ where its heat is factorised (heat_to_deviation)
+    const double theta0 = p.physics.reference_temperature;
+    for (int i = 0; i < group.size(); ++i) {
+      auto& f = *group.fields[i];
+      const bool deviation = deviation_applies(f);
+      if (deviation) heat_to_deviation(theta0, f);
+      f.heat->solve(f.rhs_theta, f.theta_new);
+      if (deviation) heat_from_deviation(theta0, *group.systems[i], t, f);
+    }
   }
 }
 
