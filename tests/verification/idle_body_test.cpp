@@ -21,7 +21,8 @@ namespace {
 
 double max_deviation(const core::Vector& theta, double theta0) {
   double d = 0;
-  for (const double t : theta.read().span()) d = std::max(d, std::abs(t - theta0));
+  const auto v = theta.read();
+  for (const double t : v.span()) d = std::max(d, std::abs(t - theta0));
   return d;
 }
 

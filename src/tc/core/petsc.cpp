@@ -559,7 +559,15 @@ void CholeskySolver::solve(const Vector& b, Vector& x) const {
   // A⁻¹0 = 0 without reading the factor (the solve's own result, +0 everywhere): a body at rest
   // with no load, before a touch, would otherwise be solved at every coupling iteration. Over
   // the ranks b is replicated; they agree all the same before leaving a collective solve.
-  int zero = b.max_abs() == 0.0 ? 1 : 0;
+  int zero = 1;  // every entry == 0 (a NaN is not: it goes to the solve, and on to the checks)
+  {
+    const auto bv = b.read();
+    for (const double e : bv.span())
+      if (e != 0.0) {
+        zero = 0;
+        break;
+      }
+  }
   if (distributed()) TC_MPI(MPI_Allreduce(MPI_IN_PLACE, &zero, 1, MPI_INT, MPI_LAND, ranks_.comm));
   if (zero) {
     x.zero();
