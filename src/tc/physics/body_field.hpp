@@ -64,7 +64,8 @@ void solve_initial_acceleration(const BodySystem& sys, const core::Vector& r, co
 /// heat_to_deviation: rhs_theta −= theta0_load, theta_new −= θ₀ (its prescribed values with
 /// it); heat_from_deviation: theta_new += θ₀, the prescribed values of time t set again. Only
 /// for factorised heat operators (deviation_applies): FETI's stopping test is relative to the
-/// right-hand side, which the shift would shrink.
+/// right-hand side, which the shift would shrink. Not in the Newton loop of radiation and h(t)
+/// films (solve_boundary_heat works on θ).
 [[nodiscard]] bool deviation_applies(const BodyField& s);
 void heat_to_deviation(double theta0, BodyField& s);
 void heat_from_deviation(double theta0, const BodySystem& sys, double t, BodyField& s);

@@ -128,19 +128,23 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
   for (const auto* sys : group.systems) boundary_term = boundary_term || sys->has_boundary_term();
   if (boundary_term) {
     group_boundary_heat(p, group, implicit, t, step, iteration);
-  } else if (implicit) {
-    // In θ itself: L_Γθ₀1 vanishes only where the mortar's jump of a constant does.
-    interface_heat_->solve(group.field_in(&BodyField::rhs_theta),
-                           group.field(&BodyField::theta_new));
-  } else {  // each body alone: for θ − θ₀ where its heat is factorised (heat_to_deviation)
+  } else {
+    // Linear: for θ − θ₀ where every body's heat is factorised (heat_to_deviation). L_Γ adds
+    // nothing to θ₀A1: L_Γ1 = 0, each segment's integrand holding both sides' partitions of
+    // unity (the jump of a constant is zero at every point).
     const double theta0 = p.physics.reference_temperature;
-    for (int i = 0; i < group.size(); ++i) {
-      auto& f = *group.fields[i];
-      const bool deviation = deviation_applies(f);
-      if (deviation) heat_to_deviation(theta0, f);
-      f.heat->solve(f.rhs_theta, f.theta_new);
-      if (deviation) heat_from_deviation(theta0, *group.systems[i], t, f);
-    }
+    const bool deviation = std::all_of(group.fields.begin(), group.fields.end(),
+                                       [](const BodyField* f) { return deviation_applies(*f); });
+    if (deviation)
+      for (auto* f : group.fields) heat_to_deviation(theta0, *f);
+    if (implicit)
+      interface_heat_->solve(group.field_in(&BodyField::rhs_theta),
+                             group.field(&BodyField::theta_new));
+    else
+      for (auto* f : group.fields) f->heat->solve(f->rhs_theta, f->theta_new);
+    if (deviation)
+      for (int i = 0; i < group.size(); ++i)
+        heat_from_deviation(theta0, *group.systems[i], t, *group.fields[i]);
   }
 }
 
