@@ -84,10 +84,13 @@ bool ConstrainedSolver::forward_compliance(core::ForwardColumnsPtr& kept,
 }
 
 bool ConstrainedSolver::solve_from_forward(const core::ForwardColumns& kept,
-                                           std::span<const double> w, core::Vector& x) const {
+                                           std::span<const double> w, core::Vector& x,
+                                           std::span<const double> z) const {
   if (feti_) return false;
-  auto xv = x.view();  // a constrained dof of T has no column in Y: its x is 0
-  return factor_.solve_from_forward(kept, w, xv.span().data());
+  // Every entry of x: a constrained dof has no column in Y, so its x is 0 without z and
+  // z's (= x_D to round-off, as solve) with it.
+  auto xv = x.view();
+  return factor_.solve_from_forward(kept, w, xv.span().data(), z);
 }
 
 void ConstrainedSolver::solve(const core::Vector& b, core::Vector& x) const {
@@ -138,14 +141,6 @@ bool ConstrainedSolver::solve_forward_half(const core::ForwardColumns& kept,
   for (size_t q = 0; q < t.size(); ++q)
     if (free[q] >= 0) xv[free[q]] = on_t[q];
   return true;
-}
-
-bool ConstrainedSolver::solve_backward_half(const core::ForwardColumns& kept,
-                                            std::span<const double> z, std::span<const double> w,
-                                            core::Vector& x) const {
-  if (feti_) return false;
-  auto xv = x.view();  // every entry, the constrained ones from z (= x_D to round-off, as solve)
-  return factor_.solve_from_forward(kept, w, xv.span().data(), z);
 }
 
 }  // namespace tc::physics

@@ -49,22 +49,21 @@ class ConstrainedSolver {
   /// False (nothing written) when the factorisation cannot.
   bool forward_compliance(core::ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
                           double* out) const;
-  /// x = A⁻¹ E_T w with zero prescribed values, w given on T (kept's dofs, in their order), by
-  /// the kept forward columns and the backward solve alone:
-  /// core::CholeskySolver::solve_from_forward. False (x untouched) when the factorisation
+  /// x = A⁻¹(b + E_T w), w given on T (kept's dofs, in their order), by the kept forward
+  /// columns and the backward solve alone (core::CholeskySolver::solve_from_forward): with z
+  /// empty b = 0 and the prescribed values zero; with z = L⁻¹P b from solve_forward_half, the
+  /// second half of that solve, writing all of x. False (x untouched) when the factorisation
   /// cannot.
   bool solve_from_forward(const core::ForwardColumns& kept, std::span<const double> w,
-                          core::Vector& x) const;
-  /// solve() in two halves where the forward columns Y of a compliance on T are kept (x
-  /// holding the prescribed values on entry, as solve): the first, the lifting and the forward
-  /// solve z = L⁻¹P b, writes x on T only, (A⁻¹b)_T = Yᵀz (core::CholeskySolver::
-  /// forward_values), leaving x's other entries as they were; the second writes all of x,
-  /// x = A⁻¹(b + E_T w) = PᵀL⁻ᵀ(z + Y w). Together one forward and one backward solve for both
-  /// A⁻¹b and A⁻¹E_T w. False (x untouched) when the factorisation cannot.
+                          core::Vector& x, std::span<const double> z = {}) const;
+  /// The first half of solve() where the forward columns Y of a compliance on T are kept (x
+  /// holding the prescribed values on entry, as solve): the lifting and the forward solve
+  /// z = L⁻¹P b; writes x on T only, (A⁻¹b)_T = Yᵀz (core::CholeskySolver::forward_values),
+  /// leaving x's other entries as they were. solve_from_forward with z finishes it: one forward
+  /// and one backward solve for both A⁻¹b and A⁻¹E_T w. False (x untouched) when the
+  /// factorisation cannot.
   bool solve_forward_half(const core::ForwardColumns& kept, std::span<const PetscInt> t,
                           const core::Vector& b, core::Vector& x, std::vector<double>& z) const;
-  bool solve_backward_half(const core::ForwardColumns& kept, std::span<const double> z,
-                           std::span<const double> w, core::Vector& x) const;
   [[nodiscard]] const std::string& package() const {
     return feti_ ? feti_->package() : factor_.package();
   }

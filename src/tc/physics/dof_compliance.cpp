@@ -100,7 +100,7 @@ bool DofCompliance::solve_forward_half(const core::Vector& b, core::Vector& x,
 bool DofCompliance::solve_backward_half(std::span<const double> z, const core::Vector& w,
                                         core::Vector& x) const {
   std::vector<double> wt;
-  return keeps_forward() && on_t(w, -1.0, wt) && solver_.solve_backward_half(*forward_, z, wt, x);
+  return keeps_forward() && on_t(w, -1.0, wt) && solver_.solve_from_forward(*forward_, wt, x, z);
 }
 
 PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {

@@ -65,8 +65,8 @@ class DofCompliance {
   /// Whether S is grown by forward solves and their Y kept (solve() and the halves can work).
   [[nodiscard]] bool keeps_forward() const { return by_forward_ && forward_ != nullptr; }
   /// The body's solve A x = b (Dirichlet data in x) in two halves by the kept Y
-  /// (ConstrainedSolver::solve_forward_half, solve_backward_half): x on T, with z, now; all of
-  /// x = A⁻¹(b − w), w vanishing off T, later. False, x untouched, as solve().
+  /// (ConstrainedSolver::solve_forward_half, then solve_from_forward with z): x on T, with z, now;
+  /// all of x = A⁻¹(b − w), w vanishing off T, later. False, x untouched, as solve().
   bool solve_forward_half(const core::Vector& b, core::Vector& x, std::vector<double>& z) const;
   bool solve_backward_half(std::span<const double> z, const core::Vector& w, core::Vector& x) const;
   /// Rebuilds S from scratch by replaying the recorded cover() calls (nothing to do when the
