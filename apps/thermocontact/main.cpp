@@ -14,6 +14,7 @@
 #include <fstream>
 #include <string_view>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/io/auto_subdomains.hpp"
@@ -27,7 +28,12 @@
 
 namespace {
 
-std::atomic<int> g_stop{0};
+std::atomic<int> g_stop{0};  // the first stop signal on this rank (or --stop-after)
+// What the run acts on: g_stop of any rank, agreed after every step (AgreeOnStop), so that
+// every rank leaves the step loop after the same step. A signal reaches the ranks of an
+// mpirun at slightly different times; a rank that stopped alone left the others in a
+// collective of the next step.
+std::atomic<int> g_stop_agreed{0};
 // OutputWriter::stopped_summary and summary.json of the run (rank 0), for on_signal.
 char g_stopped_summary[4096] = {}, g_summary[4096] = {};
 
@@ -38,9 +44,15 @@ constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXC
 /// The first stop signal lets the step under way finish, then the run stops with its output
 /// whole (exit 1, summary "stopped"); a second one ends the process at once with the
 /// signal's default action (the user insists, e.g. during a long factorisation).
+///
+/// At the first signal summary.stopped.json (the state after the last written step) is also
+/// renamed over summary.json at once: mpirun, on SIGTERM, sends SIGTERM to the ranks and
+/// SIGKILL about a second later, before a long step can end, and summary.json said "running"
+/// (issue 41, point 6). The run that stops in order writes the real summary over it.
 extern "C" void on_signal(int sig) {
-  if (g_stop.exchange(sig) != 0) {
-    if (g_summary[0] != '\0') (void)std::rename(g_stopped_summary, g_summary);
+  const bool second = g_stop.exchange(sig) != 0;
+  if (g_summary[0] != '\0') (void)std::rename(g_stopped_summary, g_summary);
+  if (second) {
     std::signal(sig, SIG_DFL);
     std::raise(sig);
   }
@@ -70,6 +82,19 @@ class StopAfter : public tc::physics::Observer {
 
  private:
   int steps_;
+};
+
+/// Makes the stop of a run collective: after every step each rank's g_stop is combined
+/// (MPI_MAX: a signal number) and the result is what Simulation::run reads (g_stop_agreed).
+class AgreeOnStop : public tc::physics::Observer {
+ public:
+  void step(const tc::physics::Simulation&) override {
+    int local = g_stop.load(), any = local;
+    if (tc::core::PetscSession::size() > 1)
+      tc::core::check_mpi(MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD),
+                          "MPI_Allreduce");
+    if (any != 0) g_stop_agreed.store(any);
+  }
 };
 
 /// The options on the command line that nothing read: `-o dir` (for --output) or a mistyped
@@ -216,26 +241,31 @@ int run(const std::string& case_file, const std::string& output, const std::stri
       } catch (const tc::io::CheckpointError&) {
         throw;
       } catch (const tc::Error& e) {  // sizes that passed the header but not the problem
-        throw tc::io::CheckpointError(fmt::format("checkpoint {}: {}", file.string(), e.what()));
+        throw tc::io::CheckpointError(
+            fmt::format("checkpoint {}: {}", tc::io::printable(file), e.what()));
       }
+      tc::io::check_restart_history(restart, sim);  // before a row is written: exit 2
       writer.resume();
       if (tc::core::PetscSession::rank() == 0)
         fmt::print("restarting from step {} (t = {:g} s) of {}\n", sim.step(), sim.time(),
-                   file.string());
+                   tc::io::printable(file));
     }
     tc::io::CheckpointWriter checkpoint(problem.output.directory, case_hash);
     tc::io::ProgressLine progress(isatty(STDERR_FILENO) != 0);
     StopAfter stop(stop_after);
-    tc::io::Observers observers({&writer, &checkpoint, &progress, &stop});
-    const auto status = sim.run(observers, &g_stop);
+    AgreeOnStop agree;
+    writer.watch_stop(&g_stop);
+    tc::io::Observers observers({&writer, &checkpoint, &progress, &stop, &agree});
+    const auto status = sim.run(observers, &g_stop_agreed);
     if (tc::core::PetscSession::rank() == 0) {
       warn_unused_options();
       if (status.completed)
         fmt::print("done: {} steps; output in {}\n", status.steps_done,
-                   problem.output.directory.string());
+                   tc::io::printable(problem.output.directory));
       else
         fmt::print(stderr, "stopped: {}\noutput of the {} completed step(s) is in {}\n",
-                   status.message, writer.steps_written(), problem.output.directory.string());
+                   status.message, writer.steps_written(),
+                   tc::io::printable(problem.output.directory));
     }
     // Flushed while SIGPIPE is still ignored: PetscFinalize restores its default, and a reader
     // gone from the pipe would kill the process at exit's flush (exit 141 after a whole run).
