@@ -1,5 +1,6 @@
 // thermocontact: the command line (case-format.md). Exit codes: 0 done; 1 stopped by a
 // numerical failure or a signal (the steps done stay written); 2 invalid input.
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <gmsh.h>
 #include <unistd.h>
@@ -34,8 +35,9 @@ std::atomic<int> g_stop{0};  // the first stop signal on this rank (or --stop-af
 // mpirun at slightly different times; a rank that stopped alone left the others in a
 // collective of the next step.
 std::atomic<int> g_stop_agreed{0};
-// OutputWriter::stopped_summary and summary.json of the run (rank 0), for on_signal.
-char g_stopped_summary[4096] = {}, g_summary[4096] = {};
+// A descriptor of the run's output directory (rank 0), for on_signal: summary.stopped.json is
+// renamed over summary.json in the directory the run writes into, whatever its path names now.
+std::atomic<int> g_output_directory{-1};
 
 /// The signals that ask a run to stop: Ctrl-C, kill, a dropped terminal or ssh session, and the
 /// warnings batch systems send before they kill (SIGUSR1/2, SIGXCPU on a CPU-time limit).
@@ -51,7 +53,8 @@ constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXC
 /// (issue 41, point 6). The run that stops in order writes the real summary over it.
 extern "C" void on_signal(int sig) {
   const bool second = g_stop.exchange(sig) != 0;
-  if (g_summary[0] != '\0') (void)std::rename(g_stopped_summary, g_summary);
+  if (const int dir = g_output_directory.load(); dir >= 0)
+    (void)::renameat(dir, "summary.stopped.json", dir, "summary.json");
   if (second) {
     std::signal(sig, SIG_DFL);
     std::raise(sig);
@@ -225,14 +228,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     if (!problem.contacts.empty()) sim.enable_mortar_contact();
     const auto case_hash = tc::io::input_hash(problem);
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
-    if (tc::core::PetscSession::rank() == 0) {
-      const auto from = tc::io::OutputWriter::stopped_summary(problem.output.directory).string();
-      const auto to = (problem.output.directory / "summary.json").string();
-      if (from.size() < sizeof g_stopped_summary) {
-        std::snprintf(g_stopped_summary, sizeof g_stopped_summary, "%s", from.c_str());
-        std::snprintf(g_summary, sizeof g_summary, "%s", to.c_str());
-      }
-    }
+    if (tc::core::PetscSession::rank() == 0)  // held open until the process ends
+      g_output_directory.store(
+          ::open(problem.output.directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
     if (!restart.empty()) {
       const auto file = tc::io::checkpoint_file(restart);
       tc::io::check_restart_outputs(restart);
