@@ -51,8 +51,9 @@ int flock_nonblocking(int fd) {
 /// but for the kernel's pseudo file systems, where nothing a run writes belongs.
 std::string system_directory(const std::filesystem::path& directory) {
   std::error_code ec;
-  const auto path = std::filesystem::weakly_canonical(std::filesystem::absolute(directory, ec), ec);
+  auto path = std::filesystem::weakly_canonical(std::filesystem::absolute(directory, ec), ec);
   if (ec) return "";  // examined again when it is created or opened
+  if (!path.has_filename() && path != path.root_path()) path = path.parent_path();  // "/usr/"
   if (path == path.root_path()) return "the root directory";
   static const char* const whole[] = {"/bin",   "/boot", "/dev",  "/etc",  "/lib", "/lib32",
                                       "/lib64", "/proc", "/run",  "/sbin", "/sys", "/usr",
