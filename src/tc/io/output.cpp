@@ -248,8 +248,8 @@ void OutputWriter::start(const physics::Simulation& sim) {
       resume_collection(sim);
     }
     open_history(sim);
-    struct stat dir {
-    }, history{};
+    struct stat dir {};
+    struct stat history {};
     if (::fstat(pin_->fd(), &dir) != 0 || ::fstat(history_fd_, &history) != 0)
       throw OutputError(fmt::format("cannot examine output directory {}: {}", printable(dir_),
                                     std::strerror(errno)));
@@ -323,7 +323,6 @@ void OutputWriter::require_in_place() {
   };
   if (same(dir_.c_str(), directory_id_) && same((dir_ / "history.csv").c_str(), history_id_))
     return;
-  moved_ = true;
   throw OutputError(fmt::format(
       "output directory {} or its history.csv was deleted or replaced during the run (by "
       "`rm`, or another run after it): the rows written since are in no file there, so this "
@@ -466,7 +465,7 @@ void OutputWriter::fall_back_to_stopped_summary(const physics::Simulation& sim,
     size_t done = 0;
     while (done < text.size()) {
       const auto n = ::pwrite(fd, text.data() + done, text.size() - done, static_cast<off_t>(done));
-      if (n <= 0 && errno == EINTR) continue;
+      if (n < 0 && errno == EINTR) continue;
       if (n <= 0) break;
       done += static_cast<size_t>(n);
     }

@@ -80,7 +80,6 @@ class OutputWriter : public physics::Observer {
     unsigned long long device = 0, inode = 0;
   };
   Identity directory_id_, history_id_;  // what start() opened (require_in_place)
-  bool moved_ = false;                  // the directory is not dir_ any more: write nothing
   int steps_written_ = 0;  // the last step whose history row is written (summary's steps_done)
   bool failed_ = false;    // a write failed or a row was not finite: the run is stopping
   bool resume_ = false;
