@@ -298,7 +298,9 @@ void check_restart_outputs(const std::filesystem::path& directory) {
   for (const char* name : {"history.csv", "result.pvd"}) {
     const auto file = directory / name;
     struct stat st {};
-    if (::stat(file.c_str(), &st) != 0) continue;  // missing: the restart writes it afresh
+    // Missing: history.csv is refused by check_restart_history, result.pvd rebuilt by the
+    // OutputWriter from the field files.
+    if (::stat(file.c_str(), &st) != 0) continue;
     if (const auto what = not_regular(st); !what.empty())
       throw CheckpointError(
           fmt::format("restart from {}: {} is {}, expected the file that a "
