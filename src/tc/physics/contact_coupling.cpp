@@ -65,6 +65,7 @@ void ContactCoupling::enable(ContactRowsBuilder builder, DualContactSettings set
     throw Error("enable_contact: rows from a builder are for one contact pair");
   pairs_.front().rows = finite_rows(std::move(builder), step);
   method_ = choose_contact_method(problem_, bodies_, std::move(settings), timers_);
+  mark_loaded();
 }
 
 void ContactCoupling::enable_mortar(DualContactSettings settings, contact::MortarOptions options,
@@ -87,6 +88,69 @@ void ContactCoupling::enable_mortar(DualContactSettings settings, contact::Morta
         step);
   }
   method_ = choose_contact_method(problem_, bodies_, std::move(settings), timers_);
+  mark_loaded();
+}
+
+void ContactCoupling::mark_loaded() {
+  // The case reader allows one loaded component among the contact bodies (a scalar root).
+  loaded_ = -1;
+  for (size_t i = 0; i < group_.members.size(); ++i)
+    if (auto& f = *bodies_.fields[group_.members[i]]; f.coupling) {
+      if (loaded_ >= 0 || f.coupling->size() != 1)
+        throw Error("load control: one face with one loaded component among the contact bodies");
+      if (method_.enforcement->qp_gives_displacements())
+        throw Error("load control: not with the combined contact dual");
+      f.coupling_in_contact = true;
+      loaded_ = static_cast<int>(i);
+    }
+}
+
+void ContactCoupling::solve_qp(const BodyGroup& g, const TrescaIteration& t,
+                               std::span<const double> targets, double rtol, int step, int outer) {
+  auto& enforcement = *method_.enforcement;
+  if (loaded_ < 0) {
+    enforcement.solve_qp(g, {targets, t.bound, rtol, step, outer}, lambda_, stats_);
+    return;
+  }
+  auto& f = *g.fields[loaded_];
+  auto& c = *f.coupling;
+  const double time = step * problem_.time.step;
+  const double force = c.face(0).force(time);
+  // Σ_D(Au − b) = R_free + S Δw + (BΦ)ᵀλ, with u_free (in u_prev) solved at w = written.
+  const double r_free = c.free_resultant(f.u_prev, f.rhs_u)[0];
+  const double s = c.stiffness()(0, 0);
+  const double written = c.written()[0];
+  std::vector<double> shifted(targets.begin(), targets.end());
+  const auto& bphi = loaded_rows_;
+  const auto balance = [&](double w) {
+    const double dw = w - written;
+    for (size_t r = 0; r < shifted.size(); ++r) shifted[r] = targets[r] - dw * bphi[r];
+    enforcement.solve_qp(g, {shifted, t.bound, rtol, step, outer}, lambda_, stats_);
+    const auto l = lambda_.read();
+    double contact = 0;
+    for (size_t r = 0; r < bphi.size(); ++r) contact += bphi[r] * l[static_cast<PetscInt>(r)];
+    return r_free + s * dw + contact - force;
+  };
+  // The balance to a tenth of the QP's relative tolerance of the forces at play: the final
+  // QP (qp_tolerance, 1e-8 by default) leaves the load balanced to 1e-9 of it.
+  const double scale = std::abs(force) + std::abs(r_free);
+  const double tol = std::max(0.1 * rtol, 1e-13) * scale;
+  if (loaded_slope_ <= 0) loaded_slope_ = std::max(c.face_stiffness(0), s);
+  double w = c.w()[0];
+  const int used = balance_root(balance, w, loaded_slope_, tol, 100);
+  if (used < 0)
+    throw NumericalError(
+        fmt::format("load control: the force {:.6g} N on face '{}' could not be balanced in 100 "
+                    "contact QPs (is the body held by the contact in the loaded direction?)",
+                    force, c.face(0).label),
+        step, outer, std::abs(balance(w)));
+  c.w()[0] = w;
+}
+
+void ContactCoupling::shift_loaded_face(const BodyGroup& g) {
+  if (loaded_ < 0) return;
+  auto& f = *g.fields[loaded_];
+  f.coupling->shift_to_w(f.u_new);
 }
 
 BodyGroup ContactCoupling::group() {
@@ -214,10 +278,19 @@ double ContactCoupling::mech_step(TrescaIteration& t, std::span<const double> ta
                              .step = step,
                              .outer = outer};
   const double residual = coulomb_fixed_point(t, lambda_, fp, [&](double rtol) {
-    enforcement.solve_qp(g, {targets, t.bound, rtol, step, outer}, lambda_, stats_);
+    solve_qp(g, t, targets, rtol, step, outer);
     require_finite(lambda_, "contact multiplier", step, outer);
   });
   enforcement.finish_qps(g, lambda_, t, iterate_slip_, step, outer);
+  if (loaded_ >= 0) {
+    auto& c = *g.fields[loaded_]->coupling;
+    if (t.defer) {  // u_new stays u_free at the written w until the end of the step: B u moved
+      const double dw = c.w()[0] - c.written()[0];  // by (w − written)BΦ
+      for (size_t r = 0; r < iterate_slip_.size(); ++r) iterate_slip_[r] += dw * loaded_rows_[r];
+    } else {
+      shift_loaded_face(g);
+    }
+  }
   return residual;
 }
 
@@ -301,6 +374,19 @@ int ContactCoupling::couple(int step) {
   set_rows(g);
   auto& dual = enforcement.dual();
   const int dim = dual.dim();
+  if (loaded_ >= 0) {  // BΦ of the loaded face on this step's rows
+    // The root's first guess is the face's w of t^k, and its first slope the face's own
+    // stiffness: both from the state, so a restarted run takes the same QPs.
+    auto& c = *g.fields[loaded_]->coupling;
+    c.w()[0] = g.states[loaded_]->u.read()[c.face(0).dofs.front()];
+    loaded_slope_ = 0;
+    std::vector<core::Vector> zero;
+    std::vector<const core::Vector*> phi;
+    for (int i = 0; i < g.size(); ++i) zero.emplace_back(g.systems[i]->n_u());
+    for (int i = 0; i < g.size(); ++i)
+      phi.push_back(i == loaded_ ? &g.fields[i]->coupling->lifting(0) : &zero[i]);
+    loaded_rows_ = dual.row_values(phi);
+  }
   method_.scheme->prepare(g, dual, lambda_, stats_, step);
   method_.scheme->slip_reference(g);  // into work_u
   const auto targets = dual.targets(g.state(&BodyState::u), g.field_in(&BodyField::work_u));
@@ -410,6 +496,7 @@ int ContactCoupling::couple(int step) {
   if (tresca.defer) {                      // u_new holds u_free of the last iteration
     auto scope = timers_.scope("qp");
     dual.recover(lambda_, g.field(&BodyField::u_new));
+    shift_loaded_face(g);
   }
   for (const auto* f : g.fields) require_finite(f->u_new, "displacement", step, iteration);
 
