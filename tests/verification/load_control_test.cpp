@@ -125,15 +125,22 @@ TEST_P(PressedBlock, ContactNormalForceEqualsTheLoadAtEveryStep) {
   for (int s = 0; s < p.time.n_steps(); ++s) {
     sim.advance();
     const double load = 2e8 * (s + 1) / 4.0;
-    // The block is held along z by the contact alone: its equilibrium makes the contact force
-    // the load exactly once the face's resultant balances F, which the root of h(w) reaches to
-    // a tenth of the QP tolerance (1e-8) of the forces; 1e-6 is the acceptance's bound.
-    EXPECT_NEAR(sim.history("contact_normal_force"), load, 1e-6 * load) << "step " << s;
+    // The face's resultant balances F to the QP tolerance of the forces (the root of h(w) is
+    // taken to 1e-8 of them): 1e-6, the acceptance's bound, leaves a margin of 100.
     EXPECT_NEAR(sim.history("force_block_zmax_z"), -load, 1e-6 * load) << "step " << s;
+    // The block is held along z by the contact alone, so the contact force's z-resultant is the
+    // load. Its normal part Σ w_k λ_n,k is measured along the normals of the contact rows, built
+    // in the configuration of t^k: flat at the first step, tilted afterwards by the base's and
+    // the block's deformation, by up to the strain σ/E = 2e8 Pa / 2e11 Pa = 1e-3. The friction
+    // tractions then carry up to 𝔉·1e-3 of the load along z, and the normal force differs from
+    // the load by that much; without friction by (1 − cos) ~ 1e-6 at most.
+    const double tilt = 1e-3;
+    const double bound = s == 0 || friction == 0 ? 1e-6 : friction * tilt;
+    EXPECT_NEAR(sim.history("contact_normal_force"), load, bound * load) << "step " << s;
     // The face moves as one: every node at the column's w.
     const auto u = sim.state(0).u.to_std();
     const double w = sim.history("displacement_block_zmax_z");
-    EXPECT_LT(w, 0.0);
+    if (!thermal) EXPECT_LT(w, 0.0);  // pressed down (the hot base lifts it otherwise)
     for (const int a : p.bodies[0].mesh.boundary_nodes("zmax"))
       EXPECT_EQ(u[static_cast<size_t>(3 * a + 2)], w);
   }
