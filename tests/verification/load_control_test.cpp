@@ -140,7 +140,9 @@ TEST_P(PressedBlock, ContactNormalForceEqualsTheLoadAtEveryStep) {
     // The face moves as one: every node at the column's w.
     const auto u = sim.state(0).u.to_std();
     const double w = sim.history("displacement_block_zmax_z");
-    if (!thermal) EXPECT_LT(w, 0.0);  // pressed down (the hot base lifts it otherwise)
+    if (!thermal) {
+      EXPECT_LT(w, 0.0);  // pressed down (the hot base lifts it otherwise)
+    }
     for (const int a : p.bodies[0].mesh.boundary_nodes("zmax"))
       EXPECT_EQ(u[static_cast<size_t>(3 * a + 2)], w);
   }

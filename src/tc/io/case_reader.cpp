@@ -1044,8 +1044,7 @@ void CaseReader::check_load_control() {
                       fmt::format("found {} node(s) of \"{}\" whose component {} boundary[{}] "
                                   "(line {}) {} too; expected the nodes of a loaded face free "
                                   "of other displacements and forces in that component",
-                                  shared.size(), bc.where, axes[k], i,
-                                  detail::line_of(*a->get(i)),
+                                  shared.size(), bc.where, axes[k], i, detail::line_of(*a->get(i)),
                                   other.displacement[k] ? "prescribes" : "loads"));
     }
   }

@@ -31,7 +31,8 @@ int free_rigid_modes(const Problem& p, int b) {
     return r;
   };
   bool in_contact = false;
-  for (const auto& c : p.contacts) in_contact = in_contact || c.slave_body == b || c.master_body == b;
+  for (const auto& c : p.contacts)
+    in_contact = in_contact || c.slave_body == b || c.master_body == b;
   // Gram matrix Σ r_i r_jᵀ over the constraints' rows of the rigid modes r (columns).
   Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n_modes, n_modes);
   for (const auto& bc : p.boundaries) {

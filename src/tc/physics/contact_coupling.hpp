@@ -114,8 +114,7 @@ class ContactCoupling {
   double mech_step(TrescaIteration& t, std::span<const double> targets, int step, int outer,
                    int max_updates);
   // The contact QP at one Tresca bound; with a face under load control in the group, the QPs
-  // of the root of its balance h(w) = 0 (rigid_coupling.hpp), the targets shifted by the
-  // face's move, c − (w − w_written)BΦ.
+  // of its proximal balance, the face's w eliminated by a rank-one term (docs/theory.md).
   void solve_qp(const BodyGroup& g, const TrescaIteration& t, std::span<const double> targets,
                 double rtol, int step, int outer);
   // The loaded body's u += (w − w_written)Φ (the QPs moved the face after u_free was solved).
@@ -141,10 +140,9 @@ class ContactCoupling {
   std::vector<double> qp_bound_;  // the Tresca bounds 𝔉_kγ_k of the step's last QP
   long total_qp_ = 0, total_applications_ = 0;
   // Load control in contact: the group's body with the one face under load control (−1: none),
-  // BΦ of the step's rows, the last root's slope ∂h/∂w (0: not yet known).
+  // BΦ of the step's rows (rigid_coupling.hpp).
   int loaded_ = -1;
   std::vector<double> loaded_rows_;
-  double loaded_slope_ = 0;
 };
 
 }  // namespace tc::physics

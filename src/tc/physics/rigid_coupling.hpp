@@ -11,8 +11,8 @@
 // values u_D, symmetry of A gives without forming u
 //   Σ_{D_j}(A u − b) = (AΦ_j)_Dᵀ u_D − Φ_jᵀ b + (BΦ_j)ᵀ λ    (rows B not on D_j),
 // affine in w: ∂/∂w_l = S_jl = Σ_{d∈D_l}(AΦ_j)_d = Φ_jᵀAΦ_l. Without contact the step's
-// w solves S w = F − R(0) (one solve); with contact λ depends on w through the QP and
-// ContactCoupling finds the root of the monotone h(w) (balance_root).
+// w solves S w = F − R(0) (one solve); with contact w is eliminated from the contact QP, a
+// rank-one term gᵀ = (BΦ)ᵀ (ContactCoupling::solve_qp).
 // Owned by a BodyField; the Φ_j are formed once (A is factorised once per run).
 #include <Eigen/Dense>
 #include <functional>
@@ -69,13 +69,5 @@ class RigidCoupling {
   std::vector<double> face_stiffness_;
   std::vector<double> w_, written_;
 };
-
-/// The root of h, nondecreasing and continuous (piecewise affine: the load's resultant minus F
-/// as the face moves, through contact), from w0: a secant step on the slope estimate
-/// `slope` (> 0; updated on return), widened until h changes sign, then the Illinois
-/// false position. Stops at |h| ≤ tol; returns the evaluations used, or −1 when
-/// max_evaluations did not reach it (w then holds the best point).
-int balance_root(const std::function<double(double)>& h, double& w, double& slope, double tol,
-                 int max_evaluations);
 
 }  // namespace tc::physics

@@ -175,9 +175,8 @@ void Simulation::register_load_history(History& h) {
   for (int b = 0; b < n_bodies(); ++b)
     for (const auto& face : bodies_.systems[b]->coupled_faces()) {
       const std::string axis(1, axes[face.component]);
-      h.add("displacement_" + face.label + "_" + axis, [this, b, &face] {
-        return bodies_.states[b].u.read()[face.dofs.front()];
-      });
+      h.add("displacement_" + face.label + "_" + axis,
+            [this, b, &face] { return bodies_.states[b].u.read()[face.dofs.front()]; });
       h.add("force_" + face.label + "_" + axis, [this, b, &face] {
         const auto& sys = *bodies_.systems[b];
         core::Vector r(sys.n_u()), f(sys.n_u());
