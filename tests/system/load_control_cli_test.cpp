@@ -51,7 +51,8 @@ TEST(LoadControlCli, TheForceIsHeldAndARestartIsBitForBit) {
 
 TEST(LoadControlCli, AForceOnAFetiBodyIsRefusedByCheck) {
   const auto r = thermocontact(
-      "check " + (fs::path(TC_SOURCE_DIR) / "tests/cases/invalid/force-on-feti-body.toml").string());
+      "check " +
+      (fs::path(TC_SOURCE_DIR) / "tests/cases/invalid/force-on-feti-body.toml").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("boundary[1].force: found a force on body \"b\", which is cut into 2 "
                           "subdomains"),
