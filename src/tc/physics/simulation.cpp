@@ -168,7 +168,11 @@ void Simulation::check_temperature_range(int step, int iteration) {
                       "temperatures)",
                       name, static_cast<double>(lo), where(lo_at), theta0),
           step, iteration, static_cast<double>(lo));
-    if (range_warned_) continue;
+    // The linearisation about θ₀ is that of the thermoelastic coupling (θ₀K_uθᵀu̇, K_uθ(θ − θ₀)):
+    // without it there is nothing to warn about.
+    const bool coupled =
+        problem_.physics.thermal_expansion || problem_.physics.thermoelastic_heating;
+    if (range_warned_ || !coupled) continue;
     const bool low = theta0 - lo >= hi - theta0;
     const double far = low ? static_cast<double>(lo) : static_cast<double>(hi);
     if (std::abs(far - theta0) <= theta0) continue;

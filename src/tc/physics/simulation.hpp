@@ -166,7 +166,8 @@ class Simulation {
   void register_history();  // the columns of history.csv: its own and its components'
   /// Throws NumericalError when a body's absolute temperature after step `step` is ≤ 0 (the
   /// linearised model has left physics: tables and radiation would be read below 0 K); the
-  /// first time the state leaves |θ − θ₀| ≤ θ₀ a warning is queued (docs/choices.md).
+  /// first time the state leaves |θ − θ₀| ≤ θ₀ with a thermoelastic coupling on, a warning is
+  /// queued (docs/choices.md).
   void check_temperature_range(int step, int iteration);
 
   const Problem& problem_;
