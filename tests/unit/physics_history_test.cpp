@@ -1,6 +1,6 @@
 // physics::History: the columns registered by their components in any order come out in the
-// order of docs/case-format.md, the others after them; a standard column without a component
-// or registered twice is an error.
+// order of docs/case-format.md, the others after them; a standard column without a component,
+// or any column registered twice, is an error.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -23,7 +23,7 @@ TEST(History, ColumnsFollowTheFileOrderWhoeverRegistersThem) {
   History h;
   h.add("reaction_a_xmin_x", [] { return -1.0; });
   register_standard_backwards(h);
-  h.add("reaction_a_xmin_x", [] { return -2.0; });  // two supports may share a label
+  h.add("reaction_a_xmax_x", [] { return -2.0; });
   h.record();
   const auto names = History::standard_columns();
   ASSERT_EQ(h.columns().size(), names.size() + 2);
@@ -42,6 +42,16 @@ TEST(History, AStandardColumnWithoutItsComponentOrTwiceIsAnError) {
   h.add("step", [] { return 0.0; });
   EXPECT_THROW(h.record(), Error);
   EXPECT_THROW(h.add("step", [] { return 1.0; }), Error);
+}
+
+TEST(History, AnyColumnRegisteredTwiceIsAnError) {
+  // Two supports (or pairs) whose names make one column: a reader by name would read the
+  // wrong series (issue 42 D7). The case reader refuses such names; this is the last line.
+  History h;
+  h.add("reaction_a_xmin_ymin_x", [] { return 1.0; });
+  EXPECT_THROW(h.add("reaction_a_xmin_ymin_x", [] { return 2.0; }), Error);
+  h.add("contact_tangential_force_sum_x", [] { return 1.0; });
+  EXPECT_THROW(h.add("contact_tangential_force_sum_x", [] { return 2.0; }), Error);
 }
 
 TEST(History, ValueOfReadsTheComponentsCurrentValue) {

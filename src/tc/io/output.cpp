@@ -558,6 +558,12 @@ void ProgressLine::step(const physics::Simulation& sim) {
   }
 }
 
+void ProgressLine::warning(const physics::Simulation&, const std::string& message) {
+  if (!root_) return;
+  fmt::print(stderr, "{}warning: {}\n", terminal_ ? "\n" : "", message);
+  std::fflush(stderr);
+}
+
 void ProgressLine::finish(const physics::Simulation&, const physics::RunStatus&) {
   if (root_ && terminal_) fmt::print(stderr, "\n");
 }

@@ -108,6 +108,8 @@ class ProgressLine : public physics::Observer {
   explicit ProgressLine(bool terminal);
   void step(const physics::Simulation& sim) override;
   void finish(const physics::Simulation& sim, const physics::RunStatus& status) override;
+  /// "warning: …" on stderr (rank 0), on a line of its own.
+  void warning(const physics::Simulation& sim, const std::string& message) override;
 
  private:
   bool terminal_;
@@ -127,6 +129,9 @@ class Observers : public physics::Observer {
   }
   void finish(const physics::Simulation& s, const physics::RunStatus& r) override {
     for (auto* o : list_) o->finish(s, r);
+  }
+  void warning(const physics::Simulation& s, const std::string& m) override {
+    for (auto* o : list_) o->warning(s, m);
   }
 
  private:

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <unordered_map>
 
 #include "tc/core/error.hpp"
 #include "tc/mesh/mesh.hpp"
@@ -133,6 +134,23 @@ double cell_measure(const Mesh& m, int c) {
 
 void check_cells(const Mesh& m, const std::string& source) {
   constexpr int max_listed = 10;
+  // Coordinates first: a node at 1e300 made its cells' measures overflow, reported as a
+  // "degenerate" cell of ordinary area (issue 42 M1).
+  for (int a = 0; a < m.n_nodes(); ++a) {
+    const Point& x = m.point(a);
+    const auto beyond = [](double v) { return !(std::abs(v) <= kMaxCoordinate); };  // NaN too
+    if (beyond(x[0]) || beyond(x[1]) || beyond(x[2])) {
+      std::ostringstream msg;
+      msg.precision(6);
+      const bool finite = std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+      msg << source << ": node " << a << " (0-based) at (" << x[0] << ", " << x[1] << ", " << x[2]
+          << ") has a coordinate " << (finite ? "beyond" : "that is not finite, expected within")
+          << " ±" << kMaxCoordinate
+          << " m: cell measures multiply coordinates, which would overflow or lose every digit "
+             "of the cells (expected a mesh in metres)";
+      throw MeshError(msg.str());
+    }
+  }
   std::ostringstream list;
   int n_bad = 0;
   for (int c = 0; c < m.n_cells(); ++c) {
@@ -145,6 +163,41 @@ void check_cells(const Mesh& m, const std::string& source) {
   std::ostringstream msg;
   msg << source << ": " << n_bad << " inverted or degenerate cells (0-based cell indices"
       << (n_bad > max_listed ? ", first 10 listed" : "") << "):" << list.str();
+  throw MeshError(msg.str());
+}
+
+void check_no_fold(const Mesh& m, const std::string& source) {
+  if (m.dim() != 2) return;
+  // Each directed edge (a → b) of a counter-clockwise cell has the cell on its left. In a mesh
+  // that does not overlap itself an interior edge is walked once each way; walked twice the
+  // same way, two cells lie on the same side of it: the mesh folds there.
+  constexpr int max_listed = 10;
+  std::unordered_map<long long, int> left_of;  // directed edge → its cell
+  left_of.reserve(static_cast<size_t>(4 * m.n_cells()));
+  const auto key = [&](int a, int b) {
+    return static_cast<long long>(a) * static_cast<long long>(m.n_nodes()) + b;
+  };
+  std::ostringstream list;
+  int n_bad = 0;
+  for (int c = 0; c < m.n_cells(); ++c) {
+    const auto v = m.cell(c);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const int a = v[i], b = v[(i + 1) % v.size()];
+      const auto [it, fresh] = left_of.emplace(key(a, b), c);
+      if (fresh) continue;
+      if (++n_bad <= max_listed)
+        list << "\n  cells " << it->second << " and " << c << " both lie left of edge " << a
+             << " -> " << b;
+    }
+  }
+  if (n_bad == 0) return;
+  std::ostringstream msg;
+  msg << source << ": the mesh folds over itself at " << n_bad
+      << " edge(s): cells listed clockwise and counter-clockwise in one mesh overlap where they "
+         "meet (0-based cell and node indices"
+      << (n_bad > max_listed ? ", first 10 listed" : "") << "):" << list.str()
+      << "\n  expected every cell of a 2D mesh in one orientation (all counter-clockwise, or "
+         "all clockwise: then they are turned as a whole) and no cell overlapping another";
   throw MeshError(msg.str());
 }
 

@@ -675,7 +675,8 @@ Mesh detail::build_mesh(const RawMesh& raw, int dim, const std::string& file) {
   const TagMap ids = add_used_nodes(raw, m, where);
   if (dim == 2) check_plane(m, where);
   add_cells(raw, ids, m, where);
-  check_cells(m, file);  // before boundaries: their orientation relies on the cells'
+  check_cells(m, file);    // before boundaries: their orientation relies on the cells'
+  check_no_fold(m, file);  // cells turned one by one must not overlap (issue 42 D5)
   add_boundaries(raw, ids, m, where);
   return m;
 }

@@ -75,8 +75,21 @@ class Mesh {
 /// Signed measure (area in 2D, volume in 3D) of cell c; negative means inverted.
 [[nodiscard]] double cell_measure(const Mesh& m, int c);
 
-/// Throws MeshError naming the first bad cells (inverted or zero measure, at most 10 listed).
+/// Throws MeshError naming the first bad cells (inverted or zero measure, at most 10 listed),
+/// or the first node whose coordinates are not finite or beyond kMaxCoordinate.
 void check_cells(const Mesh& m, const std::string& source);
+
+/// The largest |coordinate| a mesh may have [m]: cell measures and the contact geometry take
+/// products of up to three coordinates, which overflow from ~1e102 and lose every digit of a
+/// cell of ordinary size long before (docs/choices.md, "Node coordinates bounded").
+inline constexpr double kMaxCoordinate = 1e12;
+
+/// Throws MeshError when a 2D mesh folds over itself: two cells on the same side of an edge
+/// they share (each cell taken counter-clockwise). A mesh read with cells of both orientations
+/// (some listed clockwise, some counter-clockwise, which read_gmsh turns one by one) overlaps
+/// itself where the two kinds meet; a mesh whose cells are all clockwise, turned as a whole,
+/// does not. Names the first cells (at most 10 pairs).
+void check_no_fold(const Mesh& m, const std::string& source);
 
 /// Pairs (i, j), i < j, sorted, of distinct nodes at the same place: every coordinate within
 /// 1e-12 times the bounding-box diagonal. Not an error in itself (separately meshed parts glued

@@ -217,6 +217,25 @@ std::vector<double> ContactCoupling::multipliers(int q) const {
   return nodes_of(multipliers(), problem_.dimension, lambda_at_[q], lambda_at_[q + 1]);
 }
 
+void ContactCoupling::add_multiplier_load(int body, core::Vector& r) const {
+  if (!enabled()) return;
+  const auto& dual = method_.enforcement->dual();
+  const int dim = dual.dim();
+  if (dual.n_pairs() == 0 || lambda_.size() != dual.n_rows()) return;  // before the first step
+  const auto l = lambda_.to_std();
+  const double unit = traction_per_multiplier();
+  for (int q = 0; q < dual.n_pairs(); ++q) {
+    const auto& rows = dual.pair_rows(q);
+    const auto& pb = dual.pair_bodies()[static_cast<size_t>(q)];
+    const bool slave = group_.members[static_cast<size_t>(pb.slave)] == body;
+    const bool master = group_.members[static_cast<size_t>(pb.master)] == body;
+    if (!slave && !master) continue;
+    auto lq = core::Vector::from(nodes_of(l, dim, dual.pair_offset(q), dual.pair_offset(q + 1)));
+    lq.scale(unit);
+    (slave ? rows.slave : rows.master).mult_transpose_add(lq, r);
+  }
+}
+
 std::vector<double> ContactCoupling::heat_flux() const {
   std::vector<double> all;
   for (const auto& pr : pairs_) all.insert(all.end(), pr.heat_flux.begin(), pr.heat_flux.end());

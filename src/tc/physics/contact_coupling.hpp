@@ -74,6 +74,10 @@ class ContactCoupling {
   }
   [[nodiscard]] const ContactEnforcement* enforcement() const { return method_.enforcement.get(); }
   [[nodiscard]] double traction_per_multiplier() const;
+  /// r += (traction per multiplier)·B_bᵀλ on body b (Problem::bodies index) from the rows and
+  /// multipliers of the last step: minus the force the contact puts on the body's dofs, which
+  /// the reactions of its constrained dofs must take in (EnergyBalance, issue 42 D4).
+  void add_multiplier_load(int body, core::Vector& r) const;
   /// The multipliers of every pair (pair after pair), or of pair q.
   [[nodiscard]] std::vector<double> multipliers() const;
   [[nodiscard]] std::vector<double> multipliers(int q) const;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tc/physics/contact_coupling.hpp"
+
 namespace tc::physics {
 
 double kinetic_energy(const Problem& p, const Bodies& bodies) {
@@ -62,7 +64,8 @@ double extreme_temperature(const Bodies& bodies, bool largest) {
   return e;
 }
 
-void support_forces(const Problem& p, const Bodies& bodies, int b, double t, core::Vector& r) {
+void support_forces(const Problem& p, const Bodies& bodies, int b, double t, core::Vector& r,
+                    const ContactCoupling* contact) {
   const auto& sys = *bodies.systems[b];
   const auto& m = sys.matrices();
   const auto& st = bodies.states[b];
@@ -76,6 +79,9 @@ void support_forces(const Problem& p, const Bodies& bodies, int b, double t, cor
     s.dtheta.shift(-p.physics.reference_temperature);
     m.coupling_u_theta.mult_add(s.dtheta, r);
   }
+  // A u + B_bᵀλ = f holds on the free dofs; on a constrained dof the support takes what the
+  // contact puts there as well (λ is the step's, as M ü^{k+1} of the scheme holds it).
+  if (contact) contact->add_multiplier_load(b, r);
   {  // f is scratch: overwrite its constrained entries with the support forces, keep the rest
     auto rv = r.view();
     auto fv = f.view();
@@ -88,7 +94,7 @@ void EnergyBalance::start(double t) {
   forces_.clear();
   for (int b = 0; b < bodies_.size(); ++b) {
     forces_.emplace_back(bodies_.systems[b]->n_u());
-    support_forces(problem_, bodies_, b, t, forces_[b]);
+    support_forces(problem_, bodies_, b, t, forces_[b], contact_);
   }
 }
 
@@ -100,7 +106,7 @@ void EnergyBalance::account_step(const std::vector<core::Vector>& old_u, double 
     s.work_u.copy_from(bodies_.states[b].u);
     s.work_u.axpy(-1.0, old_u[b]);
     const double before = forces_[b].dot(s.work_u);
-    support_forces(problem_, bodies_, b, t, forces_[b]);
+    support_forces(problem_, bodies_, b, t, forces_[b], contact_);
     external_work_ += 0.5 * (before + forces_[b].dot(s.work_u));
   }
 }

@@ -10,6 +10,8 @@
 
 namespace tc::physics {
 
+class ContactCoupling;
+
 /// ½ u̇ᵀM_u u̇ summed over the bodies (0 quasistatic) [J, or J/m in 2D].
 [[nodiscard]] double kinetic_energy(const Problem& p, const Bodies& bodies);
 /// ½ uᵀK_u u summed over the bodies.
@@ -21,16 +23,22 @@ namespace tc::physics {
 /// The largest (or smallest) temperature of all bodies.
 [[nodiscard]] double extreme_temperature(const Bodies& bodies, bool largest);
 
-/// F = f_ext + R of body b at time t into r, R = M ü + K u + K_uθ(θ − θ₀) − f_ext on the
-/// constrained dofs: the force the supports exert on the body, which with f_ext does the
-/// external work. The body's f_u is scratch.
-void support_forces(const Problem& p, const Bodies& bodies, int b, double t, core::Vector& r);
+/// F = f_ext + R of body b at time t into r, R = M ü + K u + K_uθ(θ − θ₀) − f_ext + B_bᵀλ on
+/// the constrained dofs: the force the supports exert on the body, which with f_ext does the
+/// external work. B_bᵀλ is minus the contact force on the body (`contact`'s last step; none
+/// when null): a supported node on a contact surface passes it to its support, so that the
+/// reactions balance every applied and contact force (issue 42 D4). The body's f_u is
+/// scratch.
+void support_forces(const Problem& p, const Bodies& bodies, int b, double t, core::Vector& r,
+                    const ContactCoupling* contact = nullptr);
 
 /// The energy balance of the bodies: the support forces F^k of every body and the external work
 /// W = Σ_steps ½(F^k + F^{k+1})·(u^{k+1} − u^k), with the energies of the state (history.csv).
 class EnergyBalance {
  public:
-  EnergyBalance(const Problem& p, const Bodies& bodies) : problem_(p), bodies_(bodies) {}
+  /// `contact`: the contact pairs' coupling whose multipliers load the supports (may be null).
+  EnergyBalance(const Problem& p, const Bodies& bodies, const ContactCoupling* contact = nullptr)
+      : problem_(p), bodies_(bodies), contact_(contact) {}
 
   /// F⁰ of every body, once the initial states are set.
   void start(double t);
@@ -50,6 +58,7 @@ class EnergyBalance {
  private:
   const Problem& problem_;
   const Bodies& bodies_;
+  const ContactCoupling* contact_;
   std::vector<core::Vector> forces_;  // f_ext + reactions at the current step, per body
   double external_work_ = 0;
 };

@@ -41,10 +41,25 @@ constexpr std::array<const char*, 25> kStandardColumns = {
     "heat_radiation",                // BoundaryHeat
 };
 
+constexpr std::array<const char*, 10> kPairColumns = {"contact_normal_force",
+                                                      "contact_tangential_force",
+                                                      "frictional_dissipation",
+                                                      "active_nodes",
+                                                      "slip_nodes",
+                                                      "contact_tangential_force_sum",
+                                                      "heat_generated",
+                                                      "heat_to_slave",
+                                                      "heat_to_master",
+                                                      "heat_conducted"};
+
 }  // namespace
 
 std::span<const char* const> History::standard_columns() {
   return kStandardColumns;
+}
+
+std::span<const char* const> History::pair_columns() {
+  return kPairColumns;
 }
 
 History::History()
@@ -52,7 +67,9 @@ History::History()
 
 void History::add(const std::string& column, Value value) {
   const auto standard = std::find(kStandardColumns.begin(), kStandardColumns.end(), column);
-  if (standard == kStandardColumns.end()) {  // appended as given (two supports may share a label)
+  if (standard == kStandardColumns.end()) {
+    if (std::find(columns_.begin(), columns_.end(), column) != columns_.end())
+      throw Error("history column '" + column + "' registered twice");
     columns_.push_back(column);
     values_.push_back(std::move(value));
     return;

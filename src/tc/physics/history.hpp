@@ -19,6 +19,10 @@ class History {
 
   /// The columns every history.csv opens with, in their order (docs/case-format.md).
   [[nodiscard]] static std::span<const char* const> standard_columns();
+  /// The columns each contact pair has with two or more pairs, as <column>_<pair name>
+  /// (ContactStatistics::register_pair_history, ContactHeat::register_history); the case
+  /// reader refuses pair names that make two of them one.
+  [[nodiscard]] static std::span<const char* const> pair_columns();
 
   History();
 
@@ -30,8 +34,9 @@ class History {
     return [&x] { return x; };
   }
 
-  /// Registers a column: a standard one takes its place in the order (Error when it was
-  /// registered before), any other follows them.
+  /// Registers a column: a standard one takes its place in the order, any other follows them;
+  /// Error when a column of that name was registered before (a reader by name would read the
+  /// wrong series: the case reader refuses the names that lead here).
   void add(const std::string& column, Value value);
   /// The row of the current state: every column's value, in the order of columns(). Throws
   /// Error when a standard column has not been registered.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "tc/core/error.hpp"
 #include "tc/physics/body_field.hpp"
@@ -25,7 +26,7 @@ Simulation::Simulation(const Problem& problem)
     : problem_(problem),
       steps_(problem, bodies_, timers_),
       contact_(problem, bodies_, steps_, timers_),
-      energy_(problem, bodies_) {
+      energy_(problem, bodies_, &contact_) {
   for (int b = 0; b < static_cast<int>(problem_.bodies.size()); ++b) {
     {
       auto t = timers_.scope("assembly");
@@ -140,8 +141,48 @@ void Simulation::advance() {
   } else {
     for (int b = 0; b < n_bodies(); ++b) coupling = std::max(coupling, steps_.couple(b, step_ + 1));
   }
+  check_temperature_range(step_ + 1, coupling);
   ++step_;
   finish_step_bookkeeping(old_u, coupling, seconds_since(t0));
+}
+
+void Simulation::check_temperature_range(int step, int iteration) {
+  const double theta0 = problem_.physics.reference_temperature;
+  for (int b = 0; b < n_bodies(); ++b) {
+    const auto& theta = bodies_.states[b].theta;
+    PetscInt lo_at = -1, hi_at = -1;
+    PetscReal lo = 0, hi = 0;
+    TC_PETSC(VecMin(theta.get(), &lo_at, &lo));
+    TC_PETSC(VecMax(theta.get(), &hi_at, &hi));
+    const auto& name = problem_.bodies[static_cast<size_t>(b)].name;
+    // One θ dof per node: the index is the mesh node.
+    const auto where = [&](PetscInt node) {
+      const auto& x = bodies_.systems[b]->body().mesh.point(static_cast<int>(node));
+      return fmt::format("node {} ({:g}, {:g}, {:g})", node, x[0], x[1], x[2]);
+    };
+    if (!(lo > 0))
+      throw NumericalError(
+          fmt::format("heat step: the absolute temperature of body \"{}\" fell to {:.6g} K at {} "
+                      "(θ ≤ 0 K): the model, linearised about θ₀ = {:g} K, no longer describes "
+                      "the state (a smaller time step, or θ₀ and the loads nearer the run's "
+                      "temperatures)",
+                      name, static_cast<double>(lo), where(lo_at), theta0),
+          step, iteration, static_cast<double>(lo));
+    // The linearisation about θ₀ is that of the thermoelastic coupling (θ₀K_uθᵀu̇, K_uθ(θ − θ₀)):
+    // without it there is nothing to warn about.
+    const bool coupled =
+        problem_.physics.thermal_expansion || problem_.physics.thermoelastic_heating;
+    if (range_warned_ || !coupled) continue;
+    const bool low = theta0 - lo >= hi - theta0;
+    const double far = low ? static_cast<double>(lo) : static_cast<double>(hi);
+    if (std::abs(far - theta0) <= theta0) continue;
+    range_warned_ = true;
+    warnings_.push_back(fmt::format(
+        "step {}: body \"{}\" reached θ = {:.6g} K at {}, |θ − θ₀| > θ₀ = {:g} K: beyond the "
+        "range where the thermoelastic model, linearised about θ₀, holds (results stay "
+        "finite but may be inaccurate; warned once per run)",
+        step, name, far, where(low ? lo_at : hi_at), theta0));
+  }
 }
 
 void Simulation::finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling,
@@ -205,6 +246,8 @@ RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {
         break;
       }
       advance();
+      for (const auto& w : warnings_) observer.warning(*this, w);
+      warnings_.clear();
       observer.step(*this);
     }
   } catch (const NumericalError& e) {

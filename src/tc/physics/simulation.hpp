@@ -46,6 +46,8 @@ class Observer {
   virtual void start(const Simulation&) {}
   virtual void step(const Simulation&) {}
   virtual void finish(const Simulation&, const RunStatus&) {}
+  /// Something the run goes on with but the user should know (one line, no "warning: ").
+  virtual void warning(const Simulation&, const std::string&) {}
 };
 
 class Simulation {
@@ -164,6 +166,12 @@ class Simulation {
   void register_history();  // the columns of history.csv: its own and its components'
   void register_load_history(History& h);  // faces under load control: w and the resultant
 
+  /// Throws NumericalError when a body's absolute temperature after step `step` is ≤ 0 (the
+  /// linearised model has left physics: tables and radiation would be read below 0 K); the
+  /// first time the state leaves |θ − θ₀| ≤ θ₀ with a thermoelastic coupling on, a warning is
+  /// queued (docs/choices.md).
+  void check_temperature_range(int step, int iteration);
+
   const Problem& problem_;
   core::PhaseTimers timers_;
   Bodies bodies_;
@@ -177,6 +185,8 @@ class Simulation {
   std::string factorization_;
   History history_;
   BoundaryHeat boundary_heat_;
+  bool range_warned_ = false;          // the linearisation warning is given once per run
+  std::vector<std::string> warnings_;  // queued for the observer by run()
 };
 
 }  // namespace tc::physics
