@@ -60,6 +60,14 @@ fs::path case_with_mesh(const fs::path& dir, const std::string& mesh) {
   return file;
 }
 
+/// A copy of the sliding case in `dir` (box meshes only): a run that ignores --output (as the
+/// old binary did with some mistyped options) writes into `dir`, not into the source tree.
+fs::path sliding_in(const fs::path& dir) {
+  const auto file = dir / "sliding.toml";
+  std::ofstream(file) << tc::test::read_file(kSliding);
+  return file;
+}
+
 /// A sparse file of `bytes` bytes, NUL bytes after `head` (`truncate -s`): no disk used.
 void sparse_file(const fs::path& file, const std::string& head, off_t bytes) {
   std::ofstream(file, std::ios::binary) << head;
@@ -257,7 +265,7 @@ TEST(Issue42CliOptions, AMistypedLongOptionIsRefusedBeforeRunning) {
         {"--outptu " + out, "--output"},
         {"-restart " + out, "--restart"},
         {"--output " + out + " --frobnicate", ""}}) {
-    const auto r = thermocontact("run " + kSliding.string() + " " + args);
+    const auto r = thermocontact("run " + sliding_in(dir).string() + " " + args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("nothing was run"), std::string::npos) << r.output;
     if (*suggestion)
@@ -272,7 +280,7 @@ TEST(Issue42CliOptions, AMistypedLongOptionIsRefusedBeforeRunning) {
 TEST(Issue42CliOptions, AnEmptyFactorPackageIsRefused) {
   // `-tc_factor_package` with no value, or "", was ignored: the case's package ran.
   const auto dir = tc::test::fresh_dir("i42-package");
-  const auto run = "run " + kSliding.string() + " --output " + (dir / "out").string();
+  const auto run = "run " + sliding_in(dir).string() + " --output " + (dir / "out").string();
   for (const std::string tail :
        {" -tc_factor_package", " -tc_factor_package ''", " -tc_factor_package -log_view_never"}) {
     const auto r = thermocontact(run + tail);
@@ -294,7 +302,7 @@ TEST(Issue42CliOptions, MoreOptionsThanPetscHoldsAreRefusedInAFewLines) {
     std::ofstream options(dir / "options");
     for (int i = 1; i <= 600; ++i) options << "-file" << i << " " << i << "  # a comment\n";
   }
-  const auto run = "run " + kSliding.string() + " --output " + (dir / "out").string();
+  const auto run = "run " + sliding_in(dir).string() + " --output " + (dir / "out").string();
   for (const auto& command :
        {thermocontact(run + many),
         tc::test::run_command("env PETSC_OPTIONS='" + env + "' timeout 60 " + binary() + " " + run),
@@ -316,13 +324,14 @@ TEST(Issue42CliMpi, CommandLineErrorsAndInfoAreSaidOnceUnderMpirun) {
       "timeout -k 5 60 env -i PATH=/usr/bin:/bin HOME=/tmp OMPI_ALLOW_RUN_AS_ROOT=1 "
       "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
       std::string(TC_MPIEXEC) + " -n 2 " + binary() + " ";
-  const auto empty = tc::test::run_command(launcher + "run " + kSliding.string() + " --output ''");
+  const auto sliding = sliding_in(tc::test::fresh_dir("i42-mpi")).string();
+  const auto empty = tc::test::run_command(launcher + "run " + sliding + " --output ''");
   EXPECT_EQ(empty.exit_code, 2) << empty.output;
   EXPECT_EQ(occurrences(empty.output, "--output: found an empty path"), 1u) << empty.output;
   const auto none = tc::test::run_command(launcher);
   EXPECT_EQ(none.exit_code, 2) << none.output;
   EXPECT_EQ(occurrences(none.output, "A subcommand is required"), 1u) << none.output;
-  const auto typo = tc::test::run_command(launcher + "run " + kSliding.string() + " --forse");
+  const auto typo = tc::test::run_command(launcher + "run " + sliding + " --forse");
   EXPECT_EQ(typo.exit_code, 2) << typo.output;
   EXPECT_EQ(occurrences(typo.output, "did you mean '--force'?"), 1u) << typo.output;
   const auto info = tc::test::run_command(launcher + "info");
