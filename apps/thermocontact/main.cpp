@@ -2,6 +2,8 @@
 // numerical failure or a signal (the steps done stay written); 2 invalid input.
 #include <fmt/format.h>
 #include <gmsh.h>
+#include <sched.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -10,6 +12,7 @@
 #include <cctype>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -127,6 +130,39 @@ bool command_line_reporter() {
   for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
     if (const char* rank = std::getenv(name)) return std::atoi(rank) == 0;
   return true;
+}
+
+/// The address space this process needs beyond what it has mapped when main() starts (its
+/// libraries, OpenBLAS's thread pool): a 128 MiB buffer per BLAS thread, which OpenBLAS maps
+/// at its first call in each thread and, when the mapping fails, retries for ever (a run under
+/// `ulimit -v 500000` spun at 100 % CPU in blas_memory_alloc; issue 42, D19). MPI's and
+/// PETSc's own start-up fitted in what is left on the 2-core machine (measured: refused at
+/// 500 000 kB with 2 threads, where the run hung; runs at 560 000 kB).
+std::string address_space_shortfall() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return {};
+  std::ifstream status("/proc/self/status");
+  double mapped = 0;  // kB
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmSize:", 0) == 0) mapped = std::atof(line.c_str() + 7);
+  int threads = 0;
+  for (const char* name : {"OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"})
+    if (const char* v = std::getenv(name); v && threads <= 0) threads = std::atoi(v);
+  if (threads <= 0) {
+    cpu_set_t cpus;
+    CPU_ZERO(&cpus);
+    threads = sched_getaffinity(0, sizeof cpus, &cpus) == 0 ? CPU_COUNT(&cpus) : 1;
+  }
+  constexpr double mib = 1024.0;  // kB
+  const double need = mapped + 128 * mib * threads;
+  const double have = static_cast<double>(limit.rlim_cur) / 1024.0;
+  if (have >= need) return {};
+  return fmt::format(
+      "error: the address-space limit (ulimit -v) is {:.0f} kB; thermocontact needs more than "
+      "{:.0f} kB here (its libraries {:.0f} kB, and {} BLAS thread{} with a {:.0f} kB buffer "
+      "each). Raise the limit (ulimit -v unlimited) or use fewer BLAS threads "
+      "(OPENBLAS_NUM_THREADS=1); nothing was run.\n",
+      have, need, mapped, threads, threads == 1 ? "" : "s", 128 * mib);
 }
 
 /// PETSc 3.18 keeps at most this many distinct option names (MAXOPTIONS in its options.c);
@@ -469,6 +505,13 @@ std::string unknown_long_option(const std::vector<std::string>& extra,
 
 int main(int argc, char** argv) {
   install_signal_handlers();  // a signal during start-up too; again after PetscInitialize
+  if (const auto why = address_space_shortfall(); !why.empty()) {
+    if (command_line_reporter()) fmt::print(stderr, "{}", why);
+    // The environment, not the input: exit 1. Without exit handlers: OpenBLAS's joins its
+    // threads, which may be stuck mapping their buffers under the limit (it hung there).
+    std::fflush(nullptr);
+    std::_Exit(1);
+  }
   CLI::App app{"thermocontact: dynamic thermo-mechanical contact with Coulomb friction"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "thermocontact " THERMOCONTACT_VERSION);
@@ -544,6 +587,14 @@ int main(int argc, char** argv) {
     }
     if (check_cmd->parsed()) return check(case_file, argv[0]);
     return info(argv[0]);
+  } catch (const std::bad_alloc&) {
+    rlimit limit{};
+    const bool limited = getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY;
+    fmt::print(stderr, "stopped: out of memory{}\n",
+               limited ? fmt::format(" under the address-space limit (ulimit -v) of {} kB",
+                                     limit.rlim_cur / 1024)
+                       : "");
+    return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

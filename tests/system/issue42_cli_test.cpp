@@ -371,6 +371,34 @@ TEST(Issue42CliFeti, AFetiFailureNamesTheStepItHappenedIn) {
   }
 }
 
+// ---- D19: a tight address-space limit ------------------------------------------------
+
+TEST(Issue42CliEnv, ATightAddressSpaceLimitIsSaidInOurWordsOrRunsThrough) {
+  // Under `ulimit -v 600000` a run on one BLAS thread ended at MPI_Init with Open MPI's "out
+  // of dynamic memory", exit 2: the heap's 512 MiB top pad (core::prefer_huge_pages) was asked
+  // of every growth and no longer fitted. Without the pad under a limit, it runs through. Far
+  // below what the libraries and BLAS buffers take (200 000 kB), the run is refused at once,
+  // exit 1, in our words (it hung in OpenBLAS's allocation loop, or died in MPI_Init).
+  const auto dir = tc::test::fresh_dir("i42-ulimit");
+  const auto run = "run " + sliding_in(dir).string() + " --output " + (dir / "out").string();
+  const auto limited = [&](int kb, const std::string& args) {
+    return tc::test::run_command("ulimit -v " + std::to_string(kb) +
+                                 " && OPENBLAS_NUM_THREADS=1 timeout -s KILL 60 " + binary() + " " +
+                                 args);
+  };
+  const auto fits = limited(600000, run);
+  EXPECT_EQ(fits.exit_code, 0) << fits.output;
+  EXPECT_NE(fits.output.find("done: 40 steps"), std::string::npos) << fits.output;
+  for (const auto& args : {run + " --force", std::string("info")}) {
+    const auto tight = limited(200000, args);
+    EXPECT_EQ(tight.exit_code, 1) << args << "\n" << tight.output;
+    EXPECT_NE(tight.output.find("error: the address-space limit (ulimit -v) is 200000 kB"),
+              std::string::npos)
+        << tight.output;
+    EXPECT_LE(lines(tight.output), 2u) << tight.output;
+  }
+}
+
 // ---- small items -----------------------------------------------------------------------
 
 TEST(Issue42CliSmall, VersionPrintsTheVersion) {
