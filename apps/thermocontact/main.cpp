@@ -191,7 +191,7 @@ std::vector<std::string> words_of(std::istream& in) {
 /// The PETSc options of the command line, of PETSC_OPTIONS and of the -options_file files
 /// (comments from '#' left out), counted before PETSc is given them: more than PETSc can hold
 /// is refused with exit 2. (~/.petscrc and ./.petscrc, which PETSc also reads, are not
-/// counted.)
+/// counted.) The -options_file files must have passed bad_options_file first.
 std::string too_many_options(const std::vector<std::string>& extra) {
   std::set<std::string> names;
   add_option_names(extra, names);
@@ -273,7 +273,11 @@ std::string bad_forward_compliance() {
 
 int run(const std::string& case_file, const std::string& output, const std::string& restart,
         bool force, int stop_after, std::vector<std::string> extra, const char* program) {
-  if (const auto why = bad_options_file(extra) + too_many_options(extra); !why.empty()) {
+  // In this order: the options files are read for counting only once they are known to be
+  // regular files of at most 1 MiB (/dev/zero was read for ever).
+  auto why = bad_options_file(extra);
+  if (why.empty()) why = too_many_options(extra);
+  if (!why.empty()) {
     if (command_line_reporter()) fmt::print(stderr, "{}nothing was run.\n", why);
     return 2;
   }
@@ -355,6 +359,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   } catch (const tc::io::OutputInUse& e) {
     report(e, "error");
     return 2;
+  } catch (const tc::Interrupted& e) {  // mpirun passes the signal to every rank: said once
+    if (input_reporter()) fmt::print(stderr, "stopped: {}\n", e.what());
+    return 1;
   } catch (const tc::Error& e) {
     report(e, "stopped");
     return 1;
@@ -398,8 +405,8 @@ int check(const std::string& case_file, const char* program) {
     return report_input_error(e);
   } catch (const tc::MeshError& e) {
     return report_bad_input(e);
-  } catch (const tc::Interrupted& e) {
-    report(e, "stopped");
+  } catch (const tc::Interrupted& e) {  // mpirun passes the signal to every rank: said once
+    if (input_reporter()) fmt::print(stderr, "stopped: {}\n", e.what());
     return 1;
   }
 }
