@@ -1,5 +1,6 @@
 // thermocontact: the command line (case-format.md). Exit codes: 0 done; 1 stopped by a
 // numerical failure or a signal (the steps done stay written); 2 invalid input.
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <gmsh.h>
 #include <sched.h>
@@ -20,6 +21,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/core/stop.hpp"
@@ -34,10 +36,17 @@
 
 namespace {
 
-// The stop request that the time loop and the mesh reader's wait read (core/stop.hpp).
+// The first stop signal on this rank (or --stop-after): core/stop.hpp's flag, which the mesh
+// reader's wait reads too.
 std::atomic<int>& g_stop = tc::core::stop_signal;
-// OutputWriter::stopped_summary and summary.json of the run (rank 0), for on_signal.
-char g_stopped_summary[4096] = {}, g_summary[4096] = {};
+// What the run acts on: g_stop of any rank, agreed after every step (AgreeOnStop), so that
+// every rank leaves the step loop after the same step. A signal reaches the ranks of an
+// mpirun at slightly different times; a rank that stopped alone left the others in a
+// collective of the next step.
+std::atomic<int> g_stop_agreed{0};
+// A descriptor of the run's output directory (rank 0), for on_signal: summary.stopped.json is
+// renamed over summary.json in the directory the run writes into, whatever its path names now.
+std::atomic<int> g_output_directory{-1};
 
 /// The signals that ask a run to stop: Ctrl-C, kill, a dropped terminal or ssh session, and the
 /// warnings batch systems send before they kill (SIGUSR1/2, SIGXCPU on a CPU-time limit).
@@ -46,9 +55,16 @@ constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXC
 /// The first stop signal lets the step under way finish, then the run stops with its output
 /// whole (exit 1, summary "stopped"); a second one ends the process at once with the
 /// signal's default action (the user insists, e.g. during a long factorisation).
+///
+/// At the first signal summary.stopped.json (the state after the last written step) is also
+/// renamed over summary.json at once: mpirun, on SIGTERM, sends SIGTERM to the ranks and
+/// SIGKILL about a second later, before a long step can end, and summary.json said "running"
+/// (issue 41, point 6). The run that stops in order writes the real summary over it.
 extern "C" void on_signal(int sig) {
-  if (g_stop.exchange(sig) != 0) {
-    if (g_summary[0] != '\0') (void)std::rename(g_stopped_summary, g_summary);
+  const bool second = g_stop.exchange(sig) != 0;
+  if (const int dir = g_output_directory.load(); dir >= 0)
+    (void)::renameat(dir, "summary.stopped.json", dir, "summary.json");
+  if (second) {
     std::signal(sig, SIG_DFL);
     std::raise(sig);
   }
@@ -78,6 +94,19 @@ class StopAfter : public tc::physics::Observer {
 
  private:
   int steps_;
+};
+
+/// Makes the stop of a run collective: after every step each rank's g_stop is combined
+/// (MPI_MAX: a signal number) and the result is what Simulation::run reads (g_stop_agreed).
+class AgreeOnStop : public tc::physics::Observer {
+ public:
+  void step(const tc::physics::Simulation&) override {
+    int local = g_stop.load(), any = local;
+    if (tc::core::PetscSession::size() > 1)
+      tc::core::check_mpi(MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD),
+                          "MPI_Allreduce");
+    if (any != 0) g_stop_agreed.store(any);
+  }
 };
 
 /// The options on the command line that nothing read: `-o dir` (for --output) or a mistyped
@@ -309,14 +338,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     if (!problem.contacts.empty()) sim.enable_mortar_contact();
     const auto case_hash = tc::io::input_hash(problem);
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
-    if (tc::core::PetscSession::rank() == 0) {
-      const auto from = tc::io::OutputWriter::stopped_summary(problem.output.directory).string();
-      const auto to = (problem.output.directory / "summary.json").string();
-      if (from.size() < sizeof g_stopped_summary) {
-        std::snprintf(g_stopped_summary, sizeof g_stopped_summary, "%s", from.c_str());
-        std::snprintf(g_summary, sizeof g_summary, "%s", to.c_str());
-      }
-    }
+    if (tc::core::PetscSession::rank() == 0)  // held open until the process ends
+      g_output_directory.store(
+          ::open(problem.output.directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
     if (!restart.empty()) {
       const auto file = tc::io::checkpoint_file(restart);
       tc::io::check_restart_outputs(restart);
@@ -325,26 +349,31 @@ int run(const std::string& case_file, const std::string& output, const std::stri
       } catch (const tc::io::CheckpointError&) {
         throw;
       } catch (const tc::Error& e) {  // sizes that passed the header but not the problem
-        throw tc::io::CheckpointError(fmt::format("checkpoint {}: {}", file.string(), e.what()));
+        throw tc::io::CheckpointError(
+            fmt::format("checkpoint {}: {}", tc::io::printable(file), e.what()));
       }
+      tc::io::check_restart_history(restart, sim);  // before a row is written: exit 2
       writer.resume();
       if (tc::core::PetscSession::rank() == 0)
         fmt::print("restarting from step {} (t = {:g} s) of {}\n", sim.step(), sim.time(),
-                   file.string());
+                   tc::io::printable(file));
     }
     tc::io::CheckpointWriter checkpoint(problem.output.directory, case_hash);
     tc::io::ProgressLine progress(isatty(STDERR_FILENO) != 0);
     StopAfter stop(stop_after);
-    tc::io::Observers observers({&writer, &checkpoint, &progress, &stop});
-    const auto status = sim.run(observers, &g_stop);
+    AgreeOnStop agree;
+    writer.watch_stop(&g_stop);
+    tc::io::Observers observers({&writer, &checkpoint, &progress, &stop, &agree});
+    const auto status = sim.run(observers, &g_stop_agreed);
     if (tc::core::PetscSession::rank() == 0) {
       warn_unused_options();
       if (status.completed)
         fmt::print("done: {} steps; output in {}\n", status.steps_done,
-                   problem.output.directory.string());
+                   tc::io::printable(problem.output.directory));
       else
         fmt::print(stderr, "stopped: {}\noutput of the {} completed step(s) is in {}\n",
-                   status.message, writer.steps_written(), problem.output.directory.string());
+                   status.message, writer.steps_written(),
+                   tc::io::printable(problem.output.directory));
     }
     // Flushed while SIGPIPE is still ignored: PetscFinalize restores its default, and a reader
     // gone from the pipe would kill the process at exit's flush (exit 141 after a whole run).

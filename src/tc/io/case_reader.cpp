@@ -43,6 +43,9 @@ const Range kTemperature{[](double x) { return x > 0; }, "a temperature > 0 K"};
 /// Longest body or boundary name that may reach a file name or a history.csv column.
 constexpr size_t kMaxNameLength = 64;
 
+/// Longest `title` (bytes): summary.json holds it and is rewritten after every step.
+constexpr size_t kMaxTitleLength = 4096;
+
 /// `s` with control and non-ASCII bytes as \xNN, so that a reported value stays on its line.
 std::string printable(std::string_view s) {
   std::string out;
@@ -184,6 +187,7 @@ class CaseReader {
   void read_output(const TableReader& root);
   void check_quasistatic_bodies_held();
   void check_boundary_conflicts();
+  void check_load_control();
 
   /// The array of tables at `key` ([[key]]), or an issue.
   const toml::array* tables(const TableReader& root, std::string_view key, Need need);
@@ -211,7 +215,15 @@ Problem CaseReader::read() {
   const TableReader root(root_, "", issues_,
                          {"title", "dimension", "time", "physics", "materials", "bodies",
                           "boundary", "contact", "solver", "output"});
-  if (const auto t = root.string("title", Need::optional)) p_.title = *t;
+  if (const auto t = root.string("title", Need::optional)) {
+    // The title is copied into summary.json after every step: a 10 MB title cost 0.25 s a
+    // step (issue 42). A title is a line or a paragraph, not a document.
+    if (t->size() > kMaxTitleLength)
+      root.issue("title", fmt::format("found a title of {} characters, expected at most {}",
+                                      t->size(), kMaxTitleLength));
+    else
+      p_.title = *t;
+  }
   read_dimension(root);
   read_time(root);
   read_physics(root);
@@ -222,6 +234,7 @@ Problem CaseReader::read() {
   read_solver(root);
   read_output(root);
   if (issues_.empty()) check_boundary_conflicts();
+  if (issues_.empty()) check_load_control();
   if (issues_.empty()) check_quasistatic_bodies_held();
   if (!issues_.empty()) issues_.raise();
   return std::move(p_);
@@ -583,8 +596,8 @@ void CaseReader::read_boundaries(const TableReader& root) {
 
 void CaseReader::read_boundary(const toml::table& t, size_t index) {
   const TableReader b(t, detail::at("boundary", index), issues_,
-                      {"body", "where", "displacement", "traction", "temperature", "heat_flux",
-                       "film", "radiation"});
+                      {"body", "where", "displacement", "traction", "force", "temperature",
+                       "heat_flux", "film", "radiation"});
   physics::BoundaryCondition bc;
   const auto body = body_index(b, "body");
   if (const auto where = b.string("where", Need::required)) {
@@ -592,6 +605,8 @@ void CaseReader::read_boundary(const toml::table& t, size_t index) {
     if (body) check_boundary_name(b, "where", *body, *where);
     if (b.has("displacement"))
       check_name(b, "where", *where, "the history.csv columns reaction_<body>_<where>_x|y|z");
+    else if (b.has("force"))
+      check_name(b, "where", *where, "the history.csv columns force_<body>_<where>_x|y|z");
   }
   bc.body = body.value_or(0);
   if (const auto* n = b.get("displacement", Need::optional, ""))
@@ -608,6 +623,17 @@ void CaseReader::read_boundary(const toml::table& t, size_t index) {
                   fmt::format("found both a displacement and a traction on component {}, "
                               "expected one of them (\"free\" displacement with a traction)",
                               k));
+  // A resultant force per component through a rigid coupling (load control): "free" leaves a
+  // component uncoupled, so force = ["free", "free", -200.0] presses along z only.
+  if (const auto* n = b.get("force", Need::optional, ""))
+    if (const auto f = detail::read_components(*n, b.key("force"), issues_, dim_, true))
+      bc.force = *f;
+  for (int k = 0; k < 3; ++k)
+    if (bc.force[k] && (bc.displacement[k] || bc.traction[k]))
+      issues_.add(b.line("force"), detail::at(b.key("force"), k),
+                  fmt::format("found both a force and a {} on component {}, expected one of "
+                              "them (\"free\" in the other)",
+                              bc.displacement[k] ? "displacement" : "traction", k));
   if (const auto* n = b.get("temperature", Need::optional, ""))
     bc.temperature = detail::read_time_table(*n, b.key("temperature"), issues_, kTemperature);
   if (const auto* n = b.get("heat_flux", Need::optional, ""))
@@ -622,10 +648,10 @@ void CaseReader::read_boundary(const toml::table& t, size_t index) {
       b.issue(k, fmt::format("found both temperature and {} on one face, expected one of them: "
                              "a prescribed temperature leaves nothing for the {} to change",
                              k, k));
-  if (!b.has("displacement") && !b.has("traction") && !b.has("temperature") &&
+  if (!b.has("displacement") && !b.has("traction") && !b.has("force") && !b.has("temperature") &&
       !b.has("heat_flux") && !b.has("film") && !b.has("radiation"))
     issues_.add(b.line(), b.path(),
-                "prescribes nothing; expected at least one of displacement, traction, "
+                "prescribes nothing; expected at least one of displacement, traction, force, "
                 "temperature, heat_flux, film, radiation");
   p_.boundaries.push_back(std::move(bc));
 }
@@ -967,6 +993,88 @@ void CaseReader::check_boundary_conflicts() {
                                 "too ({}); expected the same value from both",
                                 shared.size(), other, where));
     }
+}
+
+/// Faces under load control (force): their nodes carry one displacement per loaded component,
+/// so no node of one may be prescribed, loaded by another face in that component, or touched by
+/// a contact row; the body must be solved directly (not FETI), start at rest, and the contact
+/// bodies may have one loaded component in all (a scalar root per QP: rigid_coupling.hpp).
+void CaseReader::check_load_control() {
+  const auto* node = root_.get("boundary");
+  const auto* a = node ? node->as_array() : nullptr;
+  if (!a) return;
+  const auto& bcs = p_.boundaries;
+  const char* axes = "xyz";
+  int in_contact = 0;
+  for (size_t j = 0; j < bcs.size(); ++j) {
+    const auto& bc = bcs[j];
+    if (!any_of(bc.force)) continue;
+    const int line = detail::line_of(*a->get(j));
+    const auto key = detail::join(detail::at("boundary", j), "force");
+    const auto& body = p_.bodies[static_cast<size_t>(bc.body)];
+    if (body.subdomains > 1)
+      issues_.add(line, key,
+                  fmt::format("found a force on body \"{}\", which is cut into {} subdomains; "
+                              "expected subdomains = 1 (load control is not implemented with "
+                              "FETI bodies)",
+                              body.name, body.subdomains));
+    if (body.start_in_equilibrium && p_.time.scheme == physics::Scheme::dynamic)
+      issues_.add(line, key,
+                  fmt::format("found a force on body \"{}\" with initial_state = "
+                              "\"equilibrium\"; expected initial_state = \"rest\" (the static "
+                              "start does not solve for a loaded face)",
+                              body.name));
+    const auto nodes = body.mesh.boundary_nodes(bc.where);
+    for (const auto& c : p_.contacts)
+      for (const auto& [b, where] :
+           {std::pair{c.slave_body, &c.slave_where}, {c.master_body, &c.master_where}}) {
+        if (b != bc.body) continue;
+        ++in_contact;
+        const auto surface = body.mesh.boundary_nodes(*where);
+        std::vector<int> shared;
+        std::set_intersection(nodes.begin(), nodes.end(), surface.begin(), surface.end(),
+                              std::back_inserter(shared));
+        if (!shared.empty())
+          issues_.add(line, key,
+                      fmt::format("found {} node(s) of \"{}\" on the contact surface \"{}\" of "
+                                  "body \"{}\"; expected a loaded face apart from the contact "
+                                  "surface",
+                                  shared.size(), bc.where, *where, body.name));
+      }
+    for (size_t i = 0; i < bcs.size(); ++i) {
+      const auto& other = bcs[i];
+      if (i == j || other.body != bc.body) continue;
+      std::vector<int> shared;
+      const auto on = body.mesh.boundary_nodes(other.where);
+      std::set_intersection(nodes.begin(), nodes.end(), on.begin(), on.end(),
+                            std::back_inserter(shared));
+      if (shared.empty()) continue;
+      for (int k = 0; k < dim_; ++k)
+        if (bc.force[k] && (other.displacement[k] || (other.force[k] && i < j)))
+          issues_.add(line, detail::at(key, k),
+                      fmt::format("found {} node(s) of \"{}\" whose component {} boundary[{}] "
+                                  "(line {}) {} too; expected the nodes of a loaded face free "
+                                  "of other displacements and forces in that component",
+                                  shared.size(), bc.where, axes[k], i, detail::line_of(*a->get(i)),
+                                  other.displacement[k] ? "prescribes" : "loads"));
+    }
+  }
+  if (in_contact > 0) {
+    int loaded = 0;
+    for (const auto& bc : bcs) {
+      bool contact_body = false;
+      for (const auto& c : p_.contacts)
+        contact_body = contact_body || c.slave_body == bc.body || c.master_body == bc.body;
+      if (contact_body)
+        for (int k = 0; k < dim_; ++k) loaded += bc.force[k] ? 1 : 0;
+    }
+    if (loaded > 1)
+      issues_.add(detail::line_of(*a->get(0)), "boundary",
+                  fmt::format("found {} loaded force components on the bodies in contact; "
+                              "expected at most one (load control in contact solves for one "
+                              "face displacement)",
+                              loaded));
+  }
 }
 
 /// A quasistatic body, and one that starts in static equilibrium, must be held against every

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -255,19 +256,19 @@ std::string read_regular_file(const std::filesystem::path& file) {
     throw CheckpointError(
         fmt::format("no checkpoint {} to restart from (a run writes it after "
                     "every step into its output directory)",
-                    file.string()));
+                    printable(file)));
   if (d.fd < 0)
     throw CheckpointError(
-        fmt::format("checkpoint {}: cannot be opened: {}", file.string(), std::strerror(errno)));
+        fmt::format("checkpoint {}: cannot be opened: {}", printable(file), std::strerror(errno)));
   struct stat st {};
   if (::fstat(d.fd, &st) != 0)
-    throw CheckpointError(
-        fmt::format("checkpoint {}: cannot be examined: {}", file.string(), std::strerror(errno)));
+    throw CheckpointError(fmt::format("checkpoint {}: cannot be examined: {}", printable(file),
+                                      std::strerror(errno)));
   if (const auto what = not_regular(st); !what.empty())
     throw CheckpointError(
         fmt::format("checkpoint {}: is {}, expected the checkpoint.bin file "
                     "that a run writes into its output directory",
-                    file.string(), what));
+                    printable(file), what));
   std::string bytes(static_cast<size_t>(st.st_size), '\0');
   size_t done = 0;
   while (done < bytes.size()) {
@@ -275,10 +276,10 @@ std::string read_regular_file(const std::filesystem::path& file) {
     if (n < 0 && errno == EINTR) continue;
     if (n < 0)
       throw CheckpointError(
-          fmt::format("checkpoint {}: cannot be read: {}", file.string(), std::strerror(errno)));
+          fmt::format("checkpoint {}: cannot be read: {}", printable(file), std::strerror(errno)));
     if (n == 0)
       throw CheckpointError(fmt::format("checkpoint {}: shorter than its size ({} of {} bytes)",
-                                        file.string(), done, bytes.size()));
+                                        printable(file), done, bytes.size()));
     done += static_cast<size_t>(n);
   }
   return bytes;
@@ -288,7 +289,7 @@ std::string read_regular_file(const std::filesystem::path& file) {
 
 physics::Checkpoint read_checkpoint(const std::filesystem::path& file,
                                     const physics::Simulation& sim, std::uint64_t case_hash) {
-  return decode_checkpoint(read_regular_file(file), sim, case_hash, file.string());
+  return decode_checkpoint(read_regular_file(file), sim, case_hash, printable(file));
 }
 
 void check_restart_outputs(const std::filesystem::path& directory) {
@@ -297,13 +298,55 @@ void check_restart_outputs(const std::filesystem::path& directory) {
   for (const char* name : {"history.csv", "result.pvd"}) {
     const auto file = directory / name;
     struct stat st {};
-    if (::stat(file.c_str(), &st) != 0) continue;  // missing: the restart writes it afresh
+    // Missing: history.csv is refused by check_restart_history, result.pvd rebuilt by the
+    // OutputWriter from the field files.
+    if (::stat(file.c_str(), &st) != 0) continue;
     if (const auto what = not_regular(st); !what.empty())
       throw CheckpointError(
           fmt::format("restart from {}: {} is {}, expected the file that a "
                       "run writes there",
-                      directory.string(), file.string(), what));
+                      printable(directory), printable(file), what));
   }
+}
+
+void check_restart_history(const std::filesystem::path& directory, const physics::Simulation& sim) {
+  const auto file = directory / "history.csv";
+  const int k = sim.step();
+  const auto refuse = [&](const std::string& why) {
+    throw CheckpointError(
+        fmt::format("restart from {}: {} {}; a restart continues the history "
+                    "of its checkpoint's run, which must hold steps 0 to {}",
+                    printable(directory), printable(file), why, k - 1));
+  };
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    if (!std::filesystem::exists(std::filesystem::symlink_status(file))) refuse("is missing");
+    refuse(fmt::format("cannot be read ({})", std::strerror(errno)));
+  }
+  std::string header;
+  for (const auto& c : sim.history_columns()) header += (header.empty() ? "" : ",") + c;
+  std::string line;
+  if (!std::getline(in, line) || in.eof()) refuse("is empty or has no whole header line");
+  if (line != header)
+    refuse(fmt::format("has a header that is not this case's ({} columns, expected {})",
+                       std::count(line.begin(), line.end(), ',') + 1,
+                       sim.history_columns().size()));
+  int expected = 0;                                              // the step of the next row
+  while (expected < k && std::getline(in, line) && !in.eof()) {  // a last line without '\n'
+    char* end = nullptr;                                         // is not a whole row
+    const double step = std::strtod(line.c_str(), &end);
+    if (end == line.c_str() || *end != ',')
+      refuse(fmt::format("has a row that does not begin with a step number after step {}",
+                         expected - 1));
+    if (step != expected)
+      refuse(expected == 0 ? fmt::format("begins at step {:g}", step)
+                           : fmt::format("jumps from step {} to step {:g}", expected - 1, step));
+    ++expected;
+  }
+  if (expected < k)
+    refuse(expected == 0
+               ? std::string("has no rows")
+               : fmt::format("ends at step {}, before the checkpoint's step {}", expected - 1, k));
 }
 
 CheckpointWriter::CheckpointWriter(std::filesystem::path directory, std::uint64_t case_hash)

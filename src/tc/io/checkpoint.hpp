@@ -61,6 +61,12 @@ void write_checkpoint(const std::filesystem::path& file, const physics::Simulati
 /// regular file: the restart reads them line by line.
 void check_restart_outputs(const std::filesystem::path& directory);
 
+/// Refuses (CheckpointError) a restart whose history.csv cannot be continued from `sim`'s
+/// restored step k without a gap: missing, with another header, or without a row for each of
+/// the steps 0 … k−1 in order (cut short, or a newer checkpoint copied in: the restart wrote
+/// steps 0–9 then 40; issue 42, D3 and D11). Rows from step k on are written again.
+void check_restart_history(const std::filesystem::path& directory, const physics::Simulation& sim);
+
 /// Writes the checkpoint after every completed step (MPI rank 0 only; every rank holds every
 /// body). Put it after the OutputWriter: a checkpoint then never runs ahead of history.csv.
 class CheckpointWriter : public physics::Observer {

@@ -27,13 +27,52 @@ class TextBuffer {
   fmt::memory_buffer buffer_;
 };
 
-/// Writes `bytes` to `file` (created or truncated) and closes it; on failure removes it and
-/// throws OutputError.
+/// While it lives, every file written by the functions below into `directory` is created,
+/// renamed and removed relative to a descriptor of the directory opened here (openat,
+/// renameat): should the path come to name another directory (`rm -rf DIR` and a new run
+/// into DIR, a link put in the place of DIR), the writes still go to this one, or fail if it
+/// was deleted, and never into the other (issue 42, D2). Throws OutputError if it cannot be
+/// opened.
+class PinnedDirectory {
+ public:
+  explicit PinnedDirectory(const std::filesystem::path& directory);
+  ~PinnedDirectory();
+  PinnedDirectory(const PinnedDirectory&) = delete;
+  PinnedDirectory& operator=(const PinnedDirectory&) = delete;
+  [[nodiscard]] int fd() const { return fd_; }
+
+ private:
+  std::string key_;
+  int fd_ = -1;
+};
+
+/// Writes `bytes` to `file`, a new file, and closes it; on failure removes it and throws
+/// OutputError. Whatever had the name before (a stale file, a symbolic or hard link planted
+/// there) is unlinked first and the file is created with O_EXCL | O_NOFOLLOW: nothing is ever
+/// written through a link to a file outside the output directory (issue 42, D1).
 void write_file(const std::filesystem::path& file, std::string_view bytes);
 
 /// write_file to `file`.tmp, then renames it over `file`: a reader sees the old file or the
-/// new one, whole.
+/// new one, whole. The rename replaces a link named `file` itself, never its target.
 void replace_file(const std::filesystem::path& file, std::string_view bytes);
+
+/// replace_file that keeps the new file open for appending: the descriptor (the caller closes
+/// it) refers to the file written, not to whatever the name may later point to.
+[[nodiscard]] int replace_file_for_append(const std::filesystem::path& file,
+                                          std::string_view bytes);
+
+/// `s` with control bytes (and DEL) as \xNN, for paths and names printed on a terminal: an
+/// output name with a newline or escape codes was echoed raw (issue 42).
+[[nodiscard]] std::string printable(std::string_view s);
+[[nodiscard]] inline std::string printable(const std::string& s) {
+  return printable(std::string_view(s));
+}
+[[nodiscard]] inline std::string printable(const char* s) {
+  return printable(std::string_view(s));
+}
+[[nodiscard]] inline std::string printable(const std::filesystem::path& p) {
+  return printable(std::string_view(p.native()));
+}
 
 /// What keeps `path` from being read as a file ("does not exist", "is a directory", ...), or ""
 /// when it is a regular file (after symbolic links). "does not exist" was said of all of them.

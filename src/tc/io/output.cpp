@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,6 +31,18 @@ double now_seconds() {
 std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";  // JSON has no NaN/Inf
   return fmt::format("{:.17g}", v);
+}
+
+/// summary.stopped.json's reason: it becomes summary.json when the run ends before writing its
+/// own, which a second stop signal, a kill after the first (mpirun after SIGTERM) and a disk
+/// too full for summary.json all do. It said "a second stop signal" of all of them (issue 42,
+/// D12).
+std::string stopped_message(const physics::Simulation& sim) {
+  return fmt::format(
+      "stopped after step {} (t = {:g} s) without its final summary: ended at once by a second "
+      "stop signal or killed after a first one, or summary.json could not be written (see the "
+      "run's error output); the output of the steps done is whole",
+      sim.step(), sim.time());
 }
 
 constexpr std::array<const char*, 7> kPhases{
@@ -222,14 +235,26 @@ void OutputWriter::start(const physics::Simulation& sim) {
     std::filesystem::create_directories(dir_, ec);
     if (ec)
       throw Error(
-          fmt::format("cannot create output directory {}: {}", dir_.string(), ec.message()));
+          fmt::format("cannot create output directory {}: {}", printable(dir_), ec.message()));
+  });
+  // Every rank writes through the directory it opens now (a rank's pieces too).
+  core::collective_check(PETSC_COMM_WORLD, "output",
+                         [&] { pin_ = std::make_unique<PinnedDirectory>(dir_); });
+  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+    if (!root_) return;
     pvd_ = std::make_unique<PvdCollection>(dir_ / "result.pvd");
     if (resume_) {
       resumed_step_ = sim.step();
-      // Data sets up to the restored step stay (half a step of slack for the printed times).
-      pvd_->load(sim.time() + 0.5 * sim.problem().time.step);
+      resume_collection(sim);
     }
     open_history(sim);
+    struct stat dir {};
+    struct stat history {};
+    if (::fstat(pin_->fd(), &dir) != 0 || ::fstat(history_fd_, &history) != 0)
+      throw OutputError(fmt::format("cannot examine output directory {}: {}", printable(dir_),
+                                    std::strerror(errno)));
+    directory_id_ = {dir.st_dev, dir.st_ino};
+    history_id_ = {history.st_dev, history.st_ino};
     steps_written_ = sim.step();
     write_summary(sim, "running", "");
   });
@@ -245,8 +270,9 @@ void OutputWriter::open_history(const physics::Simulation& sim) {
   if (resume_) {  // the header must match; rows of steps before the restored one stay
     std::ifstream in(file);
     std::string line;
-    if (!std::getline(in, line) || line + '\n' != header)
-      throw Error(fmt::format("cannot continue {}: its header is not this case's", file.string()));
+    if (!std::getline(in, line) || line + '\n' != header)  // checked before: a race
+      throw Error(
+          fmt::format("cannot continue {}: its header is not this case's", printable(file)));
     while (std::getline(in, line) && !in.eof()) {  // a last line without '\n' is dropped
       char* end = nullptr;
       const double step = std::strtod(line.c_str(), &end);
@@ -254,10 +280,54 @@ void OutputWriter::open_history(const physics::Simulation& sim) {
       kept += line + '\n';
     }
   }
-  replace_file(file, kept);
-  history_fd_ = ::open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (history_fd_ < 0)
-    throw OutputError(fmt::format("cannot open {}: {}", file.string(), std::strerror(errno)));
+  // Kept open as written: the rows go to this file whatever its name points to later.
+  history_fd_ = replace_file_for_append(file, kept);
+}
+
+void OutputWriter::resume_collection(const physics::Simulation& sim) {
+  // Data sets up to the restored step stay (half a step of slack for the printed times).
+  const double tau = sim.problem().time.step;
+  if (pvd_->load(sim.time() + 0.5 * tau)) return;
+  // Missing or not whole (issue 42, D3: it was replaced by one listing only the steps after
+  // the checkpoint). The files are there: <body>_<step>.vtu (or .pvtu under MPI), written
+  // whole before they were listed; one cut short by a kill is left out.
+  const auto whole = [](const std::filesystem::path& f) {
+    struct stat st {};
+    if (::lstat(f.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+    std::ifstream in(f, std::ios::binary);
+    const std::string tail = "</VTKFile>\n";
+    if (st.st_size < static_cast<off_t>(tail.size())) return false;
+    in.seekg(st.st_size - static_cast<off_t>(tail.size()));
+    std::string end(tail.size(), '\0');
+    return in.read(end.data(), static_cast<std::streamsize>(end.size())) && end == tail;
+  };
+  for (int k = 0; k <= sim.step(); ++k)
+    for (int b = 0; b < sim.n_bodies(); ++b)
+      for (const char* ext : {".vtu", ".pvtu"}) {
+        const auto name = fmt::format("{}_{:06d}{}", sim.system(b).body().name, k, ext);
+        if (!whole(dir_ / name)) continue;
+        pvd_->add_existing(k * tau, b, name);
+        break;
+      }
+  pvd_->write_all();
+  fmt::print(stderr,
+             "warning: {} was missing or damaged: rebuilt from the {} data set(s) of steps 0 to "
+             "{} found in {}\n",
+             printable(dir_ / "result.pvd"), pvd_->size(), sim.step(), printable(dir_));
+}
+
+void OutputWriter::require_in_place() {
+  const auto same = [](const char* path, const Identity& id) {
+    struct stat st {};
+    return ::stat(path, &st) == 0 && st.st_dev == id.device && st.st_ino == id.inode;
+  };
+  if (same(dir_.c_str(), directory_id_) && same((dir_ / "history.csv").c_str(), history_id_))
+    return;
+  throw OutputError(fmt::format(
+      "output directory {} or its history.csv was deleted or replaced during the run (by "
+      "`rm`, or another run after it): the rows written since are in no file there, so this "
+      "run cannot end as done",
+      printable(dir_)));
 }
 
 void OutputWriter::append_history(const std::string& line) {
@@ -274,16 +344,16 @@ void OutputWriter::step(const physics::Simulation& sim) {
     core::collective_check(PETSC_COMM_WORLD, "output", [&] {
       require_finite_row(sim);  // before the row is written: history.csv holds numbers only
       if (!root_) return;
+      require_in_place();  // before the row, which would go to a file no longer in dir_
       std::string line;
       for (const double v : sim.history_row())
         line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
       append_history(line + '\n');  // a run killed later still leaves every completed row
       steps_written_ = sim.step();
-      write_summary(sim, "stopped",
-                    fmt::format("ended at once by a second stop signal after step {} (t = {:g} "
-                                "s); the output of the steps done is whole",
-                                sim.step(), sim.time()),
+      write_summary(sim, "stopped", stopped_message(sim),
                     stopped_summary(dir_).filename().string());
+      if (stop_ && stop_->load() != 0)  // a kill may follow before finish(): see watch_stop
+        (void)::renameat(pin_->fd(), "summary.stopped.json", pin_->fd(), "summary.json");
     });
     // The restored step's fields are those the first run wrote (its contact rows are gone).
     if (sim.step() % every_ == 0 && sim.step() != resumed_step_) write_fields(sim);
@@ -346,20 +416,70 @@ void OutputWriter::write_fields(const physics::Simulation& sim) {
 }
 
 void OutputWriter::finish(const physics::Simulation& sim, const physics::RunStatus& status) {
+  // Nothing more into a directory that is not this run's any more (it may be another run's).
+  // Every rank throws when rank 0 finds it so (core::collective_check): main reports it, exit 1.
+  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+    if (root_ && history_fd_ >= 0) require_in_place();
+  });
   // The last state is always written, even when `every` skipped it; not after a failed
   // write, which would only fail again (and the step may have no history row).
   if (!failed_ && sim.step() % every_ != 0 && sim.step() != resumed_step_) write_fields(sim);
   peak_memory_ = peak_memory_json(sim.timers());
   core::collective_check(PETSC_COMM_WORLD, "output", [&] {
     if (!root_) return;
-    write_summary(sim, status.completed ? "completed" : "stopped", status.message);
-    std::error_code ec;
-    std::filesystem::remove(stopped_summary(dir_), ec);  // the run ended in order
+    const auto final_status = status.completed ? "completed" : "stopped";
+    try {
+      write_summary(sim, final_status, status.message);
+    } catch (const OutputError& e) {
+      fall_back_to_stopped_summary(sim, status.completed
+                                            ? std::string(e.what())
+                                            : fmt::format("{}; then {}", status.message, e.what()));
+      throw;
+    }
+    (void)::unlinkat(pin_->fd(), "summary.stopped.json", 0);  // the run ended in order
+    // Checked after the last write too: a directory deleted during the last step or the
+    // summary is not reported as a run done.
+    if (history_fd_ >= 0) require_in_place();
   });
 }
 
 void OutputWriter::write_summary(const physics::Simulation& sim, const std::string& status,
                                  const std::string& message, const std::string& file_name) const {
+  replace_file(dir_ / file_name, summary_text(sim, status, message));
+}
+
+void OutputWriter::fall_back_to_stopped_summary(const physics::Simulation& sim,
+                                                const std::string& message) const {
+  // The disk is full: no new file can be written, but summary.stopped.json is there (after the
+  // last row). Its blocks are rewritten in place with the real reason when the text fits in
+  // its size (padded with spaces, which JSON allows after the value: no block is added), then
+  // it is renamed over summary.json, which a rename needs no room for. Otherwise it goes as it
+  // is: status "stopped", the right steps_done, and a reason that names this case among others.
+  auto text = summary_text(sim, "stopped", message);
+  const int fd = ::openat(pin_->fd(), "summary.stopped.json", O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return;  // not written yet (a failure before the first row): summary.json stays
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
+      text.size() <= static_cast<size_t>(st.st_size)) {
+    text.append(static_cast<size_t>(st.st_size) - text.size(), ' ');
+    size_t done = 0;
+    while (done < text.size()) {
+      const auto n = ::pwrite(fd, text.data() + done, text.size() - done, static_cast<off_t>(done));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      done += static_cast<size_t>(n);
+    }
+    if (done != text.size()) {  // half rewritten: not a summary any more
+      ::close(fd);
+      return;
+    }
+  }
+  ::close(fd);
+  (void)::renameat(pin_->fd(), "summary.stopped.json", pin_->fd(), "summary.json");
+}
+
+std::string OutputWriter::summary_text(const physics::Simulation& sim, const std::string& status,
+                                       const std::string& message) const {
   const auto& p = sim.problem();
   const auto& t = sim.timers();
   std::string phases;
@@ -409,7 +529,7 @@ void OutputWriter::write_summary(const physics::Simulation& sim, const std::stri
   out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
   out.print("  \"last\": {{\n{}  }}\n", last);
   out.print("}}\n");
-  replace_file(dir_ / file_name, out.view());
+  return std::string(out.view());
 }
 
 ProgressLine::ProgressLine(bool terminal)

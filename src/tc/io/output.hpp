@@ -8,10 +8,12 @@
 // Every file is whole whenever the run stops, even by SIGKILL: history.csv gets one write()
 // per row (a row is there or not, never half), result.pvd and summary.json are replaced by
 // a rename, and a .vtu is listed in result.pvd only once it is written.
+#include <atomic>
 #include <filesystem>
 #include <memory>
 #include <vector>
 
+#include "tc/io/files.hpp"
 #include "tc/io/vtu.hpp"
 #include "tc/physics/simulation.hpp"
 
@@ -25,6 +27,10 @@ class OutputWriter : public physics::Observer {
   /// result.pvd its data sets up to it; the restored step's row is written again (the same
   /// values) and its fields, written by the first run, are kept.
   void resume() { resume_ = true; }
+  /// The stop flag of the signal handlers: once it is set, summary.stopped.json is renamed
+  /// over summary.json after every row, so that a kill before finish() (mpirun's SIGKILL a
+  /// second after its SIGTERM) leaves a summary.json that says "stopped" after the last row.
+  void watch_stop(const std::atomic<int>* stop) { stop_ = stop; }
   ~OutputWriter() override;
   void start(const physics::Simulation& sim) override;
   void step(const physics::Simulation& sim) override;
@@ -32,16 +38,31 @@ class OutputWriter : public physics::Observer {
   /// The last step whose history row is written (rank 0): summary.json's steps_done. One less
   /// than the simulation's step when that step's row could not be written.
   [[nodiscard]] int steps_written() const { return steps_written_; }
-  /// summary.json as it must read should the process end at once, between two steps (a
-  /// second stop signal): status "stopped" and the steps whose output is whole. Rewritten
+  /// summary.json as it must read should the process end before finish() writes the real one
+  /// (a second stop signal; a kill after a first one, as mpirun does; a summary.json that
+  /// cannot be written): status "stopped" and the steps whose output is whole. Rewritten
   /// after every history row, removed by finish(); a signal handler renames it over
   /// summary.json (rename is async-signal-safe; formatting JSON there is not).
   [[nodiscard]] static std::filesystem::path stopped_summary(const std::filesystem::path& dir) {
-    return dir / "summary.stopped.json";
+    return dir / "summary.stopped.json";  // the name is spelled out where the file is renamed
   }
 
  private:
   void write_fields(const physics::Simulation& sim);
+  /// result.pvd of a restart: its data sets up to the restored step, or, when it is missing or
+  /// not whole, a list rebuilt from the whole .vtu/.pvtu files of those steps found in dir_.
+  void resume_collection(const physics::Simulation& sim);
+  /// Throws OutputError when dir_ or its history.csv is no longer the one this run opened at
+  /// start (deleted, `rm -rf` and made again, replaced by another run's): the rows written
+  /// would be in no file of dir_, and a run that said `done` would have lost them (issue 42,
+  /// D2). Rank 0; a stat() of each, cheap beside a step.
+  void require_in_place();
+  /// summary.json "stopped" when it cannot be written in full at the end (a full disk):
+  /// summary.stopped.json, already on disk, renamed over it (issue 42, D12).
+  void fall_back_to_stopped_summary(const physics::Simulation& sim,
+                                    const std::string& message) const;
+  [[nodiscard]] std::string summary_text(const physics::Simulation& sim, const std::string& status,
+                                         const std::string& message) const;
   void write_summary(const physics::Simulation& sim, const std::string& status,
                      const std::string& message,
                      const std::string& file_name = "summary.json") const;
@@ -49,14 +70,20 @@ class OutputWriter : public physics::Observer {
   std::filesystem::path dir_;
   int every_;
   bool root_;
+  std::unique_ptr<PinnedDirectory> pin_;  // every write into dir_ goes through it
   std::unique_ptr<PvdCollection> pvd_;
   void open_history(const physics::Simulation& sim);
   void append_history(const std::string& line);
 
   int history_fd_ = -1;
+  struct Identity {
+    unsigned long long device = 0, inode = 0;
+  };
+  Identity directory_id_, history_id_;  // what start() opened (require_in_place)
   int steps_written_ = 0;  // the last step whose history row is written (summary's steps_done)
   bool failed_ = false;    // a write failed or a row was not finite: the run is stopping
   bool resume_ = false;
+  const std::atomic<int>* stop_ = nullptr;
   int resumed_step_ = -1;
   double output_seconds_ = 0;
   std::string peak_memory_ = "null";  // summary.json's peak_memory_gib, gathered collectively

@@ -2,16 +2,18 @@
 // The lock of an output directory (issue 20, docs/robustness.md). Two runs writing into one
 // directory interleave their history.csv rows and race on checkpoint.bin.tmp: one of them
 // died on the rename, the other reported success over a mixed history. A run therefore holds
-// an exclusive flock() on DIR/.lock, a file holding its pid, from before it writes anything
-// until it exits. The kernel drops the lock when the process dies, however it dies, so the
-// file a killed run leaves behind does not block the next run.
+// an exclusive flock() on the directory itself (issue 42: one on the file DIR/.lock was
+// defeated by deleting the file), from before it writes anything until it exits; DIR/.lock
+// holds its pid for the message of a run refused. The kernel drops the lock when the process
+// dies, however it dies, so nothing a killed run leaves behind blocks the next run.
 #include <filesystem>
 
 #include "tc/core/error.hpp"
 
 namespace tc::io {
 
-/// The output directory is locked by another run: invalid input, exit code 2.
+/// The output directory cannot be used by this run (locked by another run, holding an earlier
+/// run's output, a system directory): invalid input, exit code 2.
 class OutputInUse : public Error {
  public:
   using Error::Error;
@@ -43,7 +45,8 @@ class OutputLock {
   [[nodiscard]] static std::filesystem::path file(const std::filesystem::path& directory);
 
  private:
-  int fd_ = -1;
+  int fd_ = -1;            // DIR/.lock
+  int directory_fd_ = -1;  // DIR, locked
 };
 
 }  // namespace tc::io

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "tc/core/error.hpp"
 #include "tc/io/files.hpp"
@@ -157,18 +158,37 @@ void PvdCollection::add(double time, int part, const std::string& relative_file)
   }
 }
 
-void PvdCollection::load(double until) {
+bool PvdCollection::load(double until) {
   entries_.clear();
   std::ifstream in(file_);
+  if (!in) return false;
+  std::stringstream text;
+  text << in.rdbuf();
+  // Whole as write() leaves it: its head, one data set a line, its tail (a file cut short by a
+  // full disk or edited by hand is not taken for the list of what was written).
+  const std::string head =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
+  const std::string tail = "  </Collection>\n</VTKFile>\n";
+  const auto all = text.str();
+  if (all.size() < head.size() + tail.size() || all.compare(0, head.size(), head) != 0 ||
+      all.compare(all.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  std::istringstream lines(all.substr(head.size(), all.size() - head.size() - tail.size()));
   std::string line;
-  const std::regex data_set(R"re(<DataSet timestep="([^"]*)" part="([^"]*)" file="([^"]*)"/>)re");
+  const std::regex data_set(
+      R"re(    <DataSet timestep="([^"]*)" part="([0-9]+)" file="([^"<>&/]+)"/>)re");
   std::smatch m;
-  while (std::getline(in, line)) {
-    if (!std::regex_search(line, m, data_set)) continue;
-    const double time = std::strtod(m[1].str().c_str(), nullptr);
-    if (time <= until) entries_.push_back({time, std::atoi(m[2].str().c_str()), m[3].str()});
+  std::vector<Entry> kept;
+  while (std::getline(lines, line)) {
+    if (!std::regex_match(line, m, data_set)) return false;
+    char* end = nullptr;
+    const double time = std::strtod(m[1].str().c_str(), &end);
+    if (end == m[1].str().c_str() || *end != '\0') return false;
+    if (time <= until) kept.push_back({time, std::atoi(m[2].str().c_str()), m[3].str()});
   }
+  entries_ = std::move(kept);
   write();
+  return true;
 }
 
 void PvdCollection::write() const {

@@ -39,8 +39,16 @@ class PvdCollection {
   explicit PvdCollection(std::filesystem::path file) : file_(std::move(file)) {}
   void add(double time, int part, const std::string& relative_file);
   /// Reads the entries of an existing collection file (a restart) and keeps those with
-  /// time ≤ `until`, rewriting the file with them (none if there is no file yet).
-  void load(double until);
+  /// time ≤ `until`, rewriting the file with them. False, with nothing read or written, when
+  /// there is no such file or it is not a whole collection as write() leaves it (deleted,
+  /// cut short, garbled): the caller rebuilds it (add_existing) or refuses.
+  [[nodiscard]] bool load(double until);
+  /// Lists an existing data set without rewriting the file (a rebuild; write_all() after).
+  void add_existing(double time, int part, const std::string& relative_file) {
+    entries_.push_back({time, part, relative_file});
+  }
+  [[nodiscard]] size_t size() const { return entries_.size(); }
+  void write_all() const { write(); }
 
  private:
   void write() const;

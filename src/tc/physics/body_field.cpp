@@ -126,6 +126,18 @@ BodyField::BodyField(const Problem& p, const BodySystem& sys) {
   mech =
       body_solver(p, sys, mechanics_operator(p, m.mass_u, m.stiffness_u), BodyOperator::mechanics);
   heat = body_solver(p, sys, a_theta, BodyOperator::heat);
+  if (!sys.coupled_faces().empty()) {
+    const double c = p.time.scheme == Scheme::dynamic ? newmark_mass_factor(p.time.step) : 0.0;
+    coupling = std::make_unique<RigidCoupling>(
+        sys, *mech, [&m, c](const core::Vector& x, core::Vector& y) {  // A x = c M x + K x
+          m.stiffness_u.mult(x, y);
+          if (c != 0.0) {
+            core::Vector mx(x.size());
+            m.mass_u.mult(x, mx);
+            y.axpy(c, mx);
+          }
+        });
+  }
   const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
   expansion = p.physics.thermal_expansion && coupled_material;
   heating = p.physics.thermoelastic_heating && coupled_material;

@@ -8,6 +8,7 @@
 #include "tc/physics/body_system.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/problem.hpp"
+#include "tc/physics/rigid_coupling.hpp"
 
 namespace tc::physics {
 
@@ -37,6 +38,9 @@ struct BodyField {
 
   core::SparseMatrix a_theta;  // M_θ/τ + K_θ (5.6)
   std::unique_ptr<ConstrainedSolver> mech, heat;
+  /// The faces under load control of the body ([[boundary]] force); null when it has none.
+  std::unique_ptr<RigidCoupling> coupling;
+  bool coupling_in_contact = false;  // its w is found with the contact QP (ContactCoupling)
   core::Vector f_u, f_theta, rhs_u_base, rhs_theta_base, rhs_u, rhs_theta;
   core::Vector u_new, theta_new, u_prev, theta_prev, velocity, dtheta, work_u, work_theta;
   core::Vector u_pred;  // Newmark's u^k + τu̇^k, projected onto the admissible set if stabilised

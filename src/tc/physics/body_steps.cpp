@@ -55,12 +55,17 @@ void BodySteps::mech_load(int b, int step) {
   s.rhs_u.copy_from(s.rhs_u_base);
   if (s.expansion) subtract_thermal_force(problem_, sys, s, s.theta_new, s.rhs_u);
   sys.prescribe_u(step * problem_.time.step, s.u_new);
+  if (s.coupling) s.coupling->write(s.u_new);  // the faces under load control at their w
 }
 
 void BodySteps::mech_step(int b, int step, int iteration) {
   auto scope = timers_.scope("mechanical_solve");
   auto& s = *bodies_.fields[b];
   mech_load(b, step);
+  // Outside contact the load fixes the faces' w directly (S w = F − R(0)); in contact the QP
+  // does, around this u_free (ContactCoupling).
+  if (s.coupling && !s.coupling_in_contact)
+    s.coupling->balance(step * problem_.time.step, s.rhs_u, s.u_new, step, iteration);
   s.mech->solve(s.rhs_u, s.u_new);
   require_finite(s.u_new, "displacement", step, iteration);
 }

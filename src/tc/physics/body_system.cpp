@@ -53,6 +53,9 @@ BodySystem::BodySystem(const Problem& problem, int index)
   if (!constant_film_facets_.empty())
     constant_film_ = fem::boundary_mass(body_->mesh, constant_film_facets_, spread(theta_rows_));
   u_dofs_ = keys(u_prescribed_);
+  for (const auto& c : coupled_) u_dofs_.insert(u_dofs_.end(), c.dofs.begin(), c.dofs.end());
+  std::sort(u_dofs_.begin(), u_dofs_.end());
+  u_dofs_.erase(std::unique(u_dofs_.begin(), u_dofs_.end()), u_dofs_.end());
   th_dofs_ = keys(th_prescribed_);
   lumped_ = problem.physics.lumped_heat_capacity;
   if (lumped_) fem::lump_rows(m_.mass_theta);
@@ -192,6 +195,12 @@ void BodySystem::add_boundary(const BoundaryCondition& bc, const std::string& bo
       }
     }
     if (bc.traction[k]) u_loads_.push_back({*bc.traction[k], k, facet_weights});
+    if (bc.force[k]) {
+      CoupledFace face{body_name + "_" + bc.where, k, {}, *bc.force[k]};
+      for (const int a : nodes) face.dofs.push_back(dim_ * a + k);
+      std::sort(face.dofs.begin(), face.dofs.end());
+      coupled_.push_back(std::move(face));
+    }
   }
   if (any_displacement) reactions_.push_back(std::move(group));
   if (bc.temperature)

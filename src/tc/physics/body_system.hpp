@@ -20,6 +20,15 @@ struct ReactionGroup {
   std::array<std::vector<PetscInt>, 3> dofs;  // constrained dofs per component
 };
 
+/// A face under load control ([[boundary]] force): component `component` of its nodes is one
+/// unknown, whose resultant nodal force is `force`(t) (rigid_coupling.hpp).
+struct CoupledFace {
+  std::string label;  // <body>_<where>: the history columns displacement_…_x|y|z, force_…
+  int component = 0;
+  std::vector<PetscInt> dofs;  // sorted
+  TimeTable force;             // [N]
+};
+
 class BodySystem {
  public:
   /// Assembles the matrices and load integrals of body `index` of the problem.
@@ -78,6 +87,9 @@ class BodySystem {
   [[nodiscard]] BoundaryPower boundary_heat_loss(double t, const core::Vector& theta) const;
 
   [[nodiscard]] const std::vector<ReactionGroup>& reaction_groups() const { return reactions_; }
+  /// The faces under load control; their dofs are among u_dirichlet_dofs(), with values the
+  /// coupling (RigidCoupling) writes, not prescribe_u.
+  [[nodiscard]] const std::vector<CoupledFace>& coupled_faces() const { return coupled_; }
   /// ∫ N_a dx per node: turns nodal fields into integrals (e.g. thermal energy).
   [[nodiscard]] const std::vector<double>& node_volumes() const { return volumes_; }
 
@@ -129,6 +141,7 @@ class BodySystem {
   std::vector<PetscInt> u_dofs_, th_dofs_;
   std::vector<NodalLoad> u_loads_, th_loads_;
   std::vector<ReactionGroup> reactions_;
+  std::vector<CoupledFace> coupled_;
   std::vector<int> cell_part_;
   std::vector<mesh::SubMesh> subdomains_;
   bool lumped_ = false;

@@ -65,6 +65,7 @@ void ContactCoupling::enable(ContactRowsBuilder builder, DualContactSettings set
     throw Error("enable_contact: rows from a builder are for one contact pair");
   pairs_.front().rows = finite_rows(std::move(builder), step);
   method_ = choose_contact_method(problem_, bodies_, std::move(settings), timers_);
+  mark_loaded();
 }
 
 void ContactCoupling::enable_mortar(DualContactSettings settings, contact::MortarOptions options,
@@ -87,6 +88,100 @@ void ContactCoupling::enable_mortar(DualContactSettings settings, contact::Morta
         step);
   }
   method_ = choose_contact_method(problem_, bodies_, std::move(settings), timers_);
+  mark_loaded();
+}
+
+void ContactCoupling::mark_loaded() {
+  // The case reader allows one loaded component among the contact bodies (a scalar root).
+  loaded_ = -1;
+  for (size_t i = 0; i < group_.members.size(); ++i)
+    if (auto& f = *bodies_.fields[group_.members[i]]; f.coupling) {
+      if (loaded_ >= 0 || f.coupling->size() != 1)
+        throw Error("load control: one face with one loaded component among the contact bodies");
+      if (method_.enforcement->qp_gives_displacements())
+        throw Error("load control: not with the combined contact dual");
+      f.coupling_in_contact = true;
+      loaded_ = static_cast<int>(i);
+    }
+}
+
+void ContactCoupling::solve_qp(const BodyGroup& g, const TrescaIteration& t,
+                               std::span<const double> targets, double rtol, int step, int outer) {
+  auto& enforcement = *method_.enforcement;
+  if (loaded_ < 0) {
+    enforcement.solve_qp(g, {targets, t.bound, rtol, step, outer}, lambda_, stats_);
+    return;
+  }
+  // The face under load control moves by δ = w − w_written from where u_free was solved:
+  // d(δ) = d₀ + δ g, g = BΦ, and its balance h = R_free + S δ + gᵀλ − F = 0 (rigid_coupling.hpp).
+  // δ is eliminated by a proximal step (the augmented Lagrangian of the balance, the body's
+  // stiffness S along Φ regularised by S_r around the last δ_j):
+  //   S δ + gᵀλ − e = S_r (δ_j − δ),  e = F − R_free,
+  // so each QP is that of F + ggᵀ/(S + S_r) and d₀ + g (e + S_r δ_j)/(S + S_r)
+  // (DualContactSolver::set_rank_one), and its λ and δ_{j+1} = (e − gᵀλ + S_r δ_j)/(S + S_r)
+  // leave h = S_r (δ_j − δ_{j+1}) exactly. The QP resolves the balance itself, weighted by
+  // 1/(S + S_r): a black-box root of h(δ) over QPs stopped at ‖g^P‖ ≤ ε‖d‖ could not (in sliding
+  // ‖d‖ is the slip, mm, where the normal rows carry µm: h came out a staircase in δ).
+  // S_r = 0 where the body holds the face itself (S > 0, dynamic: one QP, exact); else
+  // S_r = 1e-3 e_Dᵀ A e_D: the contraction S_r/(S + S_r + k_c) with the contact's stiffness k_c
+  // seen by the face.
+  auto& f = *g.fields[loaded_];
+  auto& c = *f.coupling;
+  auto& dual = enforcement.dual();
+  const double time = step * problem_.time.step;
+  const double force = c.face(0).force(time);
+  const double r_free = c.free_resultant(f.u_prev, f.rhs_u)[0];
+  const double e = force - r_free;
+  const double s = std::max(c.stiffness()(0, 0), 0.0);  // ΦᵀAΦ ≥ 0 but for round-off
+  const double held = 1e-3 * c.face_stiffness(0);
+  double s_r = s >= held ? 0.0 : held;
+  const auto& bphi = loaded_rows_;
+  // To the QP's tolerance, at least 10 qp_tolerance (1e-7 by default), of the forces at play:
+  // the final QP's λ resolves its contact force to ~1e-8 of them (examples/09).
+  const double tol =
+      std::max(rtol, 10 * problem_.solver.qp_tolerance) * (std::abs(force) + std::abs(r_free));
+  double delta = c.w()[0] - c.written()[0];
+  double h = 0;
+  // A loose QP of the friction loop (rtol > qp_tolerance: its forcing terms) resolves λ, and
+  // so the balance, no better than its tolerance; a few updates then, the final QP's balance
+  // (at qp_tolerance) is the one that must be met.
+  const bool final = rtol <= problem_.solver.qp_tolerance;
+  const int max_updates = final ? 200 : 8;
+  int j = 0;
+  for (; j < max_updates; ++j) {
+    dual.set_rank_one(bphi, 1.0 / (s + s_r), (e + s_r * delta) / (s + s_r));
+    enforcement.solve_qp(g, {targets, t.bound, rtol, step, outer}, lambda_, stats_);
+    double gl = 0;
+    {
+      const auto l = lambda_.read();
+      for (size_t r = 0; r < bphi.size(); ++r) gl += bphi[r] * l[static_cast<PetscInt>(r)];
+    }
+    const double next = (e - gl + s_r * delta) / (s + s_r);
+    const double last = h;
+    h = s_r * (delta - next);
+    delta = next;
+    if (std::abs(h) <= tol) break;
+    // The QP stops at ‖g^P‖ ≤ ε‖d‖ and sees the imbalance as ‖g‖|h|/(S + S_r): where that fell
+    // below its tolerance λ stays and h stalls. A stiffer weight 1/(S + S_r) then (S_r/10):
+    // the balance is resolved to S_r ε‖d‖/‖g‖.
+    // Down to 1e-6 e_DᵀAe_D: the rank-one term then outweighs F by ~1e6, within what the
+    // dense products resolve.
+    if (j > 0 && std::abs(h) > 0.5 * std::abs(last)) s_r = std::max(0.1 * s_r, 1e-3 * held);
+  }
+  dual.clear_rank_one();
+  if (j == max_updates && final)
+    throw NumericalError(
+        fmt::format("load control: the force {:.6g} N on face '{}' was not balanced in {} "
+                    "contact QPs (is the body held by the contact in the loaded direction?)",
+                    force, c.face(0).label, max_updates),
+        step, outer, std::abs(h));
+  c.w()[0] = c.written()[0] + delta;
+}
+
+void ContactCoupling::shift_loaded_face(const BodyGroup& g) {
+  if (loaded_ < 0) return;
+  auto& f = *g.fields[loaded_];
+  f.coupling->shift_to_w(f.u_new);
 }
 
 BodyGroup ContactCoupling::group() {
@@ -214,10 +309,19 @@ double ContactCoupling::mech_step(TrescaIteration& t, std::span<const double> ta
                              .step = step,
                              .outer = outer};
   const double residual = coulomb_fixed_point(t, lambda_, fp, [&](double rtol) {
-    enforcement.solve_qp(g, {targets, t.bound, rtol, step, outer}, lambda_, stats_);
+    solve_qp(g, t, targets, rtol, step, outer);
     require_finite(lambda_, "contact multiplier", step, outer);
   });
   enforcement.finish_qps(g, lambda_, t, iterate_slip_, step, outer);
+  if (loaded_ >= 0) {
+    auto& c = *g.fields[loaded_]->coupling;
+    if (t.defer) {  // u_new stays u_free at the written w until the end of the step: B u moved
+      const double dw = c.w()[0] - c.written()[0];  // by (w − written)BΦ
+      for (size_t r = 0; r < iterate_slip_.size(); ++r) iterate_slip_[r] += dw * loaded_rows_[r];
+    } else {
+      shift_loaded_face(g);
+    }
+  }
   return residual;
 }
 
@@ -301,6 +405,18 @@ int ContactCoupling::couple(int step) {
   set_rows(g);
   auto& dual = enforcement.dual();
   const int dim = dual.dim();
+  if (loaded_ >= 0) {  // BΦ of the loaded face on this step's rows
+    // The root's first guess is the face's w of t^k, and its first slope the face's own
+    // stiffness: both from the state, so a restarted run takes the same QPs.
+    auto& c = *g.fields[loaded_]->coupling;
+    c.w()[0] = g.states[loaded_]->u.read()[c.face(0).dofs.front()];
+    std::vector<core::Vector> zero;
+    std::vector<const core::Vector*> phi;
+    for (int i = 0; i < g.size(); ++i) zero.emplace_back(g.systems[i]->n_u());
+    for (int i = 0; i < g.size(); ++i)
+      phi.push_back(i == loaded_ ? &g.fields[i]->coupling->lifting(0) : &zero[i]);
+    loaded_rows_ = dual.row_values(phi);
+  }
   method_.scheme->prepare(g, dual, lambda_, stats_, step);
   method_.scheme->slip_reference(g);  // into work_u
   const auto targets = dual.targets(g.state(&BodyState::u), g.field_in(&BodyField::work_u));
@@ -410,6 +526,7 @@ int ContactCoupling::couple(int step) {
   if (tresca.defer) {                      // u_new holds u_free of the last iteration
     auto scope = timers_.scope("qp");
     dual.recover(lambda_, g.field(&BodyField::u_new));
+    shift_loaded_face(g);
   }
   for (const auto* f : g.fields) require_finite(f->u_new, "displacement", step, iteration);
 

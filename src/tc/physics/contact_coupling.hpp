@@ -101,6 +101,7 @@ class ContactCoupling {
 
  private:
   void add_pairs();
+  void mark_loaded();  // loaded_: the contact body with a face under load control
   [[nodiscard]] BodyGroup group();
   // The contact rows of every pair in the configuration of t^k, λ of the last step moved onto
   // them, the crosspoints' multipliers held at 0.
@@ -112,6 +113,12 @@ class ContactCoupling {
   // QPs, then u (or B u); returns ‖λ_n(γ) − γ‖ of the last update.
   double mech_step(TrescaIteration& t, std::span<const double> targets, int step, int outer,
                    int max_updates);
+  // The contact QP at one Tresca bound; with a face under load control in the group, the QPs
+  // of its proximal balance, the face's w eliminated by a rank-one term (docs/theory.md).
+  void solve_qp(const BodyGroup& g, const TrescaIteration& t, std::span<const double> targets,
+                double rtol, int step, int outer);
+  // The loaded body's u += (w − w_written)Φ (the QPs moved the face after u_free was solved).
+  void shift_loaded_face(const BodyGroup& g);
   [[nodiscard]] bool any_pair(bool (InterfaceLaws::*law)() const) const;
   void sum_pair_statistics();  // the pairs' forces, counts and dissipation into stats_
 
@@ -132,6 +139,10 @@ class ContactCoupling {
   NodalLaws nodal_laws_;          // every pair's, at the last coupling iterate
   std::vector<double> qp_bound_;  // the Tresca bounds 𝔉_kγ_k of the step's last QP
   long total_qp_ = 0, total_applications_ = 0;
+  // Load control in contact: the group's body with the one face under load control (−1: none),
+  // BΦ of the step's rows (rigid_coupling.hpp).
+  int loaded_ = -1;
+  std::vector<double> loaded_rows_;
 };
 
 }  // namespace tc::physics

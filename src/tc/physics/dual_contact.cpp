@@ -67,6 +67,7 @@ void DualContactSolver::set_rows(std::vector<ContactRows> pairs, std::vector<Pai
   assert(pairs.size() == bodies.size() && !pairs.empty());
   pairs_ = std::move(pairs);
   pair_bodies_ = std::move(bodies);
+  clear_rank_one();
   stack_rows();
   normal_floor_.clear();
   held_.clear();
@@ -570,9 +571,12 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
       b_[i].mult(*u_free[i], d);
     else
       b_[i].mult_add(*u_free[i], d);
+  const bool rank_one = !rank_one_g_.empty();
   {
     auto dv = d.view();
     for (PetscInt i = 0; i < m; ++i) dv[i] -= c[i];
+    if (rank_one)
+      for (PetscInt i = 0; i < m; ++i) dv[i] += rank_one_shift_ * rank_one_g_[i];
   }
   // With Σ: the QP in μ = Σ⁻¹λ, min ½μᵀ(ΣFΣ)μ − μᵀΣd over μ_n ≥ 0, ‖μ_τ‖ ≤ 𝔉γ/σ_τ.
   const bool scaled = kind_ == DualOperator::explicit_schur && settings_.scale;
@@ -599,22 +603,50 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
   }
 
   qp::QpOptions opt = settings_.qp;
-  opt.max_eigenvalue = lambda_max_;
+  // The rank-one term moves λ_max(F): estimated afresh, and not kept for the next QPs.
+  opt.max_eigenvalue = rank_one ? 0.0 : lambda_max_;
   if (rtol > 0) opt.rtol = rtol;
   qp::QpResult r;
+  std::vector<double> g_scaled;  // Σg: the rank-one term of Σ F Σ
+  if (rank_one)
+    for (PetscInt i = 0; i < m; ++i) g_scaled.push_back(sigma(i) * rank_one_g_[i]);
+  const auto add_rank_one = [&](const core::Vector& x, core::Vector& y) {
+    const auto xv = x.read();
+    double dot = 0;
+    for (PetscInt i = 0; i < m; ++i) dot += g_scaled[i] * xv[i];
+    auto yv = y.view();
+    for (PetscInt i = 0; i < m; ++i) yv[i] += rank_one_weight_ * dot * g_scaled[i];
+  };
   if (kind_ == DualOperator::explicit_schur) {
     qp::SymmetricDenseOperator f(f_dense_.get());  // Σ F Σ when scaled
-    r = qp::Mpgp(f, set, opt).solve(d, lambda);
+    if (rank_one) {
+      qp::FunctionOperator fr(
+          [&](const core::Vector& x, core::Vector& y) {
+            f.apply(x, y);
+            add_rank_one(x, y);
+          },
+          d);
+      r = qp::Mpgp(fr, set, opt).solve(d, lambda);
+    } else {
+      r = qp::Mpgp(f, set, opt).solve(d, lambda);
+    }
   } else {
-    qp::FunctionOperator f([this](const core::Vector& x, core::Vector& y) { apply_f(x, y); }, d);
+    qp::FunctionOperator f(
+        [&](const core::Vector& x, core::Vector& y) {
+          apply_f(x, y);
+          if (rank_one) add_rank_one(x, y);
+        },
+        d);
     r = qp::Mpgp(f, set, opt).solve(d, lambda);
   }
   if (scaled) {
     auto lv = lambda.view();
     for (PetscInt i = 0; i < m; ++i) lv[i] *= sigma_[i];
   }
-  lambda_max_ = r.max_eigenvalue;
-  lambda_max_rows_ = m;
+  if (!rank_one) {
+    lambda_max_ = r.max_eigenvalue;
+    lambda_max_rows_ = m;
+  }
 
   if (recover) this->recover(lambda, u);
   return r;

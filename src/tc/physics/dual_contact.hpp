@@ -133,6 +133,18 @@ class DualContactSolver {
   /// all 0). The modified mass scheme lets a node release with λ_n^{k+1} ≥ −λ_n^k, so that
   /// the step's mean contact force does no work (release_floor, multiplier_transfer.hpp).
   void set_normal_floor(std::vector<double> floor) { normal_floor_ = std::move(floor); }
+  /// Until clear_rank_one (or the next set_rows), the QPs of solve() are those of
+  /// F + weight·g gᵀ and d + shift·g: a face under load control whose displacement w is
+  /// eliminated (ContactCoupling::solve_qp, docs/theory.md "Load control"). g is per row.
+  void set_rank_one(std::vector<double> g, double weight, double shift) {
+    rank_one_g_ = std::move(g);
+    rank_one_weight_ = weight;
+    rank_one_shift_ = shift;
+  }
+  void clear_rank_one() {
+    rank_one_g_.clear();
+    rank_one_weight_ = rank_one_shift_ = 0;
+  }
   /// Nodes whose multipliers are held at 0 (λ_n ∈ [0, 0], λ_τ = 0) until the next set_rows:
   /// the crosspoints of a later pair (ContactCoupling), whose rows repeat an earlier pair's.
   void hold_at_zero(std::vector<char> held) { held_ = std::move(held); }
@@ -198,6 +210,8 @@ class DualContactSolver {
   std::vector<double> gap_;            // the pairs' weighted gaps, stacked
   std::vector<double> normal_floor_;   // per node; empty: 0
   std::vector<char> held_;             // per node; empty: none held
+  std::vector<double> rank_one_g_;     // set_rank_one: g per row (empty: none), weight, shift
+  double rank_one_weight_ = 0, rank_one_shift_ = 0;
   DualOperator kind_ = DualOperator::matrix_free;
   core::Handle<::Mat, MatDestroy> f_dense_;  // F, or Σ F Σ (explicit and settings_.scale)
   std::vector<double> sigma_;                // the diagonal of Σ, per row

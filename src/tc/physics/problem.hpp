@@ -83,10 +83,13 @@ struct BoundaryCondition {
   std::string where;
   std::array<std::optional<TimeTable>, 3> displacement;
   std::array<std::optional<TimeTable>, 3> traction;  // p_N [Pa]
-  std::optional<TimeTable> temperature;              // θ_D [K]
-  std::optional<TimeTable> heat_flux;                // q_N [W/m²] into the body
-  std::optional<Film> film;                          // h(θ − θ∞) out of the body
-  std::optional<Radiation> radiation;                // εσ(θ⁴ − θ∞⁴) out of the body
+  /// A resultant force [N] per component through a rigid coupling (rigid_coupling.hpp): the
+  /// face's nodes share that displacement component, and its nodal forces sum to the value.
+  std::array<std::optional<TimeTable>, 3> force;
+  std::optional<TimeTable> temperature;  // θ_D [K]
+  std::optional<TimeTable> heat_flux;    // q_N [W/m²] into the body
+  std::optional<Film> film;              // h(θ − θ∞) out of the body
+  std::optional<Radiation> radiation;    // εσ(θ⁴ − θ∞⁴) out of the body
 };
 
 /// One contact pair ([[contact]], or the single [contact] table): a slave surface of one body

@@ -172,6 +172,31 @@ void Simulation::register_history() {
   energy_.register_history(h);
   contact_.register_history(h);
   boundary_heat_.register_history(h);
+  register_load_history(h);
+}
+
+void Simulation::register_load_history(History& h) {
+  // Per face under load control and loaded component: its displacement w (the face's first
+  // node) and the resultant Σ_D(K u + M ü + K_uθ(θ − θ₀) − f) the body exerts on it, which the
+  // coupling balances with the prescribed force (support_forces gives the first part).
+  const char* axes = "xyz";
+  for (int b = 0; b < n_bodies(); ++b)
+    for (const auto& face : bodies_.systems[b]->coupled_faces()) {
+      const std::string axis(1, axes[face.component]);
+      h.add("displacement_" + face.label + "_" + axis,
+            [this, b, &face] { return bodies_.states[b].u.read()[face.dofs.front()]; });
+      h.add("force_" + face.label + "_" + axis, [this, b, &face] {
+        const auto& sys = *bodies_.systems[b];
+        core::Vector r(sys.n_u()), f(sys.n_u());
+        support_forces(problem_, bodies_, b, time(), r);
+        sys.mechanical_load(time(), f);
+        const auto rv = r.read();
+        const auto fv = f.read();
+        double sum = 0;
+        for (const PetscInt d : face.dofs) sum += rv[d] - fv[d];
+        return sum;
+      });
+    }
 }
 
 RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {

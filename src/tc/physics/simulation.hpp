@@ -163,6 +163,7 @@ class Simulation {
   void static_initial_state(int b, BodyState& st);
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void register_history();  // the columns of history.csv: its own and its components'
+  void register_load_history(History& h);  // faces under load control: w and the resultant
 
   const Problem& problem_;
   core::PhaseTimers timers_;
