@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <gmsh.h>
+#include <sched.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -11,13 +13,18 @@
 #include <cctype>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
 #include <string_view>
 
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/core/stop.hpp"
 #include "tc/io/auto_subdomains.hpp"
 #include "tc/io/case_reader.hpp"
 #include "tc/io/checkpoint.hpp"
@@ -29,7 +36,9 @@
 
 namespace {
 
-std::atomic<int> g_stop{0};  // the first stop signal on this rank (or --stop-after)
+// The first stop signal on this rank (or --stop-after): core/stop.hpp's flag, which the mesh
+// reader's wait reads too.
+std::atomic<int>& g_stop = tc::core::stop_signal;
 // What the run acts on: g_stop of any rank, agreed after every step (AgreeOnStop), so that
 // every rank leaves the step loop after the same step. A signal reaches the ranks of an
 // mpirun at slightly different times; a rank that stopped alone left the others in a
@@ -141,6 +150,99 @@ void report(const std::exception& e, const char* prefix) {
     fmt::print(stderr, "{}: {}\n", prefix, e.what());
 }
 
+/// Whether this process says what is wrong with the command line. Every rank of an MPI launch
+/// parses the same command line and finds the same fault before MPI starts, so rank 0 alone
+/// prints it, and every rank exits with the same code (each message stood once per rank; issue
+/// 42, D17). The rank comes from the launcher's environment (Open MPI, PMIx, MPICH's PMI); a
+/// process started without a launcher is rank 0.
+bool command_line_reporter() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* rank = std::getenv(name)) return std::atoi(rank) == 0;
+  return true;
+}
+
+/// The address space this process needs beyond what it has mapped when main() starts (its
+/// libraries, OpenBLAS's thread pool): a 128 MiB buffer per BLAS thread, which OpenBLAS maps
+/// at its first call in each thread and, when the mapping fails, retries for ever (a run under
+/// `ulimit -v 500000` spun at 100 % CPU in blas_memory_alloc; issue 42, D19). MPI's and
+/// PETSc's own start-up fitted in what is left on the 2-core machine (measured: refused at
+/// 500 000 kB with 2 threads, where the run hung; runs at 560 000 kB).
+std::string address_space_shortfall() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return {};
+  std::ifstream status("/proc/self/status");
+  double mapped = 0;  // kB
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmSize:", 0) == 0) mapped = std::atof(line.c_str() + 7);
+  int threads = 0;
+  for (const char* name : {"OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"})
+    if (const char* v = std::getenv(name); v && threads <= 0) threads = std::atoi(v);
+  if (threads <= 0) {
+    cpu_set_t cpus;
+    CPU_ZERO(&cpus);
+    threads = sched_getaffinity(0, sizeof cpus, &cpus) == 0 ? CPU_COUNT(&cpus) : 1;
+  }
+  constexpr double mib = 1024.0;  // kB
+  const double need = mapped + 128 * mib * threads;
+  const double have = static_cast<double>(limit.rlim_cur) / 1024.0;
+  if (have >= need) return {};
+  return fmt::format(
+      "error: the address-space limit (ulimit -v) is {:.0f} kB; thermocontact needs more than "
+      "{:.0f} kB here (its libraries {:.0f} kB, and {} BLAS thread{} with a {:.0f} kB buffer "
+      "each). Raise the limit (ulimit -v unlimited) or use fewer BLAS threads "
+      "(OPENBLAS_NUM_THREADS=1); nothing was run.\n",
+      have, need, mapped, threads, threads == 1 ? "" : "s", 128 * mib);
+}
+
+/// PETSc 3.18 keeps at most this many distinct option names (MAXOPTIONS in its options.c);
+/// one more made PetscInitialize fail with a 530-line "Out of memory" trace, exit 1 (issue 42,
+/// D16).
+constexpr std::size_t kPetscMaxOptions = 512;
+
+/// The option names (a '-' then a letter; PETSc compares them ignoring case) among `words`.
+void add_option_names(const std::vector<std::string>& words, std::set<std::string>& names) {
+  for (const auto& w : words) {
+    if (w.size() < 2 || w[0] != '-' || std::isalpha(static_cast<unsigned char>(w[1])) == 0)
+      continue;
+    std::string name = w;
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    names.insert(name);
+  }
+}
+
+std::vector<std::string> words_of(std::istream& in) {
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+/// The PETSc options of the command line, of PETSC_OPTIONS and of the -options_file files
+/// (comments from '#' left out), counted before PETSc is given them: more than PETSc can hold
+/// is refused with exit 2. (~/.petscrc and ./.petscrc, which PETSc also reads, are not
+/// counted.) The -options_file files must have passed bad_options_file first.
+std::string too_many_options(const std::vector<std::string>& extra) {
+  std::set<std::string> names;
+  add_option_names(extra, names);
+  if (const char* env = std::getenv("PETSC_OPTIONS")) {
+    std::istringstream in(env);
+    add_option_names(words_of(in), names);
+  }
+  for (size_t i = 0; i + 1 < extra.size(); ++i) {
+    if (extra[i] != "-options_file") continue;
+    std::ifstream file(extra[i + 1]);
+    std::string text;
+    for (std::string line; std::getline(file, line);) text += line.substr(0, line.find('#')) + '\n';
+    std::istringstream in(text);
+    add_option_names(words_of(in), names);
+  }
+  if (names.size() <= kPetscMaxOptions) return {};
+  return fmt::format(
+      "error: found {} distinct PETSc options (command line, PETSC_OPTIONS and -options_file "
+      "together), expected at most {}, as many as this PETSc can hold\n",
+      names.size(), kPetscMaxOptions);
+}
+
 /// PETSc reads -options_file itself, at MPI_Init time: a missing file stopped the run with
 /// PETSc's trace and the build machine's source path, and /dev/zero crashed PETSc (issue 20,
 /// #15). The file is checked first: a regular file, readable, of at most 1 MiB.
@@ -167,15 +269,19 @@ std::string bad_options_file(const std::vector<std::string>& extra) {
 /// before anything is assembled (it failed in the first factorisation, exit 1).
 std::string bad_factor_package() {
   const auto opt = tc::core::requested_factor_package();
-  if (opt.empty()) return {};
+  PetscBool given = PETSC_FALSE;
+  TC_PETSC(PetscOptionsHasName(nullptr, nullptr, "-tc_factor_package", &given));
+  if (opt.empty() && !given) return {};
   const auto known = tc::core::available_cholesky_packages();
   if (std::find(known.begin(), known.end(), opt) != known.end()) return {};
   std::string list;
   for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+  // No value (`-tc_factor_package` last, or before another option) or "" was ignored: the
+  // case's package ran where the user asked for another (issue 42, D15).
   return fmt::format(
-      "error: option -tc_factor_package: found '{}', expected one of this PETSc's Cholesky "
+      "error: option -tc_factor_package: found {}, expected one of this PETSc's Cholesky "
       "packages: {}\n",
-      opt, list);
+      opt.empty() ? std::string("no value") : "'" + opt + "'", list);
 }
 
 /// -tc_forward_compliance (core::CholeskySolver::forward_compliance_pays) takes a logical
@@ -196,8 +302,12 @@ std::string bad_forward_compliance() {
 
 int run(const std::string& case_file, const std::string& output, const std::string& restart,
         bool force, int stop_after, std::vector<std::string> extra, const char* program) {
-  if (const auto why = bad_options_file(extra); !why.empty()) {
-    fmt::print(stderr, "{}nothing was run.\n", why);
+  // In this order: the options files are read for counting only once they are known to be
+  // regular files of at most 1 MiB (/dev/zero was read for ever).
+  auto why = bad_options_file(extra);
+  if (why.empty()) why = too_many_options(extra);
+  if (!why.empty()) {
+    if (command_line_reporter()) fmt::print(stderr, "{}nothing was run.\n", why);
     return 2;
   }
   std::vector<char*> args{const_cast<char*>(program)};
@@ -278,6 +388,9 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   } catch (const tc::io::OutputInUse& e) {
     report(e, "error");
     return 2;
+  } catch (const tc::Interrupted& e) {  // mpirun passes the signal to every rank: said once
+    if (input_reporter()) fmt::print(stderr, "stopped: {}\n", e.what());
+    return 1;
   } catch (const tc::Error& e) {
     report(e, "stopped");
     return 1;
@@ -289,6 +402,7 @@ int check(const std::string& case_file, const char* program) {
   char* args[] = {const_cast<char*>(program), nullptr};
   char** argv = args;
   tc::core::PetscSession session(&argc, &argv);  // the contact check builds the mortar rows
+  install_signal_handlers();                     // a stop signal ends a long mesh read (exit 1)
   try {
     const auto problem = tc::io::read_case(case_file);
     const auto warnings = tc::io::check_geometry(problem);
@@ -301,22 +415,28 @@ int check(const std::string& case_file, const char* program) {
                nodes, cells, problem.time.n_steps());
     const int node = tc::core::PetscSession::node_size();
     const auto each = node > 1 ? fmt::format(" on each of the {} ranks of this node", node) : "";
-    for (const auto& b : problem.bodies)
+    // Every body's count, 1 included (case-format.md: `check` prints what "auto" chose).
+    for (const auto& b : problem.bodies) {
+      const double gib =
+          tc::io::direct_memory(problem.dimension,
+                                static_cast<double>(b.mesh.n_nodes()) * problem.dimension) /
+          (1024.0 * 1024.0 * 1024.0);
       if (b.subdomains > 1)
         fmt::print(
             "  body \"{}\": {} FETI subdomains (solved directly it would need about {:.1f} "
             "GiB{})\n",
-            b.name, b.subdomains,
-            tc::io::direct_memory(problem.dimension,
-                                  static_cast<double>(b.mesh.n_nodes()) * problem.dimension) /
-                (1024.0 * 1024.0 * 1024.0),
-            each);
+            b.name, b.subdomains, gib, each);
+      else
+        fmt::print("  body \"{}\": 1 subdomain, solved directly\n", b.name);
+    }
     return 0;
   } catch (const tc::InputError& e) {
     return report_input_error(e);
   } catch (const tc::MeshError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
+    return report_bad_input(e);
+  } catch (const tc::Interrupted& e) {  // mpirun passes the signal to every rank: said once
+    if (input_reporter()) fmt::print(stderr, "stopped: {}\n", e.what());
+    return 1;
   }
 }
 
@@ -327,6 +447,7 @@ int info(const char* program) {
   tc::core::PetscSession session(&argc, &argv);
   char version[256];
   TC_PETSC(PetscGetVersion(version, sizeof version));
+  if (tc::core::PetscSession::rank() != 0) return 0;  // the same on every rank: said once
   fmt::print("thermocontact {}\n", THERMOCONTACT_VERSION);
   fmt::print("PETSc: {}\n", version);
   fmt::print("MPI ranks: {}\n", tc::core::PetscSession::size());
@@ -345,8 +466,9 @@ int info(const char* program) {
 /// [output].directory).
 bool empty_path(const CLI::Option* option, const std::string& value, std::string_view expected) {
   if (option->count() == 0 || !value.empty()) return false;
-  fmt::print(stderr, "error: {}: found an empty path, expected {}; nothing was run.\n",
-             option->get_name(), expected);
+  if (command_line_reporter())
+    fmt::print(stderr, "error: {}: found an empty path, expected {}; nothing was run.\n",
+               option->get_name(), expected);
   return true;
 }
 
@@ -371,12 +493,64 @@ std::string stray_argument(const std::vector<std::string>& extra) {
   return "";
 }
 
+/// The number of single-character edits between a and b (Levenshtein), for "did you mean".
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1 : 0)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// An argument of `run` that looks like one of thermocontact's own options but is none. The
+/// rule (case-format.md, "The command line"): thermocontact's options begin with "--", PETSc's
+/// with a single '-'. So an unknown "--word" is a mistyped option of ours, refused before
+/// anything runs (`--restrat DIR` ran from step 0 and `--forse` was ignored, both passed to
+/// PETSc and reported only at the end; issue 42, D14), and so is one of our names with a
+/// single dash (`-restart DIR`), which PETSc would have ignored the same way.
+std::string unknown_long_option(const std::vector<std::string>& extra,
+                                const std::vector<std::string>& known) {
+  for (const auto& word : extra) {
+    if (word.rfind('-', 0) != 0 || word == "-" || word == "--") continue;
+    const std::string name = word.substr(0, word.find('='));
+    const bool long_form = name.rfind("--", 0) == 0;
+    const std::string as_long = long_form ? name : "-" + name;
+    if (!long_form && std::find(known.begin(), known.end(), as_long) == known.end()) continue;
+    std::string best;
+    std::size_t distance = 3;  // at most two edits away: a typo, not another word
+    for (const auto& k : known)
+      if (const auto d = edit_distance(as_long, k); d < distance) best = k, distance = d;
+    return fmt::format(
+        "error: run: found the option '{}', which thermocontact does not have{}; expected one "
+        "of {} (thermocontact's options begin with '--', PETSc's with a single '-'); nothing "
+        "was run.\n",
+        name, best.empty() ? "" : fmt::format(" (did you mean '{}'?)", best),
+        fmt::join(known, ", "));
+  }
+  return {};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   install_signal_handlers();  // a signal during start-up too; again after PetscInitialize
+  if (const auto why = address_space_shortfall(); !why.empty()) {
+    if (command_line_reporter()) fmt::print(stderr, "{}", why);
+    // The environment, not the input: exit 1. Without exit handlers: OpenBLAS's joins its
+    // threads, which may be stuck mapping their buffers under the limit (it hung there).
+    std::fflush(nullptr);
+    std::_Exit(1);
+  }
   CLI::App app{"thermocontact: dynamic thermo-mechanical contact with Coulomb friction"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "thermocontact " THERMOCONTACT_VERSION);
   std::string case_file, output, restart;
   auto* run_cmd = app.add_subcommand("run", "run a case");
   run_cmd->add_option("case", case_file, "case file (TOML)")->required();
@@ -413,23 +587,32 @@ int main(int argc, char** argv) {
   }
   argc = static_cast<int>(kept.size());
   argv = kept.data();
+  const bool reporter = command_line_reporter();
   if (const auto message = unknown_subcommand(app, argc, argv); !message.empty()) {
-    fmt::print(stderr, "{}", message);
+    if (reporter) fmt::print(stderr, "{}", message);
     return 2;
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    std::ostream none(nullptr);  // the other ranks of an MPI launch say nothing
+    return app.exit(e, reporter ? std::cout : none, reporter ? std::cerr : none) == 0 ? 0 : 2;
   }
   if (empty_path(output_opt, output, "an output directory (or no --output: [output].directory)") ||
       empty_path(restart_opt, restart, "the output directory of the run to continue"))
     return 2;
+  if (const auto why =
+          unknown_long_option(run_cmd->remaining(), {"--output", "--restart", "--force", "--help"});
+      !why.empty()) {
+    if (reporter) fmt::print(stderr, "{}", why);
+    return 2;
+  }
   if (const auto extra = stray_argument(run_cmd->remaining()); !extra.empty()) {
-    fmt::print(stderr,
-               "error: run: found the extra argument '{}' after the case file {}, expected one "
-               "case file (PETSc options begin with '-'); nothing was run.\n",
-               extra, case_file);
+    if (reporter)
+      fmt::print(stderr,
+                 "error: run: found the extra argument '{}' after the case file {}, expected one "
+                 "case file (PETSc options begin with '-'); nothing was run.\n",
+                 extra, case_file);
     return 2;
   }
   try {
@@ -440,6 +623,14 @@ int main(int argc, char** argv) {
     }
     if (check_cmd->parsed()) return check(case_file, argv[0]);
     return info(argv[0]);
+  } catch (const std::bad_alloc&) {
+    rlimit limit{};
+    const bool limited = getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY;
+    fmt::print(stderr, "stopped: out of memory{}\n",
+               limited ? fmt::format(" under the address-space limit (ulimit -v) of {} kB",
+                                     limit.rlim_cur / 1024)
+                       : "");
+    return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

@@ -22,8 +22,17 @@ std::string join_issues(const std::vector<InputIssue>& issues) {
 InputError::InputError(std::vector<InputIssue> issues)
     : Error(join_issues(issues)), issues_(std::move(issues)) {}
 
+namespace {
+/// How a NumericalError names its step: "step ?" when the thrower could not know it.
+std::string step_text(int step) {
+  if (step < 0) return "step ?";
+  if (step == 0) return "set-up before step 1";
+  return fmt::format("step {}", step);
+}
+}  // namespace
+
 NumericalError::NumericalError(const std::string& what, int step, int iteration, double residual)
-    : Error(fmt::format("{} (step {}, iteration {}, residual {:.3e})", what, step, iteration,
+    : Error(fmt::format("{} ({}, iteration {}, residual {:.3e})", what, step_text(step), iteration,
                         residual)),
       step_(step),
       iteration_(iteration),
@@ -32,6 +41,23 @@ NumericalError::NumericalError(const std::string& what, int step, int iteration,
 NumericalError NumericalError::preformatted(const std::string& what, int step, int iteration,
                                             double residual) {
   return {Preformatted{}, what, step, iteration, residual};
+}
+
+NumericalError NumericalError::at_step(int step) const {
+  if (step_ >= 0 || step < 0) return *this;
+  // The text was formatted by the constructor above, here or on the rank that threw it
+  // (collective.cpp sends what() as it is): its last "(step ?, " is the unknown step.
+  std::string text = what();
+  const std::string unknown = "(" + step_text(-1) + ", ";
+  if (const auto at = text.rfind(unknown); at != std::string::npos)
+    text.replace(at, unknown.size(), "(" + step_text(step) + ", ");
+  return preformatted(text, step, iteration_, residual_);
+}
+
+void rethrow_at_step(const NumericalError& e, int step) {
+  if (dynamic_cast<const Collective*>(&e) != nullptr)
+    throw CollectiveError<NumericalError>(e.at_step(step));
+  throw e.at_step(step);
 }
 
 bool reported_here(const std::exception& e, int rank) {

@@ -60,6 +60,10 @@ class NumericalError : public Error {
   [[nodiscard]] int step() const { return step_; }
   [[nodiscard]] int iteration() const { return iteration_; }
   [[nodiscard]] double residual() const { return residual_; }
+  /// The same error with the step it happened in, for a thrower that cannot know it (FETI, a
+  /// QP: step < 0, shown as "step ?"): `step` ≥ 1 names a time step, 0 the set-up before step
+  /// 1. An error that knows its step is returned unchanged.
+  [[nodiscard]] NumericalError at_step(int step) const;
 
  private:
   struct Preformatted {};
@@ -67,6 +71,13 @@ class NumericalError : public Error {
       : Error(what), step_(step), iteration_(iteration), residual_(residual) {}
   int step_, iteration_;
   double residual_;
+};
+
+/// The process was asked to stop (a stop signal, core/stop.hpp) during work that cannot finish
+/// a step first, such as reading a mesh: exit code 1, like a run stopped by a signal.
+class Interrupted : public Error {
+ public:
+  using Error::Error;
 };
 
 /// A file of the run's output that could not be written (a full disk, a file-size limit, an
@@ -90,6 +101,9 @@ class CollectiveError : public E, public Collective {
  public:
   explicit CollectiveError(E e) : E(std::move(e)) {}
 };
+
+/// Throws e.at_step(step), a CollectiveError if e was one (so that it is still reported once).
+[[noreturn]] void rethrow_at_step(const NumericalError& e, int step);
 
 /// Whether this rank reports `e` to the user: rank 0 for a collective error, else every rank
 /// that has it.

@@ -5,6 +5,7 @@
 #include <malloc.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -67,6 +68,11 @@ int set_blas_threads(int ranks_on_node) {
 /// backed when touched.
 void prefer_huge_pages() {
 #if defined(__GLIBC__) && defined(MADV_HUGEPAGE)
+  // Not under an address-space limit (ulimit -v): glibc asks for the pad with every growth of
+  // the heap, by mmap too when sbrk fails, so every allocation that grew the heap failed once
+  // the pad no longer fit (Open MPI's "out of dynamic memory" at MPI_Init under
+  // `ulimit -v 600000`; issue 42, D19).
+  if (rlimit as{}; getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) return;
   constexpr std::size_t huge = std::size_t{2} << 20;
   constexpr int pad = 512 << 20;
   if (mallopt(M_MMAP_THRESHOLD, 32 << 20) == 0 || mallopt(M_TOP_PAD, pad) == 0 ||

@@ -17,6 +17,8 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <gmshc.h>
+#include <poll.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,12 +29,15 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <sstream>
+#include <string_view>
 #include <type_traits>
 #include <unordered_map>
 
 #include "tc/core/bytes.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/stop.hpp"
 
 #define TC_STRINGIFY_(x) #x
 #define TC_STRINGIFY(x) TC_STRINGIFY_(x)
@@ -327,11 +332,48 @@ void write_all(int fd, const std::string& s) {
   }
 }
 
+/// The signals that ask thermocontact to stop (apps/thermocontact): the child must not inherit
+/// the parent's handler for them, which only sets a flag the child never reads.
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGXCPU};
+
+/// Ends the child at once and reaps it (it may hold gigabytes and a core at 100 %).
+void kill_child(pid_t pid) {
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+}
+
+/// Collects the child's reply until it closes the pipe. Waits in slices of 50 ms so that a
+/// stop signal (core::stop_signal, set by the app's handler; the poll also returns early with
+/// EINTR) ends the wait promptly: libgmsh may take minutes on a large malformed file, and the
+/// parent ignored SIGTERM and SIGINT all that time (issue 42, D8).
+std::string read_reply(int fd, pid_t pid, const std::string& where) {
+  std::string in;
+  char buf[65536];
+  for (;;) {
+    if (const int sig = core::stop_signal.load(); sig != 0) {
+      kill_child(pid);
+      throw Interrupted("interrupted by signal " + std::to_string(sig) + " while reading " + where);
+    }
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, 50);
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    const auto n = ::read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    in.append(buf, static_cast<std::size_t>(n));
+  }
+  return in;
+}
+
 RawMesh read_raw_isolated(const std::filesystem::path& file, int dim) {
   const std::string where = "mesh file '" + file.string() + "'";
   int fds[2];
   if (::pipe(fds) != 0) return read_raw_safely(file, dim);  // no pipe: parse in-process
   std::fflush(nullptr);                                     // nothing buffered is written twice
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::close(fds[0]);
@@ -340,8 +382,14 @@ RawMesh read_raw_isolated(const std::filesystem::path& file, int dim) {
   }
   if (pid == 0) {  // the child: parse, send 'R' + data or 'E' + message, leave without cleanup
     ::close(fds[0]);
-    // A crash is reported by the parent: not by the handlers MPI/PETSc installed, nor by
-    // glibc's heap messages on stderr.
+    // The child dies with its parent, however the parent dies (SIGKILL included): it kept
+    // parsing at 100 % CPU after its parent was killed (issue 42, D8). The parent may have died
+    // before prctl took effect: then the child is an orphan already and leaves.
+    if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) ::_exit(1);
+    // A stop signal ends the child (Ctrl-C reaches the whole process group); the parent then
+    // reports the stop. A crash is reported by the parent: not by the handlers MPI/PETSc
+    // installed, nor by glibc's heap messages on stderr.
+    for (const int sig : kStopSignals) std::signal(sig, SIG_DFL);
     for (const int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
     if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, STDERR_FILENO);
     std::string out;
@@ -358,17 +406,23 @@ RawMesh read_raw_isolated(const std::filesystem::path& file, int dim) {
   }
   ::close(fds[1]);
   std::string in;
-  char buf[65536];
-  for (;;) {
-    const auto n = ::read(fds[0], buf, sizeof buf);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    in.append(buf, static_cast<std::size_t>(n));
+  try {
+    in = read_reply(fds[0], pid, where);
+  } catch (...) {
+    ::close(fds[0]);
+    throw;
   }
   ::close(fds[0]);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  // A stop signal sent to the process group ends the child too: that is the stop, not a crash.
+  if (const int sig = core::stop_signal.load(); sig != 0)
+    throw Interrupted("interrupted by signal " + std::to_string(sig) + " while reading " + where);
+  if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGKILL || WTERMSIG(status) == SIGTERM))
+    throw Interrupted("cannot read " + where + ": the Gmsh reader (a child process) was killed " +
+                      "by signal " + std::to_string(WTERMSIG(status)) +
+                      " (out of memory, or stopped from outside)");
   if (WIFSIGNALED(status))
     throw MeshError("cannot read " + where + ": the Gmsh library crashed on it (signal " +
                     std::to_string(WTERMSIG(status)) + "); the file is malformed");
@@ -379,6 +433,49 @@ RawMesh read_raw_isolated(const std::filesystem::path& file, int dim) {
   if (in[0] == 'E') throw MeshError(in.substr(1));
   if (in[0] != 'R') throw MeshError("cannot read " + where + ": garbled reply from the reader");
   return decode(in.substr(1));
+}
+
+/// Gmsh's own first line of every .msh file, ASCII or binary, versions 2 and 4.
+constexpr std::string_view kMeshFormat = "$MeshFormat";
+
+/// `bytes` shown on one line: printable ASCII as is, anything else as \xNN.
+std::string printable(std::string_view bytes) {
+  std::string out;
+  for (const char c : bytes) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f) {
+      out += c;
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", u);
+      out += hex;
+    }
+  }
+  return out;
+}
+
+/// Refuses at once a file whose first line is not `$MeshFormat`: libgmsh read 300 MB of NUL
+/// bytes for 72 s (3 GB: 14 min) before it found no mesh in them (issue 42, D8). Only the first
+/// 4 KiB are read. The line must be the very first and exactly that, as libgmsh itself
+/// requires (a blank line before it gave "line 3: syntax error ($)", trailing blanks or a
+/// '\r' "no cells").
+void check_header(const std::filesystem::path& file, const std::string& where) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw MeshError("cannot read " + where + ": it cannot be opened");
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::string_view line(head);
+  line = line.substr(0, line.find('\n'));
+  if (line == kMeshFormat) return;
+  constexpr std::size_t shown = 24;
+  const std::string found = head.empty() ? std::string("an empty file")
+                            : line.empty()
+                                ? std::string("a blank first line")
+                                : "'" + printable(line.substr(0, shown)) +
+                                      (line.size() > shown ? "..." : "") + "' as its first line";
+  throw MeshError("cannot read " + where + ": found " + found + ", expected " +
+                  std::string(kMeshFormat) + " (the first line of a Gmsh .msh file)");
 }
 
 // ---- Element types -------------------------------------------------------------------------
@@ -655,6 +752,7 @@ Mesh read_gmsh(const std::filesystem::path& file, int dim) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     throw MeshError("cannot read " + where + ": no such file");
+  check_header(file, where);
 
   return detail::build_mesh(read_raw_isolated(file, dim), dim, file.string());
 }

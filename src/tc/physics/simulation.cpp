@@ -27,6 +27,14 @@ Simulation::Simulation(const Problem& problem)
       steps_(problem, bodies_, timers_),
       contact_(problem, bodies_, steps_, timers_),
       energy_(problem, bodies_, &contact_) {
+  try {
+    set_up();
+  } catch (const NumericalError& e) {  // a FETI or CG solve of the set-up: it has no step
+    rethrow_at_step(e, 0);
+  }
+}
+
+void Simulation::set_up() {
   for (int b = 0; b < static_cast<int>(problem_.bodies.size()); ++b) {
     {
       auto t = timers_.scope("assembly");
@@ -251,7 +259,8 @@ RunStatus Simulation::run(Observer& observer, const std::atomic<int>* stop) {
       observer.step(*this);
     }
   } catch (const NumericalError& e) {
-    status.message = e.what();
+    // FETI and the QPs do not know the step they solve for (step < 0): the one under way.
+    status.message = e.at_step(step_ + 1).what();
     status.exit_code = 1;
   } catch (const PetscError& e) {
     status.message = fmt::format("{} (step {})", e.what(), step_ + 1);

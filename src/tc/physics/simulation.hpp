@@ -160,6 +160,7 @@ class Simulation {
   }
 
  private:
+  void set_up();  // the constructor's work: assembly, factorisations, the initial state
   void initialise();
   void static_initial_state(int b, BodyState& st);
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
