@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tc/contact/mortar_pair.hpp"
+#include "tc/core/error.hpp"
 #include "tc/core/timer.hpp"
 #include "tc/physics/bodies.hpp"
 #include "tc/physics/body_steps.hpp"
@@ -124,7 +125,13 @@ class Simulation {
 
   /// Runs all steps, or until `stop` becomes non-zero (checked between steps).
   RunStatus run(Observer& observer, const std::atomic<int>* stop = nullptr);
-  /// Advances one step (public for tests); throws NumericalError on failure.
+  /// Steps cut back so far ([solver] max_cutbacks): how many steps of τ were taken as
+  /// sub-steps, and the smallest sub-step used (τ when none).
+  [[nodiscard]] int cut_back_steps() const { return cut_back_steps_; }
+  [[nodiscard]] double smallest_step() const { return smallest_step_; }
+
+  /// Advances one step (public for tests); throws NumericalError on failure. A step that
+  /// fails is cut back: retried from its start as two steps of τ/2 (advance_by_halves).
   void advance();
 
   [[nodiscard]] const Problem& problem() const { return problem_; }
@@ -162,6 +169,11 @@ class Simulation {
   void static_initial_state(int b, BodyState& st);
   void finish_step_bookkeeping(const std::vector<core::Vector>& old_u, int coupling, double wall);
   void register_history();  // the columns of history.csv: its own and its components'
+  void advance_once();      // the step k → k + 1 at τ
+  /// The step from `start` (its state, step k) as two steps of τ/2 on a copy of the problem
+  /// with that step, whose own cut-backs go one level less deep; then this simulation takes
+  /// the copy's state at t^{k+1} (docs/choices.md, "Step cut-back").
+  void advance_by_halves(const Checkpoint& start, const NumericalError& failure);
 
   const Problem& problem_;
   core::PhaseTimers timers_;
@@ -176,6 +188,12 @@ class Simulation {
   std::string factorization_;
   History history_;
   BoundaryHeat boundary_heat_;
+  // How contact was enabled (the τ/2 copy is enabled the same way), the depth of this
+  // simulation among cut-backs (0: the run's own), and what the cut-backs did.
+  std::function<void(Simulation&)> enable_contact_again_;
+  int cutback_depth_ = 0;
+  int cut_back_steps_ = 0;
+  double smallest_step_ = 0;
 };
 
 }  // namespace tc::physics
