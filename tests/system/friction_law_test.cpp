@@ -42,7 +42,7 @@ double summary_number(const std::string& summary, const std::string& key,
   return std::stod(summary.substr(at + key.size() + 4));
 }
 
-size_t column(const tc::test::History& h, const std::string& name) {
+size_t col_of(const tc::test::History& h, const std::string& name) {
   for (size_t c = 0; c < h.columns.size(); ++c)
     if (h.columns[c] == name) return c;
   ADD_FAILURE() << "no column " << name;
@@ -69,11 +69,11 @@ TEST(FrictionLaw, ADeadLoadedPinStartsToSlideWithoutACutBack) {
   EXPECT_GE(summary_number(summary, "node", "penetration"), 0.0) << summary;
   EXPECT_EQ(summary_number(summary, "cut_back_steps"), 0.0) << summary;
   // The pin slides at step 3: friction force and heat appear.
-  EXPECT_GT(h.rows[3][column(h, "contact_tangential_force")], 0.0);
-  EXPECT_GT(h.rows[3][column(h, "heat_generated")], 0.0);
+  EXPECT_GT(h.rows[3][col_of(h, "contact_tangential_force")], 0.0);
+  EXPECT_GT(h.rows[3][col_of(h, "heat_generated")], 0.0);
   // Step 2 releases nodes with λ_n < 0 (the modified mass's floor): T/N of the end-of-step
   // values exceeds 𝔉 there. Never silently: counted in the summary and warned about.
-  const auto n = column(h, "contact_normal_force"), t = column(h, "contact_tangential_force");
+  const auto n = col_of(h, "contact_normal_force"), t = col_of(h, "contact_tangential_force");
   for (size_t i = 1; i < h.rows.size(); ++i)
     if (h.rows[i][t] > 0.4 * h.rows[i][n]) {
       EXPECT_GE(summary_number(summary, "release_steps"), 1.0) << summary;
@@ -95,10 +95,11 @@ TEST(FrictionLaw, ALooseQpToleranceKeepsTheLawsWithinItsBound) {
   EXPECT_LE(summary_number(summary, "ratio", "cone"), 1.0) << summary;
   EXPECT_GT(summary_number(summary, "value", "penetration"), 0.0) << summary;
   const auto h = tc::test::read_history(out / "history.csv");
-  const auto n = column(h, "contact_normal_force"), t = column(h, "contact_tangential_force");
+  const auto n = col_of(h, "contact_normal_force"), t = col_of(h, "contact_tangential_force");
   for (size_t i = 1; i < h.rows.size(); ++i)
-    if (h.rows[i][t] > 0.4 * h.rows[i][n])
+    if (h.rows[i][t] > 0.4 * h.rows[i][n]) {
       EXPECT_GE(summary_number(summary, "release_steps"), 1.0) << "row " << i << summary;
+    }
 }
 
 /// sliding-2d needs 7 coupling iterations at step 22 and at most 6 elsewhere: with 6 allowed,
@@ -123,13 +124,15 @@ TEST(FrictionLaw, AStepThatFailsIsCutBackThereOnly) {
   const auto b = tc::test::read_history(full / "history.csv");
   ASSERT_EQ(a.rows.size(), 41u);
   ASSERT_EQ(b.rows.size(), 41u);
-  const auto wall = column(a, "wall_seconds");
+  const auto wall = col_of(a, "wall_seconds");
   for (size_t i = 0; i <= 21; ++i)
     for (size_t col = 0; col < a.columns.size(); ++col)
-      if (col != wall) EXPECT_EQ(a.rows[i][col], b.rows[i][col]) << a.columns[col] << " row " << i;
+      if (col != wall) {
+        EXPECT_EQ(a.rows[i][col], b.rows[i][col]) << a.columns[col] << " row " << i;
+      }
   // One row per step of τ, at the times of τ; step 22's counts are those of its two halves
   // (each within the 6 allowed).
-  const auto time = column(a, "time"), coupling = column(a, "coupling_iterations");
+  const auto time = col_of(a, "time"), coupling = col_of(a, "coupling_iterations");
   for (size_t i = 0; i < a.rows.size(); ++i)
     EXPECT_EQ(a.rows[i][time], static_cast<double>(i) * 2e-4);
   EXPECT_GE(a.rows[22][coupling], 2.0);
@@ -138,7 +141,7 @@ TEST(FrictionLaw, AStepThatFailsIsCutBackThereOnly) {
   for (size_t i = 23; i < a.rows.size(); ++i) EXPECT_LE(a.rows[i][coupling], 6.0);
   // The cumulative heat is an integral over the run that converges with τ: one step taken as
   // two halves moves it by O(τ) of the dynamic contact's oscillation, measured 0.2 %.
-  const auto heat = column(a, "heat_generated");
+  const auto heat = col_of(a, "heat_generated");
   EXPECT_NEAR(a.rows[40][heat], b.rows[40][heat], 1e-2 * b.rows[40][heat]);
 }
 
