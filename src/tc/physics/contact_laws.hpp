@@ -9,8 +9,9 @@
 //   b_cone,k = 𝔉_k tol ‖λ‖ + 16 ε_mach (𝔉_kγ_k + ‖λ_τ,k‖): the Tresca QP keeps ‖λ_τ,k‖ ≤ 𝔉_kγ_k
 //              exactly (a projection), and the fixed point (6.3) stops at
 //              ‖max(λ_n, 0) − γ‖ ≤ tol ‖λ‖ (tol = [solver] coupling_tolerance).
-// A value beyond its bound is a defect, never a result: the step stops (NumericalError,
-// naming the node, the step and the setting), and Simulation cuts it back.
+// A cone violation beyond its bound is a defect, never a result: the step stops
+// (NumericalError, naming the node, the step and the setting), and Simulation cuts it back. A
+// penetration beyond its bound is recorded (summary.json), not a stop (contact_laws.cpp).
 #include <span>
 #include <string>
 #include <vector>
