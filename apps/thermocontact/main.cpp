@@ -367,6 +367,14 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     const auto status = sim.run(observers, &g_stop_agreed);
     if (tc::core::PetscSession::rank() == 0) {
       warn_unused_options();
+      if (const auto& laws = sim.contact().laws_checked(); laws.release_steps > 0)
+        fmt::print(stderr,
+                   "warning: in {} step(s), from step {}, contact nodes released with a negative "
+                   "end-of-step normal multiplier (the modified mass scheme's release floor): "
+                   "there history.csv's contact_tangential_force / contact_normal_force reached "
+                   "{:.3g}, above the friction coefficient, while every node obeyed its friction "
+                   "cone (docs/robustness.md; summary.json contact_laws)\n",
+                   laws.release_steps, laws.first_release_step, laws.release_ratio);
       if (status.completed)
         fmt::print("done: {} steps; output in {}\n", status.steps_done,
                    tc::io::printable(problem.output.directory));

@@ -953,7 +953,8 @@ void CaseReader::read_solver(const TableReader& root) {
                                                 "max_newton_iterations", "coupling_acceleration",
                                                 "conductance_treatment", "qp_forcing",
                                                 "qp_forcing_cap",        "loop_forcing",
-                                                "max_friction_updates",  "explicit_dual_limit"});
+                                                "max_friction_updates",  "explicit_dual_limit",
+                                                "max_cutbacks"});
   if (!s) return;
   const Range unit{[](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"};
   auto& settings = p_.solver;
@@ -992,6 +993,13 @@ void CaseReader::read_solver(const TableReader& root) {
     settings.max_qp_iterations = *v;
   if (const auto v = s->integer("explicit_dual_limit", Need::optional, 0))
     settings.explicit_dual_limit = *v;
+  if (const auto v = s->integer("max_cutbacks", Need::optional, 0)) {
+    // τ/2^20 ≈ 1e-6 τ: deeper is no longer a cut-back but a different time scale
+    if (*v > 20)
+      s->issue("max_cutbacks", fmt::format("found {}, expected 0 to 20 halvings of the step", *v));
+    else
+      settings.max_cutbacks = *v;
+  }
   if (const auto v =
           s->choice("factorization", Need::optional, {"auto", "mumps", "cholmod", "petsc"}))
     settings.factorization = *v == "auto" ? "" : *v;

@@ -527,6 +527,20 @@ std::string OutputWriter::summary_text(const physics::Simulation& sim, const std
   const auto* enforcement = sim.contact_enforcement();
   out.print("  \"contact_dual\": {},\n", json_string(enforcement ? enforcement->name() : "none"));
   out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
+  // The contact laws checked after every step (physics/contact_laws.hpp; case-format.md).
+  const auto& laws = sim.contact().laws_checked();
+  const auto law = [](const physics::LawViolation& v) {
+    return fmt::format(
+        "{{\"value\": {}, \"bound\": {}, \"ratio\": {}, \"step\": {}, \"node\": {}}}",
+        json_number(v.value), json_number(v.bound), json_number(v.ratio), v.step, v.node);
+  };
+  out.print(
+      "  \"contact_laws\": {{\"penetration\": {}, \"cone\": {}, \"release_steps\": {}, "
+      "\"first_release_step\": {}, \"release_force_ratio\": {}}},\n",
+      law(laws.gap), law(laws.cone), laws.release_steps, laws.first_release_step,
+      json_number(laws.release_ratio));
+  out.print("  \"cut_back_steps\": {},\n", sim.cut_back_steps());
+  out.print("  \"smallest_step\": {},\n", json_number(sim.smallest_step()));
   out.print("  \"last\": {{\n{}  }}\n", last);
   out.print("}}\n");
   return std::string(out.view());

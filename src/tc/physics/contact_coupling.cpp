@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "tc/core/error.hpp"
 #include "tc/physics/contact_heat.hpp"
@@ -413,6 +414,7 @@ void ContactCoupling::set_rows(BodyGroup& g) {
 }
 
 int ContactCoupling::couple(int step) {
+  step_of_last_couple_ = step;
   auto g = group();
   auto& enforcement = *method_.enforcement;
   for (int i = 0; i < g.size(); ++i)
@@ -538,7 +540,10 @@ int ContactCoupling::couple(int step) {
   }
   if (iteration > problem_.solver.max_coupling_iterations)
     throw NumericalError(
-        fmt::format("the staggered fixed point (6.3) with contact did not converge to {:.1e}", tol),
+        fmt::format("the staggered fixed point (6.3) with contact did not converge to {:.1e} in {} "
+                    "iterations: raise [solver] max_coupling_iterations (now {})",
+                    tol, problem_.solver.max_coupling_iterations,
+                    problem_.solver.max_coupling_iterations),
         step, iteration - 1, change);
   iterate_slip_.clear();
   qp_bound_ = std::move(tresca.qp_bound);  // empty without friction
@@ -548,6 +553,7 @@ int ContactCoupling::couple(int step) {
     shift_loaded_face(g);
   }
   for (const auto* f : g.fields) require_finite(f->u_new, "displacement", step, iteration);
+  check_laws(g, targets, step);
 
   // The slip increment B_τ(u^{k+1} − u^k) for the dissipation, before the state moves on.
   for (int i = 0; i < g.size(); ++i) {
@@ -561,6 +567,45 @@ int ContactCoupling::couple(int step) {
   for (int i = 0; i < g.size(); ++i)
     end_step(problem_, *g.systems[i], bodies_.states[g.index[i]], *g.fields[i]);
   return iteration;
+}
+
+void ContactCoupling::check_laws(const BodyGroup& g, std::span<const double> targets, int step) {
+  const auto& enforcement = *method_.enforcement;
+  const auto& dual = enforcement.dual();
+  const int dim = dual.dim();
+  const auto bu = dual.row_values(g.field_in(&BodyField::u_new));
+  const auto l = lambda_.to_std();
+  const double ln = lambda_.norm();
+  std::vector<double> gap_tolerance(static_cast<size_t>(dual.n_nodes()));
+  for (PetscInt k = 0; k < dual.n_nodes(); ++k)
+    gap_tolerance[static_cast<size_t>(k)] = enforcement.gap_tolerance(k);
+  const auto& held = dual.held();
+  const auto& friction = nodal_laws_.friction;
+  for (int q = 0; q < n_pairs(); ++q) {
+    const auto& rows = dual.pair_rows(q);
+    const auto from = static_cast<size_t>(dual.pair_offset(q));
+    const auto n = static_cast<size_t>(rows.n_nodes());
+    const auto rows_of = [&](std::span<const double> v) {
+      return v.size() >= dim * (from + n) ? v.subspan(dim * from, dim * n) : v.subspan(0, 0);
+    };
+    const auto nodes_of_pair = [&](std::span<const double> v) {
+      return v.size() >= from + n ? v.subspan(from, n) : v.subspan(0, 0);
+    };
+    PairLaws p{.name = n_pairs() > 1 ? pairs_[q].settings->name : std::string(),
+               .dim = dim,
+               .nodes = rows.nodes,
+               .weights = rows.weights,
+               .targets = rows_of(targets),
+               .constraint_values = rows_of(bu),
+               .lambda = rows_of(l),
+               .friction = nodes_of_pair(friction),
+               .qp_bound = nodes_of_pair(qp_bound_),
+               .gap_tolerance = nodes_of_pair(gap_tolerance),
+               .held = held.size() >= from + n ? std::span<const char>(held).subspan(from, n)
+                                               : std::span<const char>()};
+    laws_.check(p, traction_per_multiplier(), problem_.solver.coupling_tolerance, ln,
+                problem_.solver.qp_tolerance, step);
+  }
 }
 
 void ContactCoupling::bookkeeping() {
@@ -591,6 +636,17 @@ void ContactCoupling::bookkeeping() {
     }
   }
   sum_pair_statistics();
+  // Every node obeyed its cone (check_laws), so T ≤ 𝔉 Σ_k w_k max(λ_n,k, 0); the history's
+  // N = Σ_k w_k λ_n,k is smaller only where nodes released with λ_n < 0 (the modified mass
+  // scheme's release floor): recorded, as the history's T/N then exceeds 𝔉.
+  double f_max = 0;
+  for (const double f : nodal_laws_.friction) f_max = std::max(f_max, f);
+  bool released = false;
+  for (size_t k = 0; k < l.size(); k += static_cast<size_t>(dim)) released = released || l[k] < 0;
+  if (released && stats_.tangential_force > f_max * stats_.normal_force)
+    laws_.note_release(step_of_last_couple_, stats_.normal_force > 0
+                                                 ? stats_.tangential_force / stats_.normal_force
+                                                 : std::numeric_limits<double>::infinity());
   total_qp_ += stats_.qp_iterations;
   total_applications_ += stats_.operator_applications;
 }

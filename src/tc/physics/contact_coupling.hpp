@@ -15,6 +15,7 @@
 #include "tc/physics/body_steps.hpp"
 #include "tc/physics/checkpoint.hpp"
 #include "tc/physics/contact_heat_coupling.hpp"
+#include "tc/physics/contact_laws.hpp"
 #include "tc/physics/contact_method.hpp"
 #include "tc/physics/finite_checks.hpp"
 #include "tc/physics/friction_fixed_point.hpp"
@@ -92,6 +93,11 @@ class ContactCoupling {
   [[nodiscard]] const InterfaceLaws& laws() const { return pairs_.front().laws; }
   /// The laws at the contact nodes of every pair (pair after pair).
   [[nodiscard]] const NodalLaws& nodal_laws() const { return nodal_laws_; }
+  /// The contact laws checked after every step since the run (or its restart) began: the
+  /// worst violations relative to their bounds (contact_laws.hpp, summary.json).
+  [[nodiscard]] const ContactLaws& laws_checked() const { return laws_; }
+  /// Takes in the record of a cut-back's sub-steps (their worst, counted at `step`).
+  void merge_laws(const ContactLaws& sub, int step) { laws_.merge(sub, step); }
   [[nodiscard]] long total_qp_iterations() const { return total_qp_; }
   [[nodiscard]] long total_operator_applications() const { return total_applications_; }
 
@@ -125,6 +131,9 @@ class ContactCoupling {
   void shift_loaded_face(const BodyGroup& g);
   [[nodiscard]] bool any_pair(bool (InterfaceLaws::*law)() const) const;
   void sum_pair_statistics();  // the pairs' forces, counts and dissipation into stats_
+  // Non-penetration and the friction cone at every contact node of u_new and λ (ContactLaws):
+  // throws NumericalError beyond the solvers' bounds.
+  void check_laws(const BodyGroup& g, std::span<const double> targets, int step);
 
   const Problem& problem_;
   Bodies& bodies_;
@@ -147,6 +156,9 @@ class ContactCoupling {
   // BΦ of the step's rows (rigid_coupling.hpp).
   int loaded_ = -1;
   std::vector<double> loaded_rows_;
+
+  ContactLaws laws_;
+  int step_of_last_couple_ = 0;
 };
 
 }  // namespace tc::physics

@@ -25,8 +25,12 @@ void NestedDualEnforcement::solve_qp(const BodyGroup& group, const TrescaQp& qp,
   stats.operator_applications += r.operator_applications;
   ++stats.friction_iterations;
   if (!r.converged())
-    throw NumericalError(fmt::format("the contact QP (6.9) did not converge: {}", r.message),
-                         qp.step, qp.outer, r.projected_gradient);
+    throw NumericalError(
+        fmt::format("the contact QP (6.9) did not converge: {}{}", r.message,
+                    r.status == qp::QpStatus::max_iterations
+                        ? fmt::format("; raise [solver] max_qp_iterations (now {})", r.iterations)
+                        : std::string()),
+        qp.step, qp.outer, r.projected_gradient);
 }
 
 void NestedDualEnforcement::finish_qps(const BodyGroup& group, const core::Vector& lambda,
@@ -75,6 +79,7 @@ void CombinedTfetiEnforcement::solve_qp(const BodyGroup& group, const TrescaQp& 
   stats.qp_iterations += r.inner_iterations;
   stats.operator_applications += r.operator_applications;
   outer_ += r.outer_iterations;
+  gradient_tolerance_ = r.gradient_tolerance;
   ++stats.friction_iterations;
   if (!r.converged())
     throw NumericalError(

@@ -60,6 +60,11 @@ class ContactEnforcement {
 
   /// SMALBE's outer iterations so far (combined; 0 otherwise).
   [[nodiscard]] virtual long outer_iterations() const { return 0; }
+  /// The bound on contact node k's penetration (weighted gap below 0) that the last QP's
+  /// stopping test guarantees (ContactLaws): its tolerance on the gradient c − B u there.
+  [[nodiscard]] virtual double gap_tolerance(PetscInt k) const {
+    return dual_->normal_gradient_bound(k);
+  }
   /// This enforcement's part of the restart record (the dual's compliance).
   virtual void save(Checkpoint& c) const;
   virtual void restore(const Checkpoint& c);
@@ -96,6 +101,8 @@ class CombinedTfetiEnforcement final : public ContactEnforcement {
   void finish_qps(const BodyGroup& group, const core::Vector& lambda, const TrescaIteration& t,
                   std::vector<double>& iterate_slip, int step, int outer) override;
   [[nodiscard]] long outer_iterations() const override { return outer_; }
+  /// SMALBE's gradient tolerance (on the whole dual, unscaled) bounds every component.
+  [[nodiscard]] double gap_tolerance(PetscInt) const override { return gradient_tolerance_; }
   void save(Checkpoint& c) const override;
   void restore(const Checkpoint& c) override;
 
@@ -106,6 +113,7 @@ class CombinedTfetiEnforcement final : public ContactEnforcement {
   std::unique_ptr<feti::ContactFeti> feti_;  // on the rows of the step
   feti::ContactFetiState state_;             // SMALBE's warm start from the last solve
   long outer_ = 0;
+  double gradient_tolerance_ = 0;  // of the last solve
 };
 
 }  // namespace tc::physics

@@ -647,6 +647,11 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
     lambda_max_ = r.max_eigenvalue;
     lambda_max_rows_ = m;
   }
+  last_tolerance_ = r.tolerance;
+  if (scaled)
+    last_sigma_ = sigma_;
+  else
+    last_sigma_.clear();
 
   if (recover) this->recover(lambda, u);
   return r;

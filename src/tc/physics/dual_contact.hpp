@@ -174,6 +174,14 @@ class DualContactSolver {
     constraint_values(std::array{&u_free_slave, &u_free_master}, lambda, bu);
   }
 
+  /// The bound on |(c − B u)_n,k| (the weighted gap's part of the gradient at node k) that
+  /// the last solve guarantees: its stopping tolerance on ‖g^P‖ divided by node k's normal
+  /// scale σ_n,k when the QP ran in μ = Σ⁻¹λ (1 otherwise). 0 before any solve.
+  [[nodiscard]] double normal_gradient_bound(PetscInt k) const {
+    const auto row = static_cast<size_t>(dim_ * k);
+    return row < last_sigma_.size() ? last_tolerance_ / last_sigma_[row] : last_tolerance_;
+  }
+
   /// y = Σ_i B_i A_i⁻¹ B_iᵀ x (matrix-free application; also used to form F).
   void apply_f(const core::Vector& x, core::Vector& y) const;
 
@@ -216,7 +224,9 @@ class DualContactSolver {
   core::Handle<::Mat, MatDestroy> f_dense_;  // F, or Σ F Σ (explicit and settings_.scale)
   std::vector<double> sigma_;                // the diagonal of Σ, per row
   int setup_solves_ = 0;
-  double lambda_max_ = 0;  // reused while the number of rows does not change
+  double lambda_max_ = 0;           // reused while the number of rows does not change
+  double last_tolerance_ = 0;       // the last solve's tolerance on ‖g^P‖ (its variables)
+  std::vector<double> last_sigma_;  // … and its Σ (empty: unscaled)
   PetscInt lambda_max_rows_ = -1;
   std::vector<DofCompliance> compliance_;  // per body
   // form_from_compliance: S_i on the T-positions U the rows reach, when they are fewer than T

@@ -17,6 +17,8 @@ void TrescaIteration::restart(const core::Vector& lambda, int dim,
   bound.resize(nc);
   residual.resize(nc);
   residual_prev.clear();
+  was_open.assign(nc, 0);
+  reclosed.assign(nc, 0);
   omega = 1.0;
   for (size_t k = 0; k < nc; ++k) {
     gamma[k] = std::max(lv[dim * static_cast<PetscInt>(k)], 0.0);
@@ -43,9 +45,21 @@ double TrescaIteration::update(const core::Vector& lambda, int dim,
   }
   const double w = relax ? omega : 1.0;
   double norm = 0;
+  if (was_open.size() != nc) was_open.assign(nc, 0);
+  if (reclosed.size() != nc) reclosed.assign(nc, 0);
   for (size_t k = 0; k < nc; ++k) {
     norm += residual[k] * residual[k];
-    gamma[k] = std::max(gamma[k] + w * residual[k], 0.0);
+    // A node whose λ_n(γ) is ≤ 0 carries no normal force: its Coulomb bound is 0, which the
+    // plain update reaches at once. Aitken's ω (one secant factor for the whole vector) is
+    // < 1 about half the time and would only shrink its bound geometrically: circles of
+    // 1e-4 of the multipliers at open nodes, on which MPGP stagnated at the onset of sliding
+    // of a lightly held pin (issue 41, docs/choices.md "Open nodes leave the friction bound
+    // at once"). Not for a node that has closed again after opening in this loop: one that
+    // opens and closes by turns needs the relaxation (ContactPairs' stack cycled without it).
+    const bool open = lv[dim * static_cast<PetscInt>(k)] <= 0;
+    gamma[k] = open && !reclosed[k] ? 0.0 : std::max(gamma[k] + w * residual[k], 0.0);
+    if (!open && was_open[k]) reclosed[k] = 1;
+    was_open[k] = open ? 1 : 0;
     bound[k] = friction[k] * gamma[k];
   }
   residual_prev = residual;
@@ -96,8 +110,8 @@ double coulomb_fixed_point(TrescaIteration& t, const core::Vector& lambda,
     if (update == p.max_updates && p.max_updates > 1)
       throw NumericalError(
           fmt::format("the Tresca → Coulomb fixed point γ = λ_n (6.3) did not converge to {:.1e} "
-                      "in {} updates",
-                      tol, p.max_updates),
+                      "in {} updates: raise [solver] max_friction_updates (now {})",
+                      tol, p.max_updates, p.max_updates),
           p.step, p.outer, residual);
   }
   return residual;

@@ -19,6 +19,8 @@ namespace tc::physics {
 struct TrescaIteration {
   std::vector<double> gamma, bound, residual, residual_prev;
   std::vector<double> qp_bound;  // the bound of the last QP (bound moves on with each update)
+  std::vector<char> was_open;    // per node: λ_n ≤ 0 at the last update
+  std::vector<char> reclosed;    // per node: closed again after an open update, in this loop
   double omega = 1.0;
   double last = 1.0;  // ‖λ_n(γ) − γ‖/‖λ‖ of the last update (1 before the first of a step)
   bool converged = false;      // the last update met the tolerance, its QP solved to qp_tolerance

@@ -181,6 +181,10 @@ struct SolverSettings {
   // time): ‖residual‖ ≤ newton_tolerance × the scale of the equation, iteration cap.
   double newton_tolerance = 1e-10;
   int max_newton_iterations = 50;
+  /// A step that fails (a QP, the friction loop or the staggered loop not converged, a
+  /// contact law violated) is retried from its start as two steps of τ/2, each of which may be
+  /// cut back again: at most this many halvings deep (Simulation::advance; 0 = stop at once).
+  int max_cutbacks = 4;
 };
 
 struct OutputSettings {

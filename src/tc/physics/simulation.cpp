@@ -49,6 +49,7 @@ void Simulation::set_up() {
     factorization_ = s->mech->package();
     bodies_.fields.push_back(std::move(s));
   }
+  smallest_step_ = problem_.time.step;
   initialise();
   check_setup_finite(bodies_.systems, bodies_.states);
 }
@@ -124,15 +125,84 @@ void Simulation::static_initial_state(int b, BodyState& st) {
 }
 
 void Simulation::enable_contact(ContactRowsBuilder builder, DualContactSettings settings) {
+  enable_contact_again_ = [builder, settings](Simulation& s) {
+    s.enable_contact(builder, settings);
+  };
   contact_.enable(std::move(builder), std::move(settings), step_);
 }
 
 void Simulation::enable_mortar_contact(DualContactSettings settings,
                                        contact::MortarOptions options) {
+  enable_contact_again_ = [settings, options](Simulation& s) {
+    s.enable_mortar_contact(settings, options);
+  };
   contact_.enable_mortar(std::move(settings), options, step_);
 }
 
 void Simulation::advance() {
+  if (problem_.solver.max_cutbacks <= 0) return advance_once();
+  // The state of the step's start, in memory: what a checkpoint holds, so that a retry starts
+  // from the bits a restart would.
+  const Checkpoint start = checkpoint();
+  try {
+    advance_once();
+  } catch (const NumericalError& e) {
+    advance_by_halves(start, e);
+  }
+}
+
+void Simulation::advance_by_halves(const Checkpoint& start, const NumericalError& failure) {
+  const double tau = problem_.time.step;
+  const int left = problem_.solver.max_cutbacks;
+  // A copy of the problem with τ/2 (its end unchanged: twice the steps), its bodies assembled
+  // and factorised anew for τ/2, its state that of the step's start (step 2k of τ/2 is t^k:
+  // 2k·(τ/2) = k·τ exactly in binary floating point).
+  auto half = std::make_unique<Problem>(problem_);
+  half->time.step = tau / 2;
+  half->solver.max_cutbacks = left - 1;
+  std::unique_ptr<Simulation> sub;
+  try {
+    sub = std::make_unique<Simulation>(*half);
+    sub->cutback_depth_ = cutback_depth_ + 1;
+    if (enable_contact_again_) enable_contact_again_(*sub);
+    Checkpoint from = start;
+    from.step = 2 * start.step;
+    sub->restore(from);
+    sub->advance();
+    std::vector<double> first = sub->history_.row();
+    sub->advance();
+    Checkpoint end = sub->checkpoint();
+    // One row for the whole step (docs/choices.md): the state at t^{k+1}, the per-step counts
+    // summed over the sub-steps, the step and time of this run.
+    end.step = start.step + 1;
+    const auto& columns = history_.columns();
+    for (size_t i = 0; i < columns.size() && i < end.row.size(); ++i) {
+      const auto& c = columns[i];
+      if (c == "step")
+        end.row[i] = end.step;
+      else if (c == "time")
+        end.row[i] = end.step * tau;
+      else if (c == "coupling_iterations" || c == "wall_seconds" || c == "qp_iterations" ||
+               c == "operator_applications" || c == "friction_iterations")
+        end.row[i] += first[i];
+    }
+    restore(end);
+    contact_.merge_laws(sub->contact_.laws_checked(), step_);
+    cut_back_steps_ += 1 + sub->cut_back_steps_;
+    smallest_step_ = std::min(smallest_step_, sub->smallest_step_);
+    last_coupling_ = static_cast<int>(history_["coupling_iterations"]);
+    last_wall_ = history_["wall_seconds"];
+  } catch (const NumericalError& e) {
+    if (cutback_depth_ > 0) throw;  // the run's own simulation says what happened
+    throw NumericalError(
+        fmt::format("{}; cut back {} time(s) to τ = {:g} s it still failed: {}; raise [solver] "
+                    "max_cutbacks (now {}) or change what the messages name",
+                    failure.what(), left, tau / std::pow(2.0, left), e.what(), left),
+        step_ + 1, 0, e.residual());
+  }
+}
+
+void Simulation::advance_once() {
   const auto t0 = Clock::now();
   std::vector<core::Vector> old_u;
   for (const auto& st : bodies_.states) old_u.push_back(st.u.clone());

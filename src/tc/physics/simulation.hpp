@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tc/contact/mortar_pair.hpp"
+#include "tc/core/error.hpp"
 #include "tc/core/timer.hpp"
 #include "tc/physics/bodies.hpp"
 #include "tc/physics/body_steps.hpp"
@@ -126,7 +127,13 @@ class Simulation {
 
   /// Runs all steps, or until `stop` becomes non-zero (checked between steps).
   RunStatus run(Observer& observer, const std::atomic<int>* stop = nullptr);
-  /// Advances one step (public for tests); throws NumericalError on failure.
+  /// Steps cut back so far ([solver] max_cutbacks): how many steps of τ were taken as
+  /// sub-steps, and the smallest sub-step used (τ when none).
+  [[nodiscard]] int cut_back_steps() const { return cut_back_steps_; }
+  [[nodiscard]] double smallest_step() const { return smallest_step_; }
+
+  /// Advances one step (public for tests); throws NumericalError on failure. A step that
+  /// fails is cut back: retried from its start as two steps of τ/2 (advance_by_halves).
   void advance();
 
   [[nodiscard]] const Problem& problem() const { return problem_; }
@@ -173,6 +180,12 @@ class Simulation {
   /// queued (docs/choices.md).
   void check_temperature_range(int step, int iteration);
 
+  void advance_once();      // the step k → k + 1 at τ
+  /// The step from `start` (its state, step k) as two steps of τ/2 on a copy of the problem
+  /// with that step, whose own cut-backs go one level less deep; then this simulation takes
+  /// the copy's state at t^{k+1} (docs/choices.md, "Step cut-back").
+  void advance_by_halves(const Checkpoint& start, const NumericalError& failure);
+
   const Problem& problem_;
   core::PhaseTimers timers_;
   Bodies bodies_;
@@ -188,6 +201,13 @@ class Simulation {
   BoundaryHeat boundary_heat_;
   bool range_warned_ = false;          // the linearisation warning is given once per run
   std::vector<std::string> warnings_;  // queued for the observer by run()
+
+  // How contact was enabled (the τ/2 copy is enabled the same way), the depth of this
+  // simulation among cut-backs (0: the run's own), and what the cut-backs did.
+  std::function<void(Simulation&)> enable_contact_again_;
+  int cutback_depth_ = 0;
+  int cut_back_steps_ = 0;
+  double smallest_step_ = 0;
 };
 
 }  // namespace tc::physics

@@ -1,0 +1,94 @@
+// ContactLaws (physics/contact_laws.hpp): the checks after every step stop a step whose
+// multipliers or displacements leave the bounds the solvers guarantee, naming the node, the
+// step and the setting; within the bounds they record the worst.
+#include "tc/physics/contact_laws.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "tc/core/error.hpp"
+
+namespace {
+
+using tc::physics::ContactLaws;
+using tc::physics::PairLaws;
+
+/// Two 3D contact nodes (slave nodes 7 and 9), weights 0.5, 𝔉 = 0.4 on the Tresca bound
+/// 𝔉γ = 0.4 × 10, QP gradient tolerance 1e-8 per node.
+struct TwoNodes {
+  std::vector<int> nodes{7, 9};
+  std::vector<double> weights{0.5, 0.5};
+  std::vector<double> targets{1e-3, 0, 0, 2e-3, 0, 0};
+  std::vector<double> bu{1e-3, 0, 0, 2e-3, 0, 0};  // gap 0 at both
+  std::vector<double> lambda{10, 4, 0, 10, 0, 3};  // node 7 on its circle, node 9 inside
+  std::vector<double> friction{0.4, 0.4}, bound{4, 4}, tolerance{1e-8, 1e-8};
+  [[nodiscard]] PairLaws laws() const {
+    return {.name = "",
+            .dim = 3,
+            .nodes = nodes,
+            .weights = weights,
+            .targets = targets,
+            .constraint_values = bu,
+            .lambda = lambda,
+            .friction = friction,
+            .qp_bound = bound,
+            .gap_tolerance = tolerance,
+            .held = {}};
+  }
+};
+
+// ‖λ‖ = √(100 + 16 + 100 + 9) = 15; coupling tolerance 1e-6: the cone's bound is
+// 𝔉 tol ‖λ‖ = 6e-6 plus round-off.
+constexpr double lambda_norm = 15, tol = 1e-6, qp_tol = 1e-8;
+
+TEST(ContactLaws, WithinTheBoundsTheWorstIsRecorded) {
+  TwoNodes t;
+  ContactLaws laws;
+  EXPECT_NO_THROW(laws.check(t.laws(), 1.0, tol, lambda_norm, qp_tol, 3));
+  // Node 7 lies on its cone exactly: violation 0 of a bound 6e-6.
+  EXPECT_EQ(laws.cone.value, 0.0);
+  EXPECT_NEAR(laws.cone.bound, 0.4 * tol * lambda_norm, 1e-12);
+  EXPECT_EQ(laws.gap.value, -0.0);
+  EXPECT_EQ(laws.gap.step, 3);
+  EXPECT_GE(laws.gap.node, 7);
+}
+
+TEST(ContactLaws, APenetrationBeyondTheQpBoundIsRecordedWithItsNode) {
+  TwoNodes t;
+  t.bu[3] += 1e-7;  // node 9 penetrates by 1e-7 (weighted), ≫ 2 × 1e-8 + round-off
+  ContactLaws laws;
+  EXPECT_NO_THROW(laws.check(t.laws(), 1.0, tol, lambda_norm, qp_tol, 5));
+  EXPECT_NEAR(laws.gap.value, 1e-7 / 0.5, 1e-15);  // per unit weight: a length
+  EXPECT_GT(laws.gap.ratio, 1.0);
+  EXPECT_EQ(laws.gap.node, 9);
+  EXPECT_EQ(laws.gap.step, 5);
+}
+
+TEST(ContactLaws, AConeViolationBeyondTheFixedPointBoundStopsTheStep) {
+  TwoNodes t;
+  t.lambda[0] = 9;  // ‖λ_τ‖ = 4 > 𝔉λ_n = 3.6 at node 7: 0.4 ≫ 6e-6
+  ContactLaws laws;
+  try {
+    laws.check(t.laws(), 2.0, tol, lambda_norm, qp_tol, 4);
+    FAIL() << "no error";
+  } catch (const tc::NumericalError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("friction cone"), std::string::npos) << m;
+    EXPECT_NE(m.find("slave node 7"), std::string::npos) << m;
+    EXPECT_NE(m.find("[solver] coupling_tolerance"), std::string::npos) << m;
+  }
+  EXPECT_NEAR(laws.cone.value, 2.0 * 0.4, 1e-12);  // in traction units (2 per multiplier)
+}
+
+TEST(ContactLaws, AReleasedNodeIsNotACone) {
+  TwoNodes t;
+  t.lambda = {-1, 0, 0, 10, 0, 3};  // node 7 released below 0 (modified mass floor), no λ_τ
+  ContactLaws laws;
+  EXPECT_NO_THROW(laws.check(t.laws(), 1.0, tol, lambda_norm, qp_tol, 2));
+  laws.note_release(2, 0.9);
+  EXPECT_EQ(laws.release_steps, 1);
+  EXPECT_EQ(laws.first_release_step, 2);
+}
+
+}  // namespace
