@@ -9,7 +9,8 @@
 # example 06 refined ×3 (200 336 dofs, its first 10 steps, as bench/million). Fields written
 # every 1000 steps (the history only: the solver is what is timed). REPEAT=n takes the
 # fastest of n runs per cell (default 1). BASELINE=<binary> adds a column: that binary with
-# its own default (e.g. a build before the policy). Runs in a temporary directory.
+# its own default (e.g. a build before the policy). CASES="section-2d example-06" and
+# LOADS="idle busy" choose the rows. Runs in a temporary directory.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 bin=$root/build/bin/thermocontact
@@ -31,6 +32,7 @@ if [[ ${1:-} == large ]]; then
     -e 's/^end = 1.0/end = 0.1/' "$work/example-06.toml" >"$work/example-06-x3.toml"
   cases+=(example-06-x3)
 fi
+[[ -z ${CASES:-} ]] || read -r -a cases <<<"$CASES"
 modes=(default 1 2)
 [[ -z ${BASELINE:-} ]] || modes+=(baseline)
 
@@ -59,7 +61,9 @@ echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf '%-15s %-6s' case load
 for m in "${modes[@]}"; do printf ' %9s' "$m"; done
 printf ' %14s\n' "default/best"
-for load in idle busy; do
+loads=(idle busy)
+[[ -z ${LOADS:-} ]] || read -r -a loads <<<"$LOADS"
+for load in "${loads[@]}"; do
   if [[ $load == busy ]]; then
     for _ in 1 2; do
       yes >/dev/null &
