@@ -104,7 +104,7 @@ PetscSession::PetscSession(int* argc, char*** argv) {
     if (MPI_Comm_size(node, &n) == MPI_SUCCESS) node_size_ = n;
     MPI_Comm_free(&node);
   }
-  ThreadPolicy::start(node_size_);
+  ThreadPolicy::start(node_size_, size());
 }
 
 PetscSession::~PetscSession() {

@@ -131,8 +131,9 @@ struct State {
   int decided = 0;  // the last decision (0: none yet)
   long kernels = 0, threaded = 0;
   int most = 1;
-  int depth = 0;    // nested kernels keep the outer one's threads
-  int current = 1;  // the threads in effect
+  int depth = 0;        // nested kernels keep the outer one's threads
+  int current = 1;      // the threads in effect
+  bool by_load = true;  // one rank: the free CPUs decide; more: the budget (see start)
 };
 
 State& state() {
@@ -170,13 +171,14 @@ int decide() {
 
 }  // namespace
 
-void ThreadPolicy::start(int ranks_on_node) {
+void ThreadPolicy::start(int ranks_on_node, int ranks) {
   auto& s = state();
   CPU_ZERO(&s.allowed);
   if (sched_getaffinity(0, sizeof s.allowed, &s.allowed) != 0) CPU_SET(0, &s.allowed);
   s.cpus.affinity = std::max(1, CPU_COUNT(&s.allowed));
   s.cpus.quota = cgroup_quota();
   s.cpus.ranks_on_node = std::max(1, ranks_on_node);
+  s.by_load = ranks <= 1;
   s.blas = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   s.omp = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"));
   int n = 0;
@@ -227,7 +229,7 @@ KernelThreads::KernelThreads(double flops) {
   threads_ = s.current;
   if (s.depth++ > 0 || flops < kParallelFlops) return;
   ++s.kernels;
-  if (!s.environment && s.budget > 1) threads_ = decide();
+  if (!s.environment && s.budget > 1) threads_ = s.by_load ? decide() : s.budget;
   if (threads_ > 1) ++s.threaded;
   s.most = std::max(s.most, threads_);
   if (threads_ != s.outside) set_threads(threads_);

@@ -36,8 +36,11 @@ struct CpuBudget {
 class ThreadPolicy {
  public:
   /// Reads the budget, sets BLAS and OpenMP to one thread (or to the environment's number)
-  /// and takes the first sample of the CPUs' use.
-  static void start(int ranks_on_node);
+  /// and takes the first sample of the CPUs' use. With more than one rank in the run
+  /// (`ranks`), a large kernel gets the budget without looking at the load: the ranks compute
+  /// replicated values that must agree to the bit, and the threads change the bits, so every
+  /// rank must choose alike, without a collective call (kernels are not all collective).
+  static void start(int ranks_on_node, int ranks = 1);
   /// Threads outside large kernels: 1, or OPENBLAS_NUM_THREADS / OMP_NUM_THREADS.
   [[nodiscard]] static int outside_kernels();
   /// The most a kernel may use (the budget per rank; the environment's number when it is set).
