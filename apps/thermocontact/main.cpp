@@ -25,6 +25,7 @@
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/core/stop.hpp"
+#include "tc/core/threads.hpp"
 #include "tc/io/auto_subdomains.hpp"
 #include "tc/io/case_reader.hpp"
 #include "tc/io/checkpoint.hpp"
@@ -322,6 +323,8 @@ int run(const std::string& case_file, const std::string& output, const std::stri
     return 2;
   }
   try {
+    // summary.json's "startup": the process until here (loader, MPI, PETSc, the options).
+    const double startup = tc::core::seconds_since_process_start();
     auto problem = tc::io::read_case(case_file);
     if (!output.empty()) problem.output.directory = output;
     if (!restart.empty()) problem.output.directory = restart;  // continued where it stopped
@@ -334,14 +337,20 @@ int run(const std::string& case_file, const std::string& output, const std::stri
                          : force          ? tc::io::EarlierRun::replace
                                           : tc::io::EarlierRun::refuse;
     const tc::io::OutputLock lock(problem.output.directory, restart.empty(), earlier);
+    double reading = tc::core::seconds_since_process_start() - startup;
     tc::physics::Simulation sim(problem);
     if (!problem.contacts.empty()) sim.enable_mortar_contact();
-    const auto case_hash = tc::io::input_hash(problem);
+    const double hashing = tc::core::seconds_since_process_start();
+    const auto case_hash = tc::io::input_hash(problem);  // the case and mesh files read again
+    reading += tc::core::seconds_since_process_start() - hashing;
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
     if (tc::core::PetscSession::rank() == 0)  // held open until the process ends
       g_output_directory.store(
           ::open(problem.output.directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    writer.phases().add("startup", startup);
+    writer.phases().add("reading", reading);
     if (!restart.empty()) {
+      auto restarting = writer.phases().scope("reading");
       const auto file = tc::io::checkpoint_file(restart);
       tc::io::check_restart_outputs(restart);
       try {
@@ -358,12 +367,15 @@ int run(const std::string& case_file, const std::string& output, const std::stri
         fmt::print("restarting from step {} (t = {:g} s) of {}\n", sim.step(), sim.time(),
                    tc::io::printable(file));
     }
-    tc::io::CheckpointWriter checkpoint(problem.output.directory, case_hash);
+    tc::io::CheckpointWriter checkpoint(problem.output.directory, case_hash,
+                                        tc::io::CheckpointPolicy::of(problem.output));
     tc::io::ProgressLine progress(isatty(STDERR_FILENO) != 0);
     StopAfter stop(stop_after);
     AgreeOnStop agree;
     writer.watch_stop(&g_stop);
-    tc::io::Observers observers({&writer, &checkpoint, &progress, &stop, &agree});
+    tc::io::TimedObserver timed_checkpoint(checkpoint, writer.phases(), "checkpoint");
+    tc::io::TimedObserver timed_progress(progress, writer.phases(), "progress");
+    tc::io::Observers observers({&writer, &timed_checkpoint, &timed_progress, &stop, &agree});
     const auto status = sim.run(observers, &g_stop_agreed);
     if (tc::core::PetscSession::rank() == 0) {
       warn_unused_options();
@@ -448,6 +460,28 @@ int check(const std::string& case_file, const char* program) {
   }
 }
 
+/// `info`'s line on the thread policy (core/threads.hpp): one thread outside the large
+/// kernels, up to the budget inside them while the CPUs are free; or the environment's number.
+void print_thread_policy() {
+  using tc::core::ThreadPolicy;
+  const auto& cpus = ThreadPolicy::cpus();
+  std::string limits =
+      fmt::format("{} CPU{} in the affinity mask", cpus.affinity, cpus.affinity == 1 ? "" : "s");
+  if (cpus.quota > 0) limits += fmt::format(", cgroup quota {:g} CPUs", cpus.quota);
+  if (cpus.ranks_on_node > 1) limits += fmt::format(", {} ranks on this node", cpus.ranks_on_node);
+  if (ThreadPolicy::from_environment())
+    fmt::print(
+        "BLAS threads per rank: {} everywhere (set by OPENBLAS_NUM_THREADS or OMP_NUM_THREADS)\n",
+        ThreadPolicy::outside_kernels());
+  else if (!ThreadPolicy::settable())
+    fmt::print("BLAS threads per rank: 1 (this BLAS has no openblas_set_num_threads)\n");
+  else
+    fmt::print(
+        "BLAS threads per rank: 1, up to {} inside large kernels while the CPUs are free ({}; "
+        "OPENBLAS_NUM_THREADS fixes the number)\n",
+        ThreadPolicy::budget(), limits);
+}
+
 int info(const char* program) {
   int argc = 1;
   char* args[] = {const_cast<char*>(program), nullptr};
@@ -459,8 +493,7 @@ int info(const char* program) {
   fmt::print("thermocontact {}\n", THERMOCONTACT_VERSION);
   fmt::print("PETSc: {}\n", version);
   fmt::print("MPI ranks: {}\n", tc::core::PetscSession::size());
-  fmt::print("BLAS threads per rank: {} (OPENBLAS_NUM_THREADS sets them)\n",
-             tc::core::PetscSession::blas_threads());
+  print_thread_policy();
   std::string packages;
   for (const auto& p : tc::core::available_cholesky_packages())
     packages += (packages.empty() ? "" : ", ") + p;

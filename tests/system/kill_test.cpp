@@ -8,6 +8,9 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <random>
 #include <thread>
 
@@ -62,8 +65,9 @@ pid_t spawn_run(const fs::path& case_file, const fs::path& out) {
 }
 
 /// Starts the run as a child process and sends `sig` once history.csv holds `rows` rows.
-Killed run_and_kill(const fs::path& out, int sig, size_t rows) {
-  const pid_t pid = spawn_run(sliding, out);
+Killed run_and_kill(const fs::path& out, int sig, size_t rows,
+                    const fs::path& case_file = sliding) {
+  const pid_t pid = spawn_run(case_file, out);
   Killed k;
   const auto history = out / "history.csv";
   for (;;) {  // poll every 0.2 ms: a step of this case takes several milliseconds
@@ -102,8 +106,8 @@ void expect_readable_output(const fs::path& out, size_t rows_seen) {
     }
 }
 
-void expect_restart_reproduces(const fs::path& out) {
-  const auto r = thermocontact("run " + sliding.string() + " --restart " + out.string());
+void expect_restart_reproduces(const fs::path& out, const fs::path& case_file = sliding) {
+  const auto r = thermocontact("run " + case_file.string() + " --restart " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto h = tc::test::read_history(out / "history.csv");
   const auto& full = uninterrupted();
@@ -155,6 +159,51 @@ TEST(Kill, SigtermAtARandomStepStopsCleanlyAndRestarts) {
 
 TEST(Kill, SigkillAtARandomStepLeavesWholeFilesAndRestarts) {
   kill_trials(SIGKILL, 3);
+}
+
+/// The step of a checkpoint file (src/tc/io/checkpoint.hpp: magic, version, hash, τ,
+/// dimension, number of bodies, n_u and n_θ of each body, then the step).
+int checkpoint_step(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char head[36];
+  in.read(head, sizeof head);
+  std::int32_t bodies = 0, step = -1;
+  std::memcpy(&bodies, head + 32, sizeof bodies);
+  in.seekg(36 + 16 * static_cast<std::streamoff>(bodies));
+  in.read(reinterpret_cast<char*>(&step), sizeof step);
+  return in ? step : -1;
+}
+
+TEST(Kill, SigkillBetweenCheckpointsRestartsFromTheLastAndRedoesTheStepsAfterIt) {
+  // issue 39: the checkpoint is no longer written after every step ([output] checkpoint_every,
+  // checkpoint_seconds). Killed between two checkpoints, the run leaves history rows past its
+  // checkpoint's step: the restart cuts them, does those steps again and reproduces the
+  // uninterrupted history.csv. Every 7 steps here, by count alone (0 s: not by time).
+  auto text = tc::test::read_file(sliding);
+  text = tc::test::replace_all(text, "every = 3",
+                               "every = 3\ncheckpoint_every = 7\ncheckpoint_seconds = 0");
+  const auto dir = tc::test::fresh_dir("kill-every-" + std::to_string(::getpid()));
+  const auto case_file = dir / "sliding-2d.toml";
+  std::ofstream(case_file) << text;
+  // The mesh-free case reads nothing beside it: the copy runs the same problem.
+  std::random_device device;
+  const unsigned seed = device();
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> step(9, n_steps - 5);  // past the checkpoint of step 7
+  const size_t rows = static_cast<size_t>(step(random)) + 1;
+  SCOPED_TRACE("seed " + std::to_string(seed) + ", killed once history.csv had " +
+               std::to_string(rows) + " rows");
+  const auto out = dir / "out";
+  const auto k = run_and_kill(out, SIGKILL, rows, case_file);
+  ASSERT_FALSE(k.finished) << "the run ended before the signal";
+  ASSERT_TRUE(WIFSIGNALED(k.status) && WTERMSIG(k.status) == SIGKILL) << k.status;
+  const int done = static_cast<int>(tc::test::read_history(out / "history.csv").rows.size()) - 1;
+  const int at = checkpoint_step(out / "checkpoint.bin");
+  EXPECT_EQ(at % 7, 0) << at;
+  EXPECT_GE(at, 7);
+  EXPECT_LE(at, done);
+  EXPECT_GE(at, 7 * (done / 7) - 7);  // the last one due before the kill, or the one before
+  expect_restart_reproduces(out, case_file);
 }
 
 TEST(Kill, HangupAndBatchSystemSignalsStopCleanlyAndRestart) {

@@ -2,6 +2,8 @@
 // (summary.json's wall_seconds and peak_memory_gib).
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
 #include <vector>
 
 #include "tc/core/timer.hpp"
@@ -43,3 +45,25 @@ TEST(PhaseTimers, AttributeTheRiseOfThePeakResidentMemoryToItsPhase) {
 }
 
 }  // namespace
+
+TEST(PhaseTimers, ANestedPhasePausesTheOuterOneSoEachSecondCountsOnce) {
+  // summary.json's phases add up to the run's wall time (issue 39): the time inside an inner
+  // scope is the inner phase's only.
+  core::PhaseTimers t;
+  const auto wait = [](int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); };
+  {
+    auto outer = t.scope("outer");
+    wait(20);
+    {
+      auto inner = t.scope("inner");
+      wait(300);
+    }
+    wait(20);
+  }
+  // Sleeps last at least as asked; the outer's own 40 ms plus the scheduler's slack (260 ms
+  // allowed, for a loaded machine) stays below the inner's 300 ms, which it counted too
+  // before (≥ 340 ms).
+  EXPECT_GE(t["inner"], 0.300);
+  EXPECT_GE(t["outer"], 0.040);
+  EXPECT_LT(t["outer"], 0.300);
+}

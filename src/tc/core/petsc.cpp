@@ -1,9 +1,7 @@
 #include "tc/core/petsc.hpp"
 
-#include <dlfcn.h>
 #include <fmt/format.h>
 #include <malloc.h>
-#include <sched.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -20,6 +18,7 @@
 
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/threads.hpp"
 
 namespace tc::core {
 
@@ -35,28 +34,6 @@ void check_petsc(PetscErrorCode code, const char* call, const char* file, int li
 }
 
 namespace {
-/// BLAS threads per rank: the CPUs this process may run on (its affinity mask), shared by the
-/// ranks on its node, unless OPENBLAS_NUM_THREADS (or OMP_NUM_THREADS) gives the number. A
-/// serial run then uses the machine's cores in the dense kernels (factorisation, the compliance,
-/// the QP's products with an explicit F); ranks that fill a node get one thread each. Set
-/// explicitly because OpenBLAS sized its pool from the environment when it was loaded.
-int set_blas_threads(int ranks_on_node) {
-  using SetThreads = void (*)(int);
-  auto* set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  if (!set) return 1;
-  int n = 0;
-  for (const char* name : {"OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"})
-    if (const char* v = std::getenv(name); v && n <= 0) n = std::atoi(v);
-  if (n <= 0) {
-    cpu_set_t cpus;
-    CPU_ZERO(&cpus);
-    const int usable = sched_getaffinity(0, sizeof cpus, &cpus) == 0 ? CPU_COUNT(&cpus) : 1;
-    n = std::max(1, usable / std::max(1, ranks_on_node));
-  }
-  set(n);
-  return n;
-}
-
 /// The heap on transparent huge pages. In a fresh process the first assembly and
 /// factorisations touch their memory 4 KiB page by page, and on the 2-core VM those faults
 /// were half of the set-up (example 05: 0.42 s in a fresh process, 0.22 s when a first run
@@ -117,7 +94,6 @@ void singleton_transport_defaults() {
 }  // namespace
 
 int PetscSession::node_size_ = 1;
-int PetscSession::blas_threads_ = 1;
 
 PetscSession::PetscSession(int* argc, char*** argv) {
   prefer_huge_pages();
@@ -134,7 +110,7 @@ PetscSession::PetscSession(int* argc, char*** argv) {
     if (MPI_Comm_size(node, &n) == MPI_SUCCESS) node_size_ = n;
     MPI_Comm_free(&node);
   }
-  blas_threads_ = set_blas_threads(node_size_);
+  ThreadPolicy::start(node_size_, size());
 }
 
 PetscSession::~PetscSession() {
@@ -153,7 +129,7 @@ int PetscSession::node_size() {
 }
 
 int PetscSession::blas_threads() {
-  return blas_threads_;
+  return ThreadPolicy::outside_kernels();
 }
 
 int PetscSession::size() {
@@ -496,6 +472,15 @@ std::string requested_factor_package() {
   return set ? std::string(opt) : std::string();
 }
 
+namespace {
+/// The work of factorising n rows, for the thread policy: n², nested dissection's flops for a
+/// 3D body (a 2D body's n^1.5 are fewer: it may get threads it could do without, never the
+/// reverse). 10⁴ rows (a 3D body's 0.4 s on one core) sit at the threshold.
+double factorisation_flops(PetscInt n) {
+  return static_cast<double>(n) * static_cast<double>(n);
+}
+}  // namespace
+
 CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package,
                                FactorRanks ranks) {
   package_ = package;
@@ -518,7 +503,10 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package
   TC_PETSC(PCSetType(pc, PCCHOLESKY));
   TC_PETSC(PCFactorSetMatSolverType(pc, package_.c_str()));
   TC_PETSC(KSPSetErrorIfNotConverged(ksp.get(), PETSC_TRUE));
-  TC_PETSC(KSPSetUp(ksp.get()));  // the factorisation happens here, once
+  {
+    const KernelThreads threads(factorisation_flops(a.rows()));
+    TC_PETSC(KSPSetUp(ksp.get()));  // the factorisation happens here, once
+  }
   ::Mat f = nullptr;
   TC_PETSC(PCFactorGetMatrix(pc, &f));
   TC_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(f)));
@@ -658,6 +646,7 @@ void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const Pe
   // ranks' dynamic scheduling can exceed the estimate: 10 % first (the 200 k-dof ch. 7 case at
   // 2 ranks: 1.50 → 1.43 GiB per rank; 5 % ran out in 4 runs of 5), and when MUMPS reports a
   // work space too small (INFOG(1) −8, −9, −11, −12, −14, −15, −17), once more with 35 %.
+  const KernelThreads threads(factorisation_flops(r.n) / size);
   for (const PetscInt relaxation : {10, 35}) {
     ::Mat f = nullptr;
     TC_PETSC(MatGetFactor(local.get(), MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &f));

@@ -31,13 +31,12 @@ class PetscSession {
   /// The ranks of PETSC_COMM_WORLD on this rank's node, sharing its memory (1 before a session):
   /// every rank holds every body (docs/choices.md, "Replicated state"), so they divide it.
   [[nodiscard]] static int node_size();
-  /// BLAS threads of this rank: OPENBLAS_NUM_THREADS, else its CPUs over node_size() (1 without
-  /// OpenBLAS or before a session).
+  /// BLAS threads of this rank outside large kernels: 1, or OPENBLAS_NUM_THREADS (the policy
+  /// and the kernels' threads: core/threads.hpp).
   [[nodiscard]] static int blas_threads();
 
  private:
   static int node_size_;
-  static int blas_threads_;
 };
 
 /// Owning handle of a PETSc object (Vec, Mat, KSP, ...): move-only, destroyed once.

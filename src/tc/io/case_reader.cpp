@@ -1033,7 +1033,8 @@ void CaseReader::read_solver(const TableReader& root) {
 
 void CaseReader::read_output(const TableReader& root) {
   p_.output.directory = resolve("out");
-  const auto o = root.sub_table("output", Need::optional, {"directory", "every"});
+  const auto o = root.sub_table("output", Need::optional,
+                                {"directory", "every", "checkpoint_every", "checkpoint_seconds"});
   if (!o) return;
   if (const auto d = o->string("directory", Need::optional)) {
     if (d->empty())
@@ -1042,6 +1043,11 @@ void CaseReader::read_output(const TableReader& root) {
       p_.output.directory = resolve(*d);
   }
   if (const auto e = o->integer("every", Need::optional, 1)) p_.output.every = *e;
+  if (const auto e = o->integer("checkpoint_every", Need::optional, 0))
+    p_.output.checkpoint_every = *e;
+  if (const auto t =
+          o->number("checkpoint_seconds", Need::optional, non_negative("checkpoint_seconds (s)")))
+    p_.output.checkpoint_seconds = *t;
 }
 
 namespace {

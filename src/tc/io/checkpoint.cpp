@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -349,16 +350,58 @@ void check_restart_history(const std::filesystem::path& directory, const physics
                : fmt::format("ends at step {}, before the checkpoint's step {}", expected - 1, k));
 }
 
-CheckpointWriter::CheckpointWriter(std::filesystem::path directory, std::uint64_t case_hash)
+CheckpointPolicy CheckpointPolicy::of(const physics::OutputSettings& output) {
+  return {output.checkpoint_every, output.checkpoint_seconds};
+}
+
+bool CheckpointPolicy::due(int steps, double seconds, double cost) const {
+  if (every > 0 && steps >= every) return true;
+  return this->seconds > 0 && seconds >= std::max(this->seconds, cost_factor * cost);
+}
+
+CheckpointWriter::CheckpointWriter(std::filesystem::path directory, std::uint64_t case_hash,
+                                   CheckpointPolicy policy)
     : file_(checkpoint_file(directory)),
       case_hash_(case_hash),
+      policy_(policy),
       root_(core::PetscSession::rank() == 0) {}
 
-void CheckpointWriter::step(const physics::Simulation& sim) {
+namespace {
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+void CheckpointWriter::write(const physics::Simulation& sim) {
+  const double t0 = now_seconds();
   // Rank 0 writes; a failure there (disk full) must stop every rank, not leave them waiting.
   core::collective_check(PETSC_COMM_WORLD, "checkpoint", [&] {
     if (root_) write_checkpoint(file_, sim, case_hash_);
   });
+  written_step_ = sim.step();
+  last_time_ = now_seconds();
+  last_cost_ = last_time_ - t0;
+}
+
+void CheckpointWriter::step(const physics::Simulation& sim) {
+  seen_step_ = sim.step();
+  // The first step seen (t = 0, or the restored step) always: a restart has a checkpoint from
+  // the start on. Rank 0's clock decides for every rank: they must agree on a collective write.
+  int due = written_step_ < 0 ||
+            policy_.due(sim.step() - written_step_, now_seconds() - last_time_, last_cost_);
+  if (core::PetscSession::size() > 1)
+    core::check_mpi(MPI_Bcast(&due, 1, MPI_INT, 0, PETSC_COMM_WORLD), "MPI_Bcast");
+  if (due) write(sim);
+}
+
+void CheckpointWriter::finish(const physics::Simulation& sim, const physics::RunStatus& status) {
+  // At the end and after a stop signal the state is that of the last step whose output is
+  // whole (seen by step()): it is saved, so the restart loses nothing. After a numerical or
+  // output failure inside a step the state is part-way through the next one: the last
+  // checkpoint stands, and a restart re-does the steps after it.
+  if ((status.completed || status.between_steps) && seen_step_ == sim.step() &&
+      written_step_ != sim.step())
+    write(sim);
 }
 
 }  // namespace tc::io

@@ -1,6 +1,7 @@
 #pragma once
 // Restart files (case-format.md, "Restart"): OUTDIR/checkpoint.bin holds the
-// physics::Checkpoint of the last completed step, rewritten after every step through a
+// physics::Checkpoint of a completed step, rewritten by CheckpointPolicy (at the first step,
+// every checkpoint_every steps or checkpoint_seconds, at a stop and at the end) through a
 // temporary file and a rename, so that whenever the run stops the file is a whole checkpoint.
 //
 // Layout (native byte order, for a restart on the same kind of machine): the magic
@@ -67,17 +68,43 @@ void check_restart_outputs(const std::filesystem::path& directory);
 /// steps 0–9 then 40; issue 42, D3 and D11). Rows from step k on are written again.
 void check_restart_history(const std::filesystem::path& directory, const physics::Simulation& sim);
 
-/// Writes the checkpoint after every completed step (MPI rank 0 only; every rank holds every
-/// body). Put it after the OutputWriter: a checkpoint then never runs ahead of history.csv.
+/// When a checkpoint is written ([output] checkpoint_every, checkpoint_seconds;
+/// docs/case-format.md): after a step once `every` steps (0: not by count) or `seconds` of
+/// wall time (0: not by time) have passed since the last one, the time never less than
+/// cost_factor times the last checkpoint's own cost (so that it stays within 1/cost_factor of
+/// the run); and always at the first step, after a stop signal and at the end (CheckpointWriter).
+struct CheckpointPolicy {
+  int every = 0;
+  double seconds = 10.0;
+  static constexpr double cost_factor = 50.0;
+  [[nodiscard]] static CheckpointPolicy of(const physics::OutputSettings& output);
+  /// Whether a checkpoint is due `steps` steps and `seconds` after the last, which took `cost`.
+  [[nodiscard]] bool due(int steps, double seconds, double cost) const;
+};
+
+/// Writes the checkpoint by its policy (MPI rank 0 only; every rank holds every body). Put it
+/// after the OutputWriter: a checkpoint then never runs ahead of history.csv. A restart from a
+/// checkpoint older than the last history row re-does the steps after it, and the OutputWriter
+/// cuts history.csv back to the checkpoint's step (OutputWriter::resume): the rows come out
+/// the same, bit for bit.
 class CheckpointWriter : public physics::Observer {
  public:
-  CheckpointWriter(std::filesystem::path directory, std::uint64_t case_hash);
+  CheckpointWriter(std::filesystem::path directory, std::uint64_t case_hash,
+                   CheckpointPolicy policy = {1, 0.0});
   void step(const physics::Simulation& sim) override;
+  void finish(const physics::Simulation& sim, const physics::RunStatus& status) override;
+  /// The step of the last checkpoint written (−1: none yet).
+  [[nodiscard]] int written_step() const { return written_step_; }
 
  private:
+  void write(const physics::Simulation& sim);
   std::filesystem::path file_;
   std::uint64_t case_hash_;
+  CheckpointPolicy policy_;
   bool root_;
+  int written_step_ = -1;
+  int seen_step_ = -1;  // the last step whose output was whole (step() is called after it)
+  double last_time_ = 0, last_cost_ = 0;
 };
 
 }  // namespace tc::io

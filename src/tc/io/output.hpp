@@ -40,12 +40,17 @@ class OutputWriter : public physics::Observer {
   [[nodiscard]] int steps_written() const { return steps_written_; }
   /// summary.json as it must read should the process end before finish() writes the real one
   /// (a second stop signal; a kill after a first one, as mpirun does; a summary.json that
-  /// cannot be written): status "stopped" and the steps whose output is whole. Rewritten
-  /// after every history row, removed by finish(); a signal handler renames it over
-  /// summary.json (rename is async-signal-safe; formatting JSON there is not).
+  /// cannot be written): status "stopped" and the steps whose output is whole. Rewritten in
+  /// place after every history row (no rename: write_stopped_summary), removed by finish(); a
+  /// signal handler renames it over summary.json (rename is async-signal-safe; formatting JSON
+  /// there is not).
   [[nodiscard]] static std::filesystem::path stopped_summary(const std::filesystem::path& dir) {
     return dir / "summary.stopped.json";  // the name is spelled out where the file is renamed
   }
+  /// The run's phases outside the simulation, in summary.json's wall_seconds with the
+  /// simulation's: "history" and "output" (the fields) timed here; "startup", "reading",
+  /// "checkpoint" and "progress" by the caller (TimedObserver).
+  [[nodiscard]] core::PhaseTimers& phases() { return phases_; }
 
  private:
   void write_fields(const physics::Simulation& sim);
@@ -64,8 +69,10 @@ class OutputWriter : public physics::Observer {
   [[nodiscard]] std::string summary_text(const physics::Simulation& sim, const std::string& status,
                                          const std::string& message) const;
   void write_summary(const physics::Simulation& sim, const std::string& status,
-                     const std::string& message,
-                     const std::string& file_name = "summary.json") const;
+                     const std::string& message) const;
+  void write_stopped_summary(const physics::Simulation& sim, const std::string& message);
+  [[nodiscard]] std::string summary_text(const physics::Simulation& sim, const std::string& status,
+                                         const std::string& message) const;
 
   std::filesystem::path dir_;
   int every_;
@@ -80,12 +87,15 @@ class OutputWriter : public physics::Observer {
     unsigned long long device = 0, inode = 0;
   };
   Identity directory_id_, history_id_;  // what start() opened (require_in_place)
+  int stopped_fd_ = -1;                 // summary.stopped.json, rewritten in place
+  size_t stopped_length_ = 0;           // its length so far (a shorter text is padded to it)
   int steps_written_ = 0;  // the last step whose history row is written (summary's steps_done)
   bool failed_ = false;    // a write failed or a row was not finite: the run is stopping
   bool resume_ = false;
   const std::atomic<int>* stop_ = nullptr;
   int resumed_step_ = -1;
-  double output_seconds_ = 0;
+  [[nodiscard]] std::string phases_json(const core::PhaseTimers& simulation) const;
+  core::PhaseTimers phases_;
   std::string peak_memory_ = "null";  // summary.json's peak_memory_gib, gathered collectively
 };
 
@@ -93,6 +103,10 @@ class OutputWriter : public physics::Observer {
 /// rank so far, and per phase the largest rise of a rank's peak inside it, in GiB. Collective
 /// over PETSC_COMM_WORLD; the text is rank 0's.
 [[nodiscard]] std::string peak_memory_json(const core::PhaseTimers& timers);
+
+/// summary.json's blas_threads: the policy (core/threads.hpp), this rank's budget and what its
+/// large kernels used so far.
+[[nodiscard]] std::string blas_threads_json();
 
 /// The fields of one body written to its .vtu (exposed for tests).
 void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data,
@@ -115,6 +129,30 @@ class ProgressLine : public physics::Observer {
   bool terminal_;
   bool root_;
   double start_ = 0;
+};
+
+/// Forwards every event to `observer`, its time counted in phase `name` of `timers`.
+class TimedObserver : public physics::Observer {
+ public:
+  TimedObserver(physics::Observer& observer, core::PhaseTimers& timers, std::string name)
+      : observer_(observer), timers_(timers), name_(std::move(name)) {}
+  void start(const physics::Simulation& s) override {
+    auto t = timers_.scope(name_);
+    observer_.start(s);
+  }
+  void step(const physics::Simulation& s) override {
+    auto t = timers_.scope(name_);
+    observer_.step(s);
+  }
+  void finish(const physics::Simulation& s, const physics::RunStatus& r) override {
+    auto t = timers_.scope(name_);
+    observer_.finish(s, r);
+  }
+
+ private:
+  physics::Observer& observer_;
+  core::PhaseTimers& timers_;
+  std::string name_;
 };
 
 /// Forwards every event to each observer in order.

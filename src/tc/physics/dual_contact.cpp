@@ -13,6 +13,7 @@
 
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/threads.hpp"
 
 namespace tc::physics {
 
@@ -421,8 +422,13 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
       next = n_bands;
     }
   };
-  const int threads =
-      settings_.form_threads > 0 ? settings_.form_threads : core::PetscSession::blas_threads();
+  // 2·nnz(B_i)·(|U| + m) flops: by the policy's kernel threads (core/threads.hpp) when large.
+  double flops = 0;
+  for (int i = 0; i < nb; ++i)
+    flops +=
+        2.0 * static_cast<double>(bt[i].value.size()) * static_cast<double>(s_used_rows_[i] + m);
+  const core::KernelThreads kernel(flops);
+  const int threads = settings_.form_threads > 0 ? settings_.form_threads : kernel.threads();
   const PetscInt n_threads = std::clamp<PetscInt>(threads, 1, n_bands);
   {
     std::vector<std::jthread> helpers;
@@ -619,6 +625,9 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
   };
   if (kind_ == DualOperator::explicit_schur) {
     qp::SymmetricDenseOperator f(f_dense_.get());  // Σ F Σ when scaled
+    // 2m² flops per product, some tens of products per QP: dsymv on a large F is a kernel
+    // that gains from threads (core/threads.hpp); a small one stays on one.
+    const core::KernelThreads threads(50 * 2.0 * static_cast<double>(m) * static_cast<double>(m));
     if (rank_one) {
       qp::FunctionOperator fr(
           [&](const core::Vector& x, core::Vector& y) {

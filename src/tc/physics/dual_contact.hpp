@@ -49,8 +49,8 @@ struct DualContactSettings {
   /// per node (docs/choices.md). Same minimiser; the stopping test is on Σ g^P against Σ d.
   bool scale = true;
   /// Threads that form the explicit F from the compliance (its bands of rows are independent);
-  /// 0 = the rank's BLAS threads (core::PetscSession::blas_threads). The same F to the bit
-  /// with any number.
+  /// 0 = the thread policy's for a kernel of its size (core::KernelThreads). The same F to the
+  /// bit with any number.
   int form_threads = 0;
 };
 

@@ -190,6 +190,11 @@ struct SolverSettings {
 struct OutputSettings {
   std::filesystem::path directory = "out";
   int every = 1;
+  /// The checkpoint's policy (io::CheckpointPolicy): after a step once this many steps have
+  /// passed since the last one (0: never by count), or this many seconds of wall time (0:
+  /// never by time); always at step 0, at a stop and at the end.
+  int checkpoint_every = 0;
+  double checkpoint_seconds = 10.0;
 };
 
 struct Problem;

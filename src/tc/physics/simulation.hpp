@@ -35,7 +35,8 @@ struct RunStatus {
   bool completed = false;
   int steps_done = 0;
   std::string message;
-  int exit_code = 0;  // 0 done, 1 numerical failure or interrupted (case-format.md)
+  int exit_code = 0;           // 0 done, 1 numerical failure or interrupted (case-format.md)
+  bool between_steps = false;  // stopped by the stop flag: the state is the last step's, whole
 };
 
 class Simulation;
