@@ -120,7 +120,7 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
          {pr.heat.generated, pr.heat.to_slave, pr.heat.to_master, pr.heat.conducted})
       e.put(x);
   }
-  for (const auto* record : {&c.compliance, &c.stabiliser_compliance}) {
+  for (const auto* record : {&c.compliance, &c.stabiliser_compliance, &c.heat_compliance}) {
     e.put(static_cast<std::int32_t>(record->size()));
     for (const auto& v : *record) e.put(std::vector<std::int32_t>(v.begin(), v.end()));
   }
@@ -196,7 +196,7 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
          {&pr.heat.generated, &pr.heat.to_slave, &pr.heat.to_master, &pr.heat.conducted})
       *x = d.get<double>();
   }
-  for (auto* record : {&c.compliance, &c.stabiliser_compliance}) {
+  for (auto* record : {&c.compliance, &c.stabiliser_compliance, &c.heat_compliance}) {
     const auto n = d.get<std::int32_t>();
     if (n < 0 || n > 2 * sim.n_bodies()) d.fail("a bad compliance record");
     record->resize(static_cast<size_t>(n));
