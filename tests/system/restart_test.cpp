@@ -221,7 +221,11 @@ TEST(Restart, ACheckpointOfAnotherCaseIsRefusedWithExitTwo) {
   std::ofstream(dir / "other.toml") << text;
   r = thermocontact("run " + (dir / "other.toml").string() + " --restart " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("different case file"), std::string::npos) << r.output;
+  // the key that differs is named, with both values
+  EXPECT_NE(r.output.find("different case: time.step: 0.00020000000000000001 in the checkpoint's "
+                          "run, 0.0001 now"),
+            std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("checkpoint.bin"), std::string::npos) << r.output;
 
   // A damaged checkpoint: one byte changed in the middle.
@@ -293,6 +297,90 @@ TEST(Restart, ACompletedRunRestartsAsCompletedWithItsHistoryUnchanged) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto after = tc::test::read_history(out / "history.csv");
   EXPECT_EQ(after.rows, before.rows);
+}
+
+}  // namespace
+
+namespace {
+
+/// The sliding case with `end` set to `end` (the file's is 8.0e-3: 40 steps of 2e-4 s).
+fs::path sliding_until(const fs::path& dir, const std::string& end, const std::string& extra = "") {
+  auto text = tc::test::read_file(sliding);
+  const std::string from = "end = 8.0e-3";
+  EXPECT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "end = " + end);
+  std::ofstream(dir / "case.toml") << text << extra;
+  return dir / "case.toml";
+}
+
+TEST(Restart, AnExtendedRestartEqualsTheLongerRunBitForBit) {
+  // Issue 41, #5: a run of 20 steps, completed, then restarted with end twice as large (and
+  // another output interval, and a comment): its 40 rows equal those of the 40-step run bit for
+  // bit. The old restart refused the changed file ("different case file").
+  const auto dir = tc::test::fresh_dir("restart-extend");
+  const auto longer = sliding_until(dir, "8.0e-3");
+  const auto full = dir / "full";
+  ASSERT_EQ(thermocontact(run_args(longer, full)).exit_code, 0);
+  fs::create_directories(dir / "short");
+  const auto shorter = sliding_until(dir / "short", "4.0e-3");
+  const auto out = dir / "out";
+  auto r = thermocontact(run_args(shorter, out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(tc::test::read_history(out / "history.csv").rows.size(), 21u);
+  fs::create_directories(dir / "extended");
+  auto text = tc::test::read_file(longer);
+  text = tc::test::replace_all(text, "every = 3", "every = 5   # fewer fields from here on");
+  std::ofstream(dir / "extended" / "case.toml") << "# extended to 8 ms\n" << text;
+  r = thermocontact("run " + (dir / "extended" / "case.toml").string() + " --restart " +
+                    out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("restarting from step 20"), std::string::npos) << r.output;
+  expect_same_bits(tc::test::read_history(full / "history.csv"),
+                   tc::test::read_history(out / "history.csv"), "extended");
+  const auto summary = tc::test::read_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps_done\": 40"), std::string::npos) << summary;
+}
+
+TEST(Restart, AChangedKeyIsRefusedByNameAndACommentIsNot) {
+  const auto dir = tc::test::fresh_dir("restart-keys");
+  const auto c = sliding_until(dir, "8.0e-3");
+  const auto out = dir / "out";
+  auto r = thermocontact(run_args(c, out) + " --set contact.friction=0.25 --stop-after 2");
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  const auto text = tc::test::read_file(c);
+  const auto before = tc::test::read_file(out / "history.csv");
+  // A material constant changed: refused, the key and both values named.
+  std::ofstream(dir / "case.toml")
+      << tc::test::replace_all(text, "young_modulus = 2.0e11", "young_modulus = 2.1e11");
+  r = thermocontact("run " + c.string() + " --restart " + out.string() +
+                    " --set contact.friction=0.25");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("materials.steel.young_modulus: 200000000000 in the checkpoint's run, "
+                          "210000000000 now"),
+            std::string::npos)
+      << r.output;
+  // The --set of the stopped run left out (or changed): refused naming it.
+  std::ofstream(dir / "case.toml") << text;
+  r = thermocontact("run " + c.string() + " --restart " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(
+                "contact.friction: 0.25 (--set) in the checkpoint's run, 0.29999999999999999 now"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(tc::test::read_file(out / "history.csv"), before);
+  // Comments and layout are not the case: accepted with the same --set.
+  std::ofstream(dir / "case.toml")
+      << "# a comment added after the stop\n"
+      << tc::test::replace_all(text, "friction = 0.3", "friction    =    0.3  # dry");
+  r = thermocontact("run " + c.string() + " --restart " + out.string() +
+                    " --set contact.friction=0.25");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // Shortened before its checkpoint: refused, naming time.end.
+  r = thermocontact("run " + c.string() + " --restart " + out.string() +
+                    " --set contact.friction=0.25 --set time.end=2.0e-4");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("time.end"), std::string::npos) << r.output;
 }
 
 }  // namespace
