@@ -268,10 +268,10 @@ void CaseReader::read_time(const TableReader& root) {
     t->issue("step", fmt::format("found step = {} with end = {}, which is {:.10g} steps; expected "
                                  "at most {} steps (time.end / time.step)",
                                  *step, *end, n, kMaxSteps));
-  else if (std::round(n) < 1)
-    t->issue("end", fmt::format("found end = {} < step/2 = {}, expected round(end/step) ≥ 1 (at "
-                                "least one step)",
-                                *end, *step / 2));
+  else if (n < 1 - 1e-9)
+    t->issue("end", fmt::format("found end = {} < step = {}, expected end ≥ step (at least one "
+                                "step)",
+                                *end, *step));
   else if (std::abs(n - std::round(n)) > 1e-9 * n)  // the contract: round(end/step) steps
     warn("time.end", fmt::format("found end/step = {:.10g}, not a whole number of steps: the run "
                                  "has round(end/step) = {:.0f} steps and ends at t = {:g} s",
