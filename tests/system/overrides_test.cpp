@@ -178,7 +178,9 @@ TEST(CaseWarnings, AnEndThatIsNotAWholeNumberOfStepsRunsRoundEndOverStep) {
   // end < step: at least one step is still required (an error, as before).
   const auto r = thermocontact("check " + sliding.string() + " --set time.end=0.9e-4");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("time.end: found end = 9e-05 < step = 0.0002, expected end ≥ step"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("time.end: found end = 9e-05 < step = 0.0002, expected end ≥ step"),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace
