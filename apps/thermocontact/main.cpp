@@ -301,8 +301,16 @@ std::string bad_forward_compliance() {
       "error: option -tc_forward_compliance: found '{}', expected nothing, true or false\n", opt);
 }
 
-int run(const std::string& case_file, const std::string& output, const std::string& restart,
-        bool force, int stop_after, std::vector<std::string> extra, const char* program) {
+/// The case's warnings (implausible in SI) and the geometric ones, by rank 0.
+void print_warnings(const tc::physics::Problem& problem, const std::vector<std::string>& more) {
+  if (tc::core::PetscSession::rank() != 0) return;
+  for (const auto& w : problem.warnings) fmt::print(stderr, "warning: {}\n", w);
+  for (const auto& w : more) fmt::print(stderr, "warning: {}\n", w);
+}
+
+int run(const std::string& case_file, const std::vector<std::string>& overrides,
+        const std::string& output, const std::string& restart, bool force, int stop_after,
+        std::vector<std::string> extra, const char* program) {
   // In this order: the options files are read for counting only once they are known to be
   // regular files of at most 1 MiB (/dev/zero was read for ever).
   auto why = bad_options_file(extra);
@@ -325,12 +333,10 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   try {
     // summary.json's "startup": the process until here (loader, MPI, PETSc, the options).
     const double startup = tc::core::seconds_since_process_start();
-    auto problem = tc::io::read_case(case_file);
+    auto problem = tc::io::read_case(case_file, overrides);
     if (!output.empty()) problem.output.directory = output;
     if (!restart.empty()) problem.output.directory = restart;  // continued where it stopped
-    const auto warnings = tc::io::check_geometry(problem);
-    if (tc::core::PetscSession::rank() == 0)
-      for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+    print_warnings(problem, tc::io::check_geometry(problem));
     // Held until the run returns: a second run into the same directory is refused (exit 2)
     // before it sets anything up, instead of mixing its rows with this one's.
     const auto earlier = !restart.empty() ? tc::io::EarlierRun::keep
@@ -417,17 +423,17 @@ int run(const std::string& case_file, const std::string& output, const std::stri
   }
 }
 
-int check(const std::string& case_file, const char* program) {
+int check(const std::string& case_file, const std::vector<std::string>& overrides,
+          const char* program) {
   int argc = 1;
   char* args[] = {const_cast<char*>(program), nullptr};
   char** argv = args;
   tc::core::PetscSession session(&argc, &argv);  // the contact check builds the mortar rows
   install_signal_handlers();                     // a stop signal ends a long mesh read (exit 1)
   try {
-    const auto problem = tc::io::read_case(case_file);
-    const auto warnings = tc::io::check_geometry(problem);
+    const auto problem = tc::io::read_case(case_file, overrides);
+    print_warnings(problem, tc::io::check_geometry(problem));
     if (tc::core::PetscSession::rank() != 0) return 0;  // every rank read it; one reports
-    for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
     int nodes = 0, cells = 0;
     for (const auto& b : problem.bodies) nodes += b.mesh.n_nodes(), cells += b.mesh.n_cells();
     fmt::print("{}: valid ({}D, {} bod{}, {} nodes, {} cells, {} steps)\n", case_file,
@@ -611,10 +617,16 @@ int main(int argc, char** argv) {
       ->excludes(restart_opt);
   int stop_after = -1;
   run_cmd->add_option("--stop-after", stop_after, "stop after this step as SIGTERM would")
-      ->group("");          // for tests and batch jobs: undocumented in --help
+      ->group("");  // for tests and batch jobs: undocumented in --help
+  std::vector<std::string> overrides;
+  const char* set_help =
+      "KEY=VALUE: set a key of the case file before it is validated (repeatable), e.g. "
+      "--set contact.friction=0.5, --set time.end=1.0, --set 'bodies[0].material=\"steel\"'";
+  run_cmd->add_option("--set", overrides, set_help)->allow_extra_args(false);
   run_cmd->allow_extras();  // PETSc options, e.g. -tc_factor_package mumps
   auto* check_cmd = app.add_subcommand("check", "validate a case file only");
   check_cmd->add_option("case", case_file, "case file (TOML)")->required();
+  check_cmd->add_option("--set", overrides, set_help)->allow_extra_args(false);
   app.add_subcommand("info", "version, PETSc/MPI configuration, factorizations");
   // PETSc's -help (one dash) after `run` goes to PETSc, not to CLI11's -h: CLI11 took it for
   // its own help, so PETSc's list of options was unreachable.
@@ -660,9 +672,9 @@ int main(int argc, char** argv) {
     if (run_cmd->parsed()) {
       auto extra = run_cmd->remaining();
       if (petsc_help) extra.emplace_back("-help");
-      return run(case_file, output, restart, force, stop_after, extra, argv[0]);
+      return run(case_file, overrides, output, restart, force, stop_after, extra, argv[0]);
     }
-    if (check_cmd->parsed()) return check(case_file, argv[0]);
+    if (check_cmd->parsed()) return check(case_file, overrides, argv[0]);
     return info(argv[0]);
   } catch (const std::bad_alloc&) {
     rlimit limit{};

@@ -5,6 +5,8 @@
 namespace tc {
 
 std::string InputIssue::str() const {
+  // line < 0: not from a file (a --set KEY=VALUE of the command line)
+  if (line < 0) return fmt::format("{}: {}: {}", file, key, message);
   return fmt::format("{}:{}: {}: {}", file, line, key, message);
 }
 

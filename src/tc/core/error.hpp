@@ -18,7 +18,8 @@ class Error : public std::runtime_error {
 /// One problem found in a case file: `FILE:LINE: KEY: what was found, what was expected`.
 struct InputIssue {
   std::string file;
-  int line = 0;  // 0 when the key is absent (then the line of its table is used if known)
+  int line = 0;  // 0 when the key is absent (then the line of its table is used if known);
+                 // < 0 for an issue of a command-line --set (file: "--set KEY=VALUE")
   std::string key;
   std::string message;
   [[nodiscard]] std::string str() const;

@@ -13,6 +13,7 @@
 
 #include "tc/core/petsc.hpp"
 #include "tc/io/auto_subdomains.hpp"
+#include "tc/io/case_overrides.hpp"
 #include "tc/io/case_schema.hpp"
 #include "tc/io/files.hpp"
 #include "tc/mesh/box.hpp"
@@ -205,6 +206,10 @@ class CaseReader {
   /// Issue for two [[boundary]] tables whose reaction columns reaction_<body>_<where>_x|y|z
   /// have one name (body "a" at "xmin_ymin", body "a_xmin" at "ymin").
   void check_reaction_columns();
+  /// Warnings for values that are valid but implausible in SI (unit habits: MPa, °C, g/cm³).
+  void warn_unit_habits();
+  /// A warning `FILE:LINE: KEY: message` (the line of `key`, a dotted path, if known).
+  void warn(const std::string& key, const std::string& message);
 
   /// The array of tables at `key` ([[key]]), or an issue.
   const toml::array* tables(const TableReader& root, std::string_view key, Need need);
@@ -256,6 +261,7 @@ Problem CaseReader::read() {
   if (issues_.empty()) check_quasistatic_bodies_held();
   if (issues_.empty()) check_massless_cells();
   if (!issues_.empty()) issues_.raise();
+  warn_unit_habits();
   return std::move(p_);
 }
 
@@ -298,10 +304,67 @@ void CaseReader::read_time(const TableReader& root) {
     t->issue("end", fmt::format("found end = {} < step = {}, expected end ≥ step (at least one "
                                 "step)",
                                 *end, *step));
-  else if (std::abs(n - std::round(n)) > 1e-9 * n)
-    t->issue("end", fmt::format("found end/step = {:.10g}, which is not a whole number of steps; "
-                                "expected end to be a multiple of step",
-                                n));
+  else if (std::abs(n - std::round(n)) > 1e-9 * n)  // the contract: round(end/step) steps
+    warn("time.end", fmt::format("found end/step = {:.10g}, not a whole number of steps: the run "
+                                 "has round(end/step) = {:.0f} steps and ends at t = {:g} s",
+                                 n, std::round(n), std::round(n) * *step));
+}
+
+void CaseReader::warn(const std::string& key, const std::string& message) {
+  int line = 1;
+  if (const auto node = root_.at_path(key); node && node.node()) {
+    line = std::max(1, static_cast<int>(node.node()->source().begin.line));
+  }
+  p_.warnings.push_back(fmt::format("{}:{}: {}: {}", file_.string(), line, key, message));
+}
+
+void CaseReader::warn_unit_habits() {
+  // Thresholds (case-format.md, "Warnings"): below each, no solid a user is likely to model
+  // has the value in SI, and the habit named gives it. A warning only: the case runs.
+  constexpr double kModulus = 1e6;      // Pa: soft rubber ~1e6; steel in MPa: 2.1e5
+  constexpr double kDensity = 10;       // kg/m³: solid foams ≥ ~20; steel in g/cm³: 7.85
+  constexpr double kSpecificHeat = 50;  // J/(kg·K): lead 128; steel in kJ/(kg·K): 0.45
+  constexpr double kTemperature = 150;  // K: −123 °C; room temperature in °C: 20
+  for (const auto& [name, m] : materials_) {
+    if (!m) continue;
+    const auto path = detail::join("materials", name);
+    if (m->young_modulus < kModulus)
+      warn(
+          path + ".young_modulus",
+          fmt::format("found {:g} Pa, below {:g} Pa, softer than rubber: did you give MPa? (steel: "
+                      "2.1e11 Pa)",
+                      m->young_modulus, kModulus));
+    if (m->density < kDensity)
+      warn(path + ".density", fmt::format("found {:g} kg/m³, below {:g} kg/m³: did you give g/cm³? "
+                                          "(steel: 7850 kg/m³)",
+                                          m->density, kDensity));
+    if (m->specific_heat < kSpecificHeat)
+      warn(path + ".specific_heat",
+           fmt::format("found {:g} J/(kg·K), below {:g} J/(kg·K): did you give kJ/(kg·K)? (steel: "
+                       "450 J/(kg·K))",
+                       m->specific_heat, kSpecificHeat));
+  }
+  const auto cold = [&](const std::string& key, const std::vector<double>& values) {
+    for (const double v : values)
+      if (v < kTemperature) {
+        warn(key, fmt::format("found {:g} K, below {:g} K: did you give °C? Temperatures are in "
+                              "kelvin ({:g} °C = {:g} K)",
+                              v, kTemperature, v, v + 273.15));
+        return;
+      }
+  };
+  cold("physics.reference_temperature", {p_.physics.reference_temperature});
+  for (size_t i = 0; i < p_.bodies.size(); ++i)
+    if (root_.at_path(detail::join(detail::at("bodies", i), "initial_temperature")))
+      cold(detail::join(detail::at("bodies", i), "initial_temperature"),
+           {p_.bodies[i].initial_temperature});
+  for (size_t i = 0; i < p_.boundaries.size(); ++i) {
+    const auto& bc = p_.boundaries[i];
+    const auto at = detail::at("boundary", i);
+    if (bc.temperature) cold(detail::join(at, "temperature"), bc.temperature->values());
+    if (bc.film) cold(detail::join(at, "film.ambient"), bc.film->ambient.values());
+    if (bc.radiation) cold(detail::join(at, "radiation.ambient"), bc.radiation->ambient.values());
+  }
 }
 
 void CaseReader::read_physics(const TableReader& root) {
@@ -1368,7 +1431,8 @@ std::optional<std::pair<int, std::string>> stray_non_ascii(std::string_view text
   return std::nullopt;
 }
 
-physics::Problem read_case(const std::filesystem::path& file) {
+physics::Problem read_case(const std::filesystem::path& file,
+                           std::span<const std::string> overrides) {
   if (const auto why = not_a_file(file); !why.empty())
     throw InputError({{file.string(), 1, "(file)", "cannot read the case file: it " + why}});
   std::string text;
@@ -1391,7 +1455,29 @@ physics::Problem read_case(const std::filesystem::path& file) {
     throw InputError({{file.string(), static_cast<int>(e.source().begin.line), "(syntax)",
                        fmt::format("not valid TOML: {}", e.description())}});
   }
-  return CaseReader(file, root).read();
+  const auto applied = detail::apply_overrides(root, overrides);
+  try {
+    auto problem = CaseReader(file, root).read();
+    problem.overrides.assign(overrides.begin(), overrides.end());
+    problem.content = detail::case_content(root, applied);
+    // A warning about an overridden value names its --set, not a line of the file.
+    const auto prefix = file.string() + ":";
+    for (auto& w : problem.warnings) {
+      if (w.rfind(prefix, 0) != 0) continue;
+      const auto key_at = w.find(": ", prefix.size());
+      const auto key_end = w.find(": ", key_at + 2);
+      if (key_at == std::string::npos || key_end == std::string::npos) continue;
+      std::vector<InputIssue> one{{"", 0, w.substr(key_at + 2, key_end - key_at - 2), ""}};
+      detail::attribute_issues(one, applied);
+      if (one[0].line < 0) w = one[0].file + w.substr(key_at);
+    }
+    return problem;
+  } catch (const InputError& e) {
+    if (applied.empty()) throw;
+    auto issues = e.issues();
+    detail::attribute_issues(issues, applied);
+    throw InputError(std::move(issues));
+  }
 }
 
 }  // namespace tc::io

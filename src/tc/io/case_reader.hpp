@@ -4,6 +4,7 @@
 // issues read `FILE:LINE: KEY: what was found, what was expected`.
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -13,7 +14,10 @@
 namespace tc::io {
 
 /// Reads, validates and builds the meshes of a case. Throws InputError (all issues).
-[[nodiscard]] physics::Problem read_case(const std::filesystem::path& file);
+/// `overrides`: `--set KEY=VALUE` of the command line, put into the parsed file before it is
+/// validated (case-format.md, "Overrides"); an issue they cause names `--set KEY=VALUE`.
+[[nodiscard]] physics::Problem read_case(const std::filesystem::path& file,
+                                         std::span<const std::string> overrides = {});
 
 /// The line and bytes (as \xNN) of the first non-ASCII character outside TOML strings and
 /// comments, where TOML has no use for one (read_case refuses the file: see its comment).

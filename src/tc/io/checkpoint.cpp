@@ -16,6 +16,7 @@
 #include "tc/core/bytes.hpp"
 #include "tc/core/collective.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/io/case_overrides.hpp"
 #include "tc/io/files.hpp"
 
 namespace tc::io {
@@ -83,7 +84,11 @@ std::uint64_t file_hash(const std::filesystem::path& file) {
 }
 
 std::uint64_t input_hash(const physics::Problem& problem) {
-  std::vector<std::uint64_t> hashes{file_hash(problem.case_file)};
+  // The case by its content (io::read_case): a comment, the layout or a key a restart may change
+  // (time.end, [output]) leave it; a Problem made in code has none, its file's bytes stand in.
+  std::vector<std::uint64_t> hashes{problem.content.empty()
+                                        ? file_hash(problem.case_file)
+                                        : fnv1a(problem.content.data(), problem.content.size())};
   for (const auto& b : problem.bodies)
     if (!b.mesh_file.empty()) hashes.push_back(file_hash(b.mesh_file));
   return hashes.size() == 1 ? hashes[0]
@@ -97,6 +102,8 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
   for (const char ch : magic) e.put(ch);
   e.put(checkpoint_version);
   e.put(case_hash);
+  const auto& content = sim.problem().content;
+  e.put(std::vector<char>(content.begin(), content.end()));
   e.put(sim.problem().time.step);
   e.put(static_cast<std::int32_t>(sim.problem().dimension));
   e.put(static_cast<std::int32_t>(sim.n_bodies()));
@@ -122,7 +129,7 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
          {pr.heat.generated, pr.heat.to_slave, pr.heat.to_master, pr.heat.conducted})
       e.put(x);
   }
-  for (const auto* record : {&c.compliance, &c.stabiliser_compliance}) {
+  for (const auto* record : {&c.compliance, &c.stabiliser_compliance, &c.heat_compliance}) {
     e.put(static_cast<std::int32_t>(record->size()));
     for (const auto& v : *record) e.put(std::vector<std::int32_t>(v.begin(), v.end()));
   }
@@ -156,11 +163,23 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
   if (const auto v = d.get<std::uint32_t>(); v != checkpoint_version)
     d.fail(fmt::format("format version {}, this program reads version {}", v, checkpoint_version));
   // What makes a checkpoint belong to a case: the same file, time step and discretisation.
-  if (d.get<std::uint64_t>() != case_hash)
+  const auto& p = sim.problem();
+  const auto stored_hash = d.get<std::uint64_t>();
+  const auto stored = d.get_vector<char>();
+  if (stored_hash != case_hash) {
+    // Name the key: the checkpoint holds the content of the case it was written for.
+    const auto why =
+        detail::content_difference(std::string(stored.begin(), stored.end()), p.content);
+    if (!why.empty())
+      d.fail(fmt::format(
+          "written for a different case: {}. A restart may change only time.end, the [output] "
+          "settings and the title (the state in the checkpoint was computed with the rest); "
+          "start a new run for another case, or give the same --set options",
+          why));
     d.fail(
         "written for a different case file (its contents, or those of a mesh file it reads, "
         "changed since the checkpoint)");
-  const auto& p = sim.problem();
+  }
   if (const auto tau = d.get<double>(); tau != p.time.step)
     d.fail(fmt::format("time step {:g} s, the case has {:g} s", tau, p.time.step));
   if (const auto dim = d.get<std::int32_t>(); dim != p.dimension)
@@ -198,7 +217,7 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
          {&pr.heat.generated, &pr.heat.to_slave, &pr.heat.to_master, &pr.heat.conducted})
       *x = d.get<double>();
   }
-  for (auto* record : {&c.compliance, &c.stabiliser_compliance}) {
+  for (auto* record : {&c.compliance, &c.stabiliser_compliance, &c.heat_compliance}) {
     const auto n = d.get<std::int32_t>();
     if (n < 0 || n > 2 * sim.n_bodies()) d.fail("a bad compliance record");
     record->resize(static_cast<size_t>(n));

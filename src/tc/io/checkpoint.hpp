@@ -5,7 +5,8 @@
 // temporary file and a rename, so that whenever the run stops the file is a whole checkpoint.
 //
 // Layout (native byte order, for a restart on the same kind of machine): the magic
-// "TCCHKPT\0", format version (u32), FNV-1a hash of the case file's bytes (u64), τ (f64),
+// "TCCHKPT\0", format version (u32), FNV-1a hash of the case's content and its mesh files' bytes
+// (u64), the content (Problem::content: u64 length, bytes; it names the key that changed), τ (f64),
 // dimension and number of bodies (i32), n_u and n_θ of every body (i64), the step (i32);
 // then the checkpoint's vectors (u64 length, values) and scalars; last an FNV-1a hash of all
 // the bytes before it, so that a damaged file is refused instead of read.
@@ -28,16 +29,18 @@ class CheckpointError : public Error {
 // 2: + warm-start tangents, compliance records; 3: + the combined contact dual's warm start
 // (gluing and Dirichlet λ, μ) and SMALBE's outer iterations; 4: + Σ_k w_k‖λ_τ,k‖ of the last step;
 // 5: + the heat lost through film and radiation boundaries (heat_film, heat_radiation); 6: per
-// contact pair its multipliers' nodes, tangents and ledger, compliance records per contact body
-inline constexpr std::uint32_t checkpoint_version = 6;
+// contact pair its multipliers' nodes, tangents and ledger, compliance records per contact body;
+// 7: + the interface heat solver's compliance record, the case's content after its hash
+inline constexpr std::uint32_t checkpoint_version = 7;
 
 /// The file name of the checkpoint in an output directory.
 [[nodiscard]] std::filesystem::path checkpoint_file(const std::filesystem::path& directory);
 
 /// FNV-1a (64 bit) of a file's bytes (0 when it cannot be read).
 [[nodiscard]] std::uint64_t file_hash(const std::filesystem::path& file);
-/// What a checkpoint belongs to: the case file's bytes and those of every mesh file it reads
-/// (a restart after a .msh file changed would continue on another mesh).
+/// What a checkpoint belongs to: the case's content (Problem::content: its keys and values after
+/// the --set overrides, without those a restart may change) and the bytes of every mesh file
+/// it reads (a restart after a .msh file changed would continue on another mesh).
 [[nodiscard]] std::uint64_t input_hash(const physics::Problem& problem);
 
 /// The checkpoint of `sim`'s current step as bytes (header, data, checksum).

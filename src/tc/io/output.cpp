@@ -547,6 +547,9 @@ std::string OutputWriter::summary_text(const physics::Simulation& sim, const std
   out.print("  \"message\": {},\n", json_string(message));
   out.print("  \"title\": {},\n", json_string(p.title));
   out.print("  \"case\": {},\n", json_string(p.case_file.string()));
+  std::string overrides;  // --set KEY=VALUE of the command line, in order
+  for (const auto& o : p.overrides) overrides += (overrides.empty() ? "" : ", ") + json_string(o);
+  out.print("  \"overrides\": [{}],\n", overrides);
   out.print("  \"wall_seconds\": {{\n{}  }},\n", phases);
   out.print("  \"peak_memory_gib\": {},\n", peak_memory_);
   out.print("  \"coupling_iterations\": {},\n", sim.total_coupling_iterations());

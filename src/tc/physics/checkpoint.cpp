@@ -49,8 +49,13 @@ void Simulation::restore(const Checkpoint& c) {
   // the checkpoint, so the steps after it repeat that run's arithmetic exactly.
   if (static_cast<int>(c.bodies.size()) != n_bodies())
     throw Error(fmt::format("checkpoint: {} bodies, this problem {}", c.bodies.size(), n_bodies()));
-  if (c.step < 0 || c.step > problem_.time.n_steps())
-    throw Error(fmt::format("checkpoint: step {} outside 0…{}", c.step, problem_.time.n_steps()));
+  if (c.step < 0) throw Error(fmt::format("checkpoint: step {} is negative", c.step));
+  if (c.step > problem_.time.n_steps())  // time.end may change on a restart, not before it
+    throw Error(fmt::format(
+        "checkpoint: written after step {}, beyond the {} steps of time.end = {:g} s; expected "
+        "time.end ≥ {:g} s (a restart may extend or shorten a run, not end it before its "
+        "checkpoint)",
+        c.step, problem_.time.n_steps(), problem_.time.end, c.step * problem_.time.step));
   history_.restore(c.row);
   for (int b = 0; b < n_bodies(); ++b) {
     auto& st = bodies_.states[b];

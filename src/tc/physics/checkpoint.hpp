@@ -31,6 +31,9 @@ struct Checkpoint {
   // The compliance records (DofCompliance::dofs, chunks) of each contact body of the contact
   // solver, then of the stabiliser's: replayed on restore, so F has the same bits.
   std::vector<std::vector<int>> compliance, stabiliser_compliance;
+  // The same for the interface heat solver's S (InterfaceHeatSolver: each contact body's
+  // temperature dofs on Γ that carried conductance; empty before the first such heat step).
+  std::vector<std::vector<int>> heat_compliance;
   std::vector<double> slip, heat_flux;
   std::vector<double> row;  // the history row of `step`
   double external_work = 0;

@@ -665,6 +665,7 @@ void ContactCoupling::save(Checkpoint& c) const {
     method_.enforcement->save(c);
     method_.scheme->save(c);
   }
+  heat_.save(c);
   c.slip = slip_;
   c.heat_flux = heat_flux();
   c.total_qp = total_qp_;
@@ -706,6 +707,7 @@ void ContactCoupling::restore(const Checkpoint& c) {
     method_.enforcement->restore(c);
     method_.scheme->restore(c);
   }
+  heat_.restore(c, problem_, group());
   slip_ = c.slip;
   total_qp_ = c.total_qp;
   total_applications_ = c.total_applications;

@@ -99,28 +99,7 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
     group.systems[i]->prescribe_theta(t, group.fields[i]->theta_new);
   const bool implicit = !conducting.empty() && treatment_ == ConductanceTreatment::implicit;
   if (implicit) {
-    if (!interface_heat_) {
-      // Γ of each body: the nodes of its contact surfaces in every pair.
-      std::vector<std::set<int>> nodes(static_cast<size_t>(group.size()));
-      for (const auto& c : p.contacts) {
-        const auto& members = group.index;
-        for (const auto& [b, where] :
-             {std::pair{c.slave_body, &c.slave_where}, {c.master_body, &c.master_where}}) {
-          const auto at = std::find(members.begin(), members.end(), b) - members.begin();
-          for (const int a : p.bodies[b].mesh.boundary_nodes(*where)) nodes[at].insert(a);
-        }
-      }
-      std::vector<const ConstrainedSolver*> solvers;
-      std::vector<PetscInt> n;
-      std::vector<std::vector<int>> gamma_nodes;
-      for (int i = 0; i < group.size(); ++i) {
-        solvers.push_back(group.fields[i]->heat.get());
-        n.push_back(group.systems[i]->n_theta());
-        gamma_nodes.emplace_back(nodes[i].begin(), nodes[i].end());
-      }
-      interface_heat_ = std::make_unique<InterfaceHeatSolver>(std::move(solvers), std::move(n),
-                                                              std::move(gamma_nodes));
-    }
+    if (!interface_heat_) make_interface_solver(p, group);
     // within a time step L changes by the fixed point's residual: refinement with the last LU
     interface_heat_->set_conductance(conducting, iteration > 1);
   }
@@ -146,6 +125,45 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
       for (int i = 0; i < group.size(); ++i)
         heat_from_deviation(theta0, *group.systems[i], t, *group.fields[i]);
   }
+}
+
+void ContactHeatCoupling::make_interface_solver(const Problem& p, const BodyGroup& group) {
+  // Γ of each body: the nodes of its contact surfaces in every pair.
+  std::vector<std::set<int>> nodes(static_cast<size_t>(group.size()));
+  for (const auto& c : p.contacts) {
+    const auto& members = group.index;
+    for (const auto& [b, where] :
+         {std::pair{c.slave_body, &c.slave_where}, {c.master_body, &c.master_where}}) {
+      const auto at = std::find(members.begin(), members.end(), b) - members.begin();
+      for (const int a : p.bodies[b].mesh.boundary_nodes(*where)) nodes[at].insert(a);
+    }
+  }
+  std::vector<const ConstrainedSolver*> solvers;
+  std::vector<PetscInt> n;
+  std::vector<std::vector<int>> gamma_nodes;
+  for (int i = 0; i < group.size(); ++i) {
+    solvers.push_back(group.fields[i]->heat.get());
+    n.push_back(group.systems[i]->n_theta());
+    gamma_nodes.emplace_back(nodes[i].begin(), nodes[i].end());
+  }
+  interface_heat_ = std::make_unique<InterfaceHeatSolver>(std::move(solvers), std::move(n),
+                                                          std::move(gamma_nodes));
+}
+
+void ContactHeatCoupling::save(Checkpoint& c) const {
+  c.heat_compliance.clear();
+  if (interface_heat_) interface_heat_->save_compliance(c.heat_compliance);
+}
+
+void ContactHeatCoupling::restore(const Checkpoint& c, const Problem& p, const BodyGroup& group) {
+  // The run's S only where its run had one (a checkpoint before the first conducting heat
+  // step has none: the next heat step makes it, as the run did).
+  if (c.heat_compliance.empty()) {
+    interface_heat_.reset();
+    return;
+  }
+  make_interface_solver(p, group);
+  interface_heat_->replay_compliance(c.heat_compliance);
 }
 
 void ContactHeatCoupling::group_boundary_heat(const Problem& p, const BodyGroup& group,

@@ -12,6 +12,7 @@
 #include "tc/physics/bodies.hpp"
 #include "tc/physics/body_field.hpp"
 #include "tc/physics/body_system.hpp"
+#include "tc/physics/checkpoint.hpp"
 #include "tc/physics/dual_contact.hpp"
 #include "tc/physics/interface_laws.hpp"
 #include "tc/physics/ledger.hpp"
@@ -62,12 +63,19 @@ class ContactHeatCoupling {
   void set_pairs(size_t n) { heat_.resize(n); }
   /// The pairs' ledgers (from a checkpoint, one per pair); the sum follows.
   void set_pair_heat(std::span<const ContactHeat> heat);
+  /// The interface heat solver's part of the restart record (its compliance, which grows with
+  /// the nodes that carried conductance), and back: made and replayed for `group` if the run
+  /// had one.
+  void save(Checkpoint& c) const;
+  void restore(const Checkpoint& c, const Problem& p, const BodyGroup& group);
 
  private:
   // The heat step with radiation or an h(t) film on any body of the group.
   void group_boundary_heat(const Problem& p, const BodyGroup& group, bool implicit, double t,
                            int step, int iteration);
   void sum_heat();
+  // The interface heat solver of the group's bodies (Γ: every pair's contact surfaces).
+  void make_interface_solver(const Problem& p, const BodyGroup& group);
 
   ConductanceTreatment treatment_ = ConductanceTreatment::implicit;
   std::unique_ptr<InterfaceHeatSolver> interface_heat_;

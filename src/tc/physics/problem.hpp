@@ -214,6 +214,14 @@ struct Problem {
   std::vector<ContactSettings> contacts;  // the contact pairs, in the order of the case file
   SolverSettings solver;
   OutputSettings output;
+  /// The command line's `--set KEY=VALUE`, as given (applied before validation).
+  std::vector<std::string> overrides;
+  /// What a restart must find unchanged: every key and value of the case (after the
+  /// overrides) but those a restart may change, one `key = value` line each (io::read_case).
+  std::string content;
+  /// Values that are valid but implausible in SI (a modulus in MPa, a temperature in °C):
+  /// `FILE:LINE: KEY: …` each, printed by `check` and `run`.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace tc::physics

@@ -31,6 +31,29 @@ InterfaceHeatSolver::InterfaceHeatSolver(std::vector<const ConstrainedSolver*> s
   z_.resize(static_cast<size_t>(n_bodies()));
 }
 
+void InterfaceHeatSolver::save_compliance(std::vector<std::vector<int>>& record) const {
+  for (const auto& comp : compliance_) {
+    record.emplace_back(comp.dofs().begin(), comp.dofs().end());
+    record.emplace_back(comp.chunks().begin(), comp.chunks().end());
+  }
+}
+
+void InterfaceHeatSolver::replay_compliance(std::span<const std::vector<int>> record) {
+  if (record.size() != 2 * compliance_.size())
+    throw Error("checkpoint: the interface heat compliance record does not match the bodies");
+  for (size_t i = 0; i < compliance_.size(); ++i) {
+    for (const int d : record[2 * i])
+      if (d < 0 || d >= n_[i]) throw Error("checkpoint: an interface heat dof out of range");
+    compliance_[i].replay(
+        std::vector<PetscInt>(record[2 * i].begin(), record[2 * i].end()),
+        std::vector<PetscInt>(record[2 * i + 1].begin(), record[2 * i + 1].end()));
+  }
+  // J, L_JJ and the LU are set afresh by the first heat step of the next time step
+  // (set_conductance without refinement): nothing else passes between steps.
+  active_.clear();
+  lu_current_ = false;
+}
+
 int InterfaceHeatSolver::body_of(int g) const {
   return static_cast<int>(std::upper_bound(offset_.begin(), offset_.end(), g) - offset_.begin()) -
          1;
