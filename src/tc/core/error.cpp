@@ -50,9 +50,10 @@ NumericalError NumericalError::at_step(int step) const {
   // The text was formatted by the constructor above, here or on the rank that threw it
   // (collective.cpp sends what() as it is): its last "(step ?, " is the unknown step.
   std::string text = what();
-  const std::string unknown = "(" + step_text(-1) + ", ";
+  const auto unknown = fmt::format("({}, ", step_text(-1));
   if (const auto at = text.rfind(unknown); at != std::string::npos)
-    text.replace(at, unknown.size(), "(" + step_text(step) + ", ");
+    text = fmt::format("{}({}, {}", text.substr(0, at), step_text(step),
+                       text.substr(at + unknown.size()));
   return preformatted(text, step, iteration_, residual_);
 }
 

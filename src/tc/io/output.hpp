@@ -69,10 +69,10 @@ class OutputWriter : public physics::Observer {
   [[nodiscard]] std::string summary_text(const physics::Simulation& sim, const std::string& status,
                                          const std::string& message) const;
   void write_summary(const physics::Simulation& sim, const std::string& status,
-                     const std::string& message) const;
+                     const std::string& message,
+                     const std::string& file_name = "summary.json") const;
+  /// summary.stopped.json rewritten in place (created once, O_EXCL | O_NOFOLLOW through pin_).
   void write_stopped_summary(const physics::Simulation& sim, const std::string& message);
-  [[nodiscard]] std::string summary_text(const physics::Simulation& sim, const std::string& status,
-                                         const std::string& message) const;
 
   std::filesystem::path dir_;
   int every_;
