@@ -67,9 +67,11 @@ class FetiMpiCli : public ::testing::Test {
     text = replace_all(text, "end = 0.3", "end = 0.1");
     std::ofstream(dir_ / "cut.toml") << text;
   }
+  // Step cut-back off: an injected fault would otherwise be retried at τ/2 by fresh solvers,
+  // which it no longer hits; these tests are of how a failure reaches both ranks.
   static std::string run_args(const std::string& out, const std::string& extra = "") {
-    return fmt::format("run {} --output {} {}", (dir_ / "cut.toml").string(), (dir_ / out).string(),
-                       extra);
+    return fmt::format("run {} --set solver.max_cutbacks=0 --output {} {}",
+                       (dir_ / "cut.toml").string(), (dir_ / out).string(), extra);
   }
   /// A run failing on rank 1 in `phase`: both ranks stop with exit code 1 at once, rank 0
   /// reports "rank 1: <named phase>" once.

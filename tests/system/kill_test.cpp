@@ -161,15 +161,18 @@ TEST(Kill, SigkillAtARandomStepLeavesWholeFilesAndRestarts) {
   kill_trials(SIGKILL, 3);
 }
 
-/// The step of a checkpoint file (src/tc/io/checkpoint.hpp: magic, version, hash, τ,
-/// dimension, number of bodies, n_u and n_θ of each body, then the step).
+/// The step of a checkpoint file (src/tc/io/checkpoint.cpp, encode_checkpoint, format 7:
+/// magic, version, hash, the case's content as a length and its bytes, τ, dimension, number
+/// of bodies, n_u and n_θ of each body, then the step).
 int checkpoint_step(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
-  char head[36];
-  in.read(head, sizeof head);
+  in.seekg(8 + 4 + 8);
+  std::uint64_t content = 0;
+  in.read(reinterpret_cast<char*>(&content), sizeof content);
+  in.seekg(static_cast<std::streamoff>(content) + 8 + 4, std::ios::cur);
   std::int32_t bodies = 0, step = -1;
-  std::memcpy(&bodies, head + 32, sizeof bodies);
-  in.seekg(36 + 16 * static_cast<std::streamoff>(bodies));
+  in.read(reinterpret_cast<char*>(&bodies), sizeof bodies);
+  in.seekg(16 * static_cast<std::streamoff>(bodies), std::ios::cur);
   in.read(reinterpret_cast<char*>(&step), sizeof step);
   return in ? step : -1;
 }

@@ -148,6 +148,9 @@ class TimedObserver : public physics::Observer {
     auto t = timers_.scope(name_);
     observer_.finish(s, r);
   }
+  void warning(const physics::Simulation& s, const std::string& m) override {
+    observer_.warning(s, m);  // the progress line prints the run's warnings
+  }
 
  private:
   physics::Observer& observer_;

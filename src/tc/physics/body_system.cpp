@@ -176,6 +176,19 @@ void BodySystem::for_each_radiated(double t, const core::Vector& theta, Visit&& 
   }
 }
 
+void BodySystem::add_reaction_group(ReactionGroup group) {
+  // Two [[boundary]] tables on one face (each prescribing its own components) are one support:
+  // one set of columns, its dofs the union (a second set would repeat the columns' names).
+  const auto same = std::find_if(reactions_.begin(), reactions_.end(),
+                                 [&](const ReactionGroup& r) { return r.label == group.label; });
+  if (same == reactions_.end()) {
+    reactions_.push_back(std::move(group));
+    return;
+  }
+  for (int k = 0; k < dim_; ++k)
+    same->dofs[k].insert(same->dofs[k].end(), group.dofs[k].begin(), group.dofs[k].end());
+}
+
 void BodySystem::add_boundary(const BoundaryCondition& bc, const std::string& body_name) {
   const auto& mesh = body_->mesh;
   const auto nodes = mesh.boundary_nodes(bc.where);
@@ -202,7 +215,7 @@ void BodySystem::add_boundary(const BoundaryCondition& bc, const std::string& bo
       coupled_.push_back(std::move(face));
     }
   }
-  if (any_displacement) reactions_.push_back(std::move(group));
+  if (any_displacement) add_reaction_group(std::move(group));
   if (bc.temperature)
     for (const int a : nodes) th_prescribed_[a] = *bc.temperature;
   if (bc.heat_flux) th_loads_.push_back({*bc.heat_flux, 0, facet_weights});

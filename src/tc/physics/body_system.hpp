@@ -115,6 +115,7 @@ class BodySystem {
     int component = 0;
     std::vector<std::pair<PetscInt, double>> weights;
   };
+  void add_reaction_group(ReactionGroup group);  // merged with a group of the same face
   void add_boundary(const BoundaryCondition& bc, const std::string& body_name);
   struct FilmBoundary {
     Film film;

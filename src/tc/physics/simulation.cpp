@@ -202,7 +202,8 @@ void Simulation::advance_by_halves(const Checkpoint& start, const NumericalError
     throw NumericalError(
         fmt::format("{}; cut back {} time(s) to τ = {:g} s it still failed: {}; raise [solver] "
                     "max_cutbacks (now {}) or change what the messages name",
-                    failure.what(), left, tau / std::pow(2.0, left), e.what(), left),
+                    failure.at_step(step_ + 1).what(), left, tau / std::pow(2.0, left),
+                    e.at_step(step_ + 1).what(), left),
         step_ + 1, 0, e.residual());
   }
 }
