@@ -181,7 +181,7 @@ class Simulation {
   /// queued (docs/choices.md).
   void check_temperature_range(int step, int iteration);
 
-  void advance_once();      // the step k → k + 1 at τ
+  void advance_once();  // the step k → k + 1 at τ
   /// The step from `start` (its state, step k) as two steps of τ/2 on a copy of the problem
   /// with that step, whose own cut-backs go one level less deep; then this simulation takes
   /// the copy's state at t^{k+1} (docs/choices.md, "Step cut-back").
