@@ -29,6 +29,7 @@
 #include "tc/io/auto_subdomains.hpp"
 #include "tc/io/case_reader.hpp"
 #include "tc/io/checkpoint.hpp"
+#include "tc/io/data_checks.hpp"
 #include "tc/io/files.hpp"
 #include "tc/io/geometry_checks.hpp"
 #include "tc/io/output.hpp"
@@ -302,9 +303,11 @@ std::string bad_forward_compliance() {
 }
 
 /// The case's warnings (implausible in SI) and the geometric ones, by rank 0.
-void print_warnings(const tc::physics::Problem& problem, const std::vector<std::string>& more) {
+void print_warnings(const tc::physics::Problem& problem, const std::vector<std::string>& more,
+                    bool with_the_readers = true) {
   if (tc::core::PetscSession::rank() != 0) return;
-  for (const auto& w : problem.warnings) fmt::print(stderr, "warning: {}\n", w);
+  if (with_the_readers)
+    for (const auto& w : problem.warnings) fmt::print(stderr, "warning: {}\n", w);
   for (const auto& w : more) fmt::print(stderr, "warning: {}\n", w);
 }
 
@@ -337,6 +340,7 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     if (!output.empty()) problem.output.directory = output;
     if (!restart.empty()) problem.output.directory = restart;  // continued where it stopped
     print_warnings(problem, tc::io::check_geometry(problem));
+    print_warnings(problem, tc::io::check_time_data(problem), false);
     // Held until the run returns: a second run into the same directory is refused (exit 2)
     // before it sets anything up, instead of mixing its rows with this one's.
     const auto earlier = !restart.empty() ? tc::io::EarlierRun::keep
@@ -385,14 +389,6 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     const auto status = sim.run(observers, &g_stop_agreed);
     if (tc::core::PetscSession::rank() == 0) {
       warn_unused_options();
-      if (const auto& laws = sim.contact().laws_checked(); laws.release_steps > 0)
-        fmt::print(stderr,
-                   "warning: in {} step(s), from step {}, contact nodes released with a negative "
-                   "end-of-step normal multiplier (the modified mass scheme's release floor): "
-                   "there history.csv's contact_tangential_force / contact_normal_force reached "
-                   "{:.3g}, above the friction coefficient, while every node obeyed its friction "
-                   "cone (docs/robustness.md; summary.json contact_laws)\n",
-                   laws.release_steps, laws.first_release_step, laws.release_ratio);
       if (status.completed)
         fmt::print("done: {} steps; output in {}\n", status.steps_done,
                    tc::io::printable(problem.output.directory));
@@ -433,6 +429,7 @@ int check(const std::string& case_file, const std::vector<std::string>& override
   try {
     const auto problem = tc::io::read_case(case_file, overrides);
     print_warnings(problem, tc::io::check_geometry(problem));
+    print_warnings(problem, tc::io::check_time_data(problem), false);
     if (tc::core::PetscSession::rank() != 0) return 0;  // every rank read it; one reports
     int nodes = 0, cells = 0;
     for (const auto& b : problem.bodies) nodes += b.mesh.n_nodes(), cells += b.mesh.n_cells();

@@ -83,12 +83,11 @@ TEST(ContactLaws, AConeViolationBeyondTheFixedPointBoundStopsTheStep) {
 
 TEST(ContactLaws, AReleasedNodeIsNotACone) {
   TwoNodes t;
-  t.lambda = {-1, 0, 0, 10, 0, 3};  // node 7 released below 0 (modified mass floor), no λ_τ
-  ContactLaws laws;
+  t.lambda = {-1, 0, 0, 10, 0, 3};  // node 7 below 0 (a QP's tolerance), no λ_τ: its cone is
+  ContactLaws laws;                 // that of max(λ_n, 0) = 0, which λ_τ = 0 obeys
   EXPECT_NO_THROW(laws.check(t.laws(), 1.0, tol, lambda_norm, qp_tol, 2));
-  laws.note_release(2, 0.9);
-  EXPECT_EQ(laws.release_steps, 1);
-  EXPECT_EQ(laws.first_release_step, 2);
+  t.lambda = {-1, 1e-3, 0, 10, 0, 3};  // and any λ_τ there is a violation
+  EXPECT_THROW(laws.check(t.laws(), 1.0, tol, lambda_norm, qp_tol, 2), tc::NumericalError);
 }
 
 }  // namespace

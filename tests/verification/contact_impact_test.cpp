@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "support/contact_rows.hpp"
 #include "support/problems.hpp"
@@ -143,25 +145,29 @@ TEST_P(ContactImpact, NoPenetrationForceThenRelease) {
       // Without inertia on the contact faces the semi-discrete problem conserves energy (the
       // contact force does no work: λ_n > 0 only while the gap rate is zero). Discretely, the
       // trapezoidal rule changes E by the work of the mean contact force ½(λ^k + λ^{k+1}) on
-      // the gap increment: −½λ^{k+1}g^k ≤ 0 at the impact, and 0 at release thanks to the
-      // release floor λ_n^{k+1} ≥ −λ_n^k (physics::release_floor; without it the release
-      // step returned ½λ^k g^{k+1} > 0: +4.1 % at τ = 1e-5). So the energy never grows (to
-      // the QP tolerance and round-off, 1e-8 relative as for the stabilised scheme), and what
-      // the impact dissipates is O(τ): it falls as τ is halved, twice.
-      for (size_t i = 1; i < rec.energy.size(); ++i)
-        EXPECT_LE(rec.energy[i], rec.energy[i - 1] * (1 + 1e-8)) << "the energy grew at step " << i;
-      double loss = 1 - e_end / e0;
+      // the gap increment: −½λ^{k+1}g^k ≤ 0 at the impact and while in contact, +½λ^k g^{k+1}
+      // ≥ 0 at the step a node releases (docs/choices.md, "No release floor"). So the energy
+      // never grows at a step where no node released (to the QP tolerance and round-off, 1e-8
+      // relative as for the stabilised scheme), and the net change through the impact is
+      // O(τ): each halving of τ must shrink it (measured 2.4 / 0.81 / 0.32 %: ×0.34, ×0.39;
+      // 0.75 leaves room for the O(τ²) part without admitting a change that does not fall).
+      const auto no_growth_but_at_release = [](const Recorder& r, const std::string& what) {
+        for (size_t i = 1; i < r.energy.size(); ++i)
+          if (r.active[i] >= r.active[i - 1])
+            EXPECT_LE(r.energy[i], r.energy[i - 1] * (1 + 1e-8))
+                << what << ": the energy grew at step " << i << " where no node released";
+      };
+      no_growth_but_at_release(rec, "τ");
+      double change = std::abs(e_end / e0 - 1);
       for (const double refine : {2.0, 4.0}) {
         const auto finer = fall(scheme, tau / refine);
         ASSERT_TRUE(finer.status.completed) << finer.status.message;
-        const auto& en = finer.rec.energy;
-        for (size_t i = 1; i < en.size(); ++i)
-          EXPECT_LE(en[i], en[i - 1] * (1 + 1e-8)) << "τ/" << refine << ": grew at step " << i;
-        const double finer_loss = 1 - en.back() / e0;
-        std::printf("impact (modified_mass): energy lost %.3f %% at τ/%g\n", 100 * finer_loss,
-                    refine);
-        EXPECT_LT(finer_loss, 0.75 * loss) << "τ/" << refine;
-        loss = finer_loss;
+        no_growth_but_at_release(finer.rec, "τ/" + std::to_string(static_cast<int>(refine)));
+        const double finer_change = std::abs(finer.rec.energy.back() / e0 - 1);
+        std::printf("impact (modified_mass): energy changed by %.3f %% at τ/%g\n",
+                    100 * (finer.rec.energy.back() / e0 - 1), refine);
+        EXPECT_LT(finer_change, 0.75 * change) << "τ/" << refine;
+        change = finer_change;
       }
       EXPECT_GT(e_end, 0.9 * e0);  // the block rebounds nearly whole
       break;

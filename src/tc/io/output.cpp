@@ -582,11 +582,8 @@ std::string OutputWriter::summary_text(const physics::Simulation& sim, const std
         "{{\"value\": {}, \"bound\": {}, \"ratio\": {}, \"step\": {}, \"node\": {}}}",
         json_number(v.value), json_number(v.bound), json_number(v.ratio), v.step, v.node);
   };
-  out.print(
-      "  \"contact_laws\": {{\"penetration\": {}, \"cone\": {}, \"release_steps\": {}, "
-      "\"first_release_step\": {}, \"release_force_ratio\": {}}},\n",
-      law(laws.gap), law(laws.cone), laws.release_steps, laws.first_release_step,
-      json_number(laws.release_ratio));
+  out.print("  \"contact_laws\": {{\"penetration\": {}, \"cone\": {}}},\n", law(laws.gap),
+            law(laws.cone));
   out.print("  \"cut_back_steps\": {},\n", sim.cut_back_steps());
   out.print("  \"smallest_step\": {},\n", json_number(sim.smallest_step()));
   out.print("  \"last\": {{\n{}  }}\n", last);

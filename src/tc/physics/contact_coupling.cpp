@@ -636,17 +636,6 @@ void ContactCoupling::bookkeeping() {
     }
   }
   sum_pair_statistics();
-  // Every node obeyed its cone (check_laws), so T ≤ 𝔉 Σ_k w_k max(λ_n,k, 0); the history's
-  // N = Σ_k w_k λ_n,k is smaller only where nodes released with λ_n < 0 (the modified mass
-  // scheme's release floor): recorded, as the history's T/N then exceeds 𝔉.
-  double f_max = 0;
-  for (const double f : nodal_laws_.friction) f_max = std::max(f_max, f);
-  bool released = false;
-  for (size_t k = 0; k < l.size(); k += static_cast<size_t>(dim)) released = released || l[k] < 0;
-  if (released && stats_.tangential_force > f_max * stats_.normal_force)
-    laws_.note_release(step_of_last_couple_, stats_.normal_force > 0
-                                                 ? stats_.tangential_force / stats_.normal_force
-                                                 : std::numeric_limits<double>::infinity());
   total_qp_ += stats_.qp_iterations;
   total_applications_ += stats_.operator_applications;
 }

@@ -76,18 +76,12 @@ void ContactLaws::check(const PairLaws& p, double unit, double coupling_toleranc
   }
 }
 
-void ContactLaws::note_release(int step, double ratio) {
-  if (release_steps++ == 0) first_release_step = step;
-  release_ratio = std::max(release_ratio, ratio);
-}
-
 void ContactLaws::merge(const ContactLaws& sub, int step) {
   for (auto [to, from] : {std::pair{&gap, &sub.gap}, {&cone, &sub.cone}})
     if (from->node >= 0 && (to->node < 0 || from->ratio > to->ratio)) {
       *to = *from;
       to->step = step;
     }
-  if (sub.release_steps > 0) note_release(step, sub.release_ratio);
 }
 
 }  // namespace tc::physics

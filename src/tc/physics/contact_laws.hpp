@@ -50,19 +50,12 @@ struct PairLaws {
 /// The run's record of the laws (summary.json "contact_laws").
 struct ContactLaws {
   LawViolation gap, cone;
-  /// Steps whose end-of-step ratio T/N exceeded the largest 𝔉 only because nodes released
-  /// with λ_n < 0 (the modified mass scheme's release floor, docs/choices.md): every node
-  /// obeyed the cone; the first such step and the largest ratio.
-  int release_steps = 0, first_release_step = 0;
-  double release_ratio = 0;
 
   /// Checks one pair after step `step` (before the state moves on). `unit`: traction per
   /// multiplier; `coupling_tolerance`, `lambda_norm`: the fixed point's stopping test.
   /// Throws NumericalError when a law is violated beyond its bound.
   void check(const PairLaws& p, double unit, double coupling_tolerance, double lambda_norm,
              double qp_tolerance, int step);
-  /// Records a step whose aggregate T > 𝔉_max N (history's columns) came from released nodes.
-  void note_release(int step, double ratio);
   /// The record of the sub-steps of a cut-back (Simulation::advance_by_halves), its steps
   /// counted as `step` of this run.
   void merge(const ContactLaws& sub, int step);

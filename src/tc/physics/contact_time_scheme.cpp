@@ -4,7 +4,6 @@
 
 #include "tc/core/error.hpp"
 #include "tc/physics/contact_heat.hpp"
-#include "tc/physics/multiplier_transfer.hpp"
 #include "tc/physics/time_scheme.hpp"
 
 namespace tc::physics {
@@ -25,11 +24,6 @@ void PlainNewmarkContact::slip_reference(const BodyGroup& group) const {
     f.work_u.copy_from(f.u_pred);
     f.work_u.axpy(-0.5 * tau_, group.states[i]->v);
   }
-}
-
-void ModifiedMassContact::prepare(const BodyGroup&, DualContactSolver& dual,
-                                  const core::Vector& lambda, ContactStatistics&, int) {
-  dual.set_normal_floor(release_floor(lambda, dual.dim()));
 }
 
 void ModifiedMassContact::slip_reference(const BodyGroup& group) const {

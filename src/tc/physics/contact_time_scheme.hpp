@@ -47,12 +47,11 @@ class PlainNewmarkContact : public ContactTimeScheme {
 };
 
 /// Newmark with the modified mass of Hager, Hüeber & Wohlmuth: the contact nodes have no
-/// inertia (massless_rates), the slip is measured from u^k, and a node releases with
-/// λ_n^{k+1} ≥ −λ_n^k (release_floor), so the step's mean contact force does no work.
+/// inertia (massless_rates) and the slip is measured from u^k. Complementarity holds at
+/// t^{k+1} (λ_n ≥ 0): a releasing node adds ½λ_n^k g^{k+1} = O(τ) to the energy, the price of
+/// end-of-step forces that are physical (docs/choices.md, "No release floor").
 class ModifiedMassContact final : public ContactTimeScheme {
  public:
-  void prepare(const BodyGroup& group, DualContactSolver& dual, const core::Vector& lambda,
-               ContactStatistics& stats, int step) override;
   void slip_reference(const BodyGroup& group) const override;
 };
 

@@ -70,7 +70,6 @@ void DualContactSolver::set_rows(std::vector<ContactRows> pairs, std::vector<Pai
   pair_bodies_ = std::move(bodies);
   clear_rank_one();
   stack_rows();
-  normal_floor_.clear();
   held_.clear();
   const PetscInt m = n_rows();
   setup_solves_ = 0;
@@ -598,9 +597,7 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
   qp::FeasibleSet set(d);
   for (PetscInt k = 0; k < n_nodes(); ++k) {
     const bool held = held_at_zero(k);
-    const double floor = normal_floor_.empty() || held ? 0.0 : normal_floor_[k] / sigma(dim * k);
-    // λ_n ≥ 0 (or the release floor); 0 at a held crosspoint
-    set.set_interval(dim * k, {floor, held ? 0.0 : qp::infinity});
+    set.set_interval(dim * k, {0.0, held ? 0.0 : qp::infinity});  // λ_n ≥ 0; 0 at a crosspoint
     const double r = held ? 0.0 : std::max(friction_bound[k], 0.0) / sigma(dim * k + 1);
     if (dim == 2)
       set.set_interval(dim * k + 1, {-r, r});  // |λ_τ| ≤ 𝔉γ

@@ -129,10 +129,6 @@ class DualContactSolver {
     return solve(std::array{&u_free_slave, &u_free_master}, c, friction_bound, lambda,
                  std::array{&u_slave, &u_master}, recover, rtol);
   }
-  /// λ_n,k ≥ floor_k ≤ 0 instead of λ_n,k ≥ 0 in the solves until the next set_rows (empty:
-  /// all 0). The modified mass scheme lets a node release with λ_n^{k+1} ≥ −λ_n^k, so that
-  /// the step's mean contact force does no work (release_floor, multiplier_transfer.hpp).
-  void set_normal_floor(std::vector<double> floor) { normal_floor_ = std::move(floor); }
   /// Until clear_rank_one (or the next set_rows), the QPs of solve() are those of
   /// F + weight·g gᵀ and d + shift·g: a face under load control whose displacement w is
   /// eliminated (ContactCoupling::solve_qp, docs/theory.md "Load control"). g is per row.
@@ -216,7 +212,6 @@ class DualContactSolver {
   int dim_ = 3;
   std::vector<core::SparseMatrix> b_;  // B_i: the stacked rows' columns of body i
   std::vector<double> gap_;            // the pairs' weighted gaps, stacked
-  std::vector<double> normal_floor_;   // per node; empty: 0
   std::vector<char> held_;             // per node; empty: none held
   std::vector<double> rank_one_g_;     // set_rank_one: g per row (empty: none), weight, shift
   double rank_one_weight_ = 0, rank_one_shift_ = 0;

@@ -56,22 +56,4 @@ void MultiplierTransfer::restore(const Checkpoint::Pair& c) {
   }
 }
 
-std::vector<double> release_floor(const core::Vector& lambda_k, int dim) {
-  // With the modified mass the contact faces carry no inertia, so their rows are in
-  // equilibrium at every t^k and the trapezoidal rule's energy changes by the work of the
-  // mean contact force, ½(λ^k + λ^{k+1})·(g^{k+1} − g^k) with g the gap. Complementarity at
-  // t^{k+1} alone (λ ≥ 0, g ≥ 0, λg = 0) leaves ½λ^k g^{k+1} > 0 where a node releases: the
-  // energy grew by O(τ) at each release (+4.1 % through one impact at τ = 1e-5). Allowing
-  // λ_n^{k+1} ≥ −λ_n^k at a node that carried force at t^k (Laursen–Chawla's persistency,
-  // only at release) makes that term vanish: the node either stays closed (g^{k+1} = 0, no
-  // work) or opens with zero mean force. Where λ_n^k ≤ 0 the bound is λ_n ≥ 0, so a node
-  // opens with a negative force for at most one step, and an impact still dissipates
-  // −½λ^{k+1}g^k ≤ 0. The bound tends to 0 with the force at release: consistent in τ.
-  const auto lv = lambda_k.read();
-  std::vector<double> floor(static_cast<size_t>(lambda_k.size() / dim));
-  for (size_t k = 0; k < floor.size(); ++k)
-    floor[k] = -std::max(lv[dim * static_cast<PetscInt>(k)], 0.0);
-  return floor;
-}
-
 }  // namespace tc::physics

@@ -1,7 +1,6 @@
 #pragma once
 // The contact multipliers from one step to the next: step k+1's QP starts from λ^k moved onto
-// its rows (warm start), and the modified mass scheme bounds λ_n^{k+1} below at release
-// (release_floor).
+// its rows (warm start).
 #include <array>
 #include <vector>
 
@@ -33,9 +32,5 @@ class MultiplierTransfer {
   std::vector<int> nodes_;                          // slave mesh node of each contact node
   std::vector<std::array<double, 3>> tangents_[2];  // the tangents λ_τ refers to (3D mortar)
 };
-
-/// −max(λ_n^k, 0) per node: the modified mass scheme's lower bound on λ_n^{k+1}
-/// (DualContactSolver::set_normal_floor).
-[[nodiscard]] std::vector<double> release_floor(const core::Vector& lambda_k, int dim);
 
 }  // namespace tc::physics

@@ -1,0 +1,62 @@
+#include "tc/io/data_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace tc::io {
+
+RingingData trapezoidal_ringing(const core::TimeTable& d, double v0, double tau, int steps) {
+  RingingData r;
+  std::vector<double> excess(static_cast<size_t>(std::max(steps, 0)));
+  double v = v0, s_before = v0, s_last = v0;  // u̇^k, s_{k−2}, s_{k−1}
+  for (int k = 0; k < steps; ++k) {
+    const double s = (d((k + 1) * tau) - d(k * tau)) / tau;
+    r.max_speed = std::max(r.max_speed, std::abs(s));
+    v = 2 * s - v;  // u̇^{k+1}
+    s_before = s_last;
+    s_last = s;
+    // A smooth d keeps |u̇^{k+1} − s_k| ≤ |s_k − s_{k−1}| (half the step's change of speed, for a
+    // parabola); what is above it alternates and stays.
+    excess[static_cast<size_t>(k)] = std::abs(v - s_last) - std::abs(s_last - s_before);
+    r.alternation = std::max(r.alternation, excess[static_cast<size_t>(k)]);
+  }
+  // Where it starts: the alternation stays, so its largest value recurs (to round-off) at
+  // every later step; the first step that reaches half of it names the jump.
+  for (int k = 0; k < steps && r.alternation > 0; ++k)
+    if (excess[static_cast<size_t>(k)] >= 0.5 * r.alternation) {
+      r.at_time = (k + 1) * tau;
+      break;
+    }
+  return r;
+}
+
+std::vector<std::string> check_time_data(const physics::Problem& p) {
+  std::vector<std::string> warnings;
+  if (p.time.scheme != physics::Scheme::dynamic || p.time.step <= 0) return warnings;
+  const int steps = p.time.n_steps();
+  const char* axis = "xyz";
+  for (const auto& b : p.boundaries)
+    for (int c = 0; c < p.dimension; ++c) {
+      const auto& table = b.displacement[static_cast<size_t>(c)];
+      if (!table || table->is_constant()) continue;
+      const auto& body = p.bodies[static_cast<size_t>(b.body)];
+      const auto r = trapezoidal_ringing(*table, body.initial_velocity[static_cast<size_t>(c)],
+                                         p.time.step, steps);
+      if (r.max_speed > 0 && r.alternation > 0.05 * r.max_speed)
+        warnings.push_back(fmt::format(
+            "[[boundary]] of body '{}' where '{}': the prescribed displacement along {} jumps "
+            "in velocity at t = {:g} s, by {:.3g} m/s (its largest speed {:.3g} m/s): Newmark's "
+            "average acceleration (no numerical damping) then alternates the body's velocity "
+            "by ±{:.3g} m/s from step to step, and its kinetic energy and reactions with it; "
+            "positions, contact forces and heat are not affected. Ramp the velocity over a few "
+            "steps to avoid it (docs/choices.md, \"A jump in a prescribed velocity rings\")",
+            body.name, b.where, axis[c], r.at_time - 2 * p.time.step, r.alternation, r.max_speed,
+            r.alternation));
+    }
+  return warnings;
+}
+
+}  // namespace tc::io

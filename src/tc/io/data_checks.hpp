@@ -1,0 +1,31 @@
+#pragma once
+// Checks of a read case's time data against the time scheme that will integrate it: warnings
+// only, for data the scheme follows but whose response a user would not expect.
+#include <string>
+#include <vector>
+
+#include "tc/physics/problem.hpp"
+
+namespace tc::io {
+
+/// With the dynamic scheme, each prescribed displacement whose velocity jumps: Newmark's average
+/// acceleration updates u̇^{k+1} = 2Δu/τ − u̇^k, so after a jump Δv the prescribed dofs take
+/// the step-to-step alternation ±Δv for ever (no numerical damping), and the body's stiff modes
+/// and its reactions ring with them (docs/choices.md, "A jump in a prescribed velocity rings").
+/// One warning per boundary component whose alternation exceeds 5 % of its largest speed.
+[[nodiscard]] std::vector<std::string> check_time_data(const physics::Problem& p);
+
+/// The alternation the trapezoidal velocity update leaves in the data d(t) over steps of τ from
+/// u̇(0) = v0: max_k of |u̇^k − s_{k−1}| − |s_{k−1} − s_{k−2}| (s_k = the mean speed of step
+/// k), which a smooth d(t) keeps ≤ 0 and a jump Δv at a step raises to |Δv|, two steps after
+/// the jump; with the time t_{k+1} where it first reaches half its largest value, and the
+/// largest |s_k|.
+struct RingingData {
+  double alternation = 0;
+  double at_time = 0;
+  double max_speed = 0;
+};
+[[nodiscard]] RingingData trapezoidal_ringing(const core::TimeTable& d, double v0, double tau,
+                                              int steps);
+
+}  // namespace tc::io
