@@ -1,8 +1,13 @@
 #include "tc/io/auto_subdomains.hpp"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+
+#include "tc/core/petsc.hpp"
 
 namespace tc::io {
 
@@ -39,6 +44,36 @@ std::vector<int> auto_subdomains(int dim, const std::vector<double>& u_dofs, dou
     need[i] = decomposed_memory(dim, u_dofs[i]);
   }
   return out;
+}
+
+double auto_budget(int dim, const std::vector<double>& direct_u_dofs, int factor_ranks) {
+  double fixed = 0;
+  for (const double dofs : direct_u_dofs) fixed += direct_memory(dim, dofs, factor_ranks);
+  const double budget = kMemoryShare * memory_per_rank() - fixed;
+  return memory_per_rank() > 0 ? std::max(budget, 1.0) : 0.0;
+}
+
+double box_memory(int dim, const std::array<int, 3>& cells) {
+  double nodes = 1, n_cells = 1;
+  for (int k = 0; k < dim; ++k) nodes *= cells[k] + 1.0, n_cells *= cells[k];
+  const double per_row = dim == 3 ? 27 : 9;           // nodes coupled to a node
+  const double blocks = 2.0 * dim * dim + dim + 2.0;  // scalar blocks of the five matrices
+  const double corners = dim == 3 ? 8 : 4;
+  return nodes * (per_row * blocks * 12.0 + per_row * 4.0 + 24.0) + n_cells * (corners + 2) * 4.0;
+}
+
+double physical_memory() {
+  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
+}
+
+double memory_per_rank() {
+  return physical_memory() / static_cast<double>(std::max(core::PetscSession::node_size(), 1));
+}
+
+std::string shared_by_ranks() {
+  const int n = core::PetscSession::node_size();
+  return n > 1 ? fmt::format(" shared by {} ranks", n) : std::string();
 }
 
 }  // namespace tc::io

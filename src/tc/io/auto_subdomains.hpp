@@ -3,6 +3,8 @@
 // the bodies' direct solves fit comfortably in memory together; FETI subdomains (6.2) for the
 // largest bodies beyond.
 
+#include <array>
+#include <string>
 #include <vector>
 
 namespace tc::io {
@@ -33,5 +35,29 @@ inline constexpr double kMemoryShare = 0.75;
 /// ≤ 0 (memory unknown) keeps every body direct.
 [[nodiscard]] std::vector<int> auto_subdomains(int dim, const std::vector<double>& u_dofs,
                                                double budget, int factor_ranks = 1);
+
+/// Memory left to the bodies with subdomains = "auto" [bytes]: kMemoryShare of memory_per_rank
+/// less what the bodies with one subdomain take (approximately: as if direct), at least 1; 0
+/// when the machine's memory is unknown (auto_subdomains then keeps every body direct).
+[[nodiscard]] double auto_budget(int dim, const std::vector<double>& direct_u_dofs,
+                                 int factor_ranks);
+
+inline constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+
+/// A lower bound of the memory a box body takes before any factorisation [bytes]: its mesh
+/// and the five matrices that BodySystem assembles for the whole body (M_u, K_u, K_uθ, M_θ,
+/// K_θ; AIJ, 12 bytes per nonzero, rows of 3^dim nodes). A box that does not fit it was
+/// allocated until the OOM killer ended the process without a message (issue 20, #3).
+[[nodiscard]] double box_memory(int dim, const std::array<int, 3>& cells);
+
+/// This machine's physical memory [bytes] (0 if unknown).
+[[nodiscard]] double physical_memory();
+
+/// A rank's share of it: every rank holds every body and its direct factors (docs/choices.md,
+/// "Replicated state"), so the ranks on one node each need what one rank alone would.
+[[nodiscard]] double memory_per_rank();
+
+/// " shared by N ranks" when more than one rank of the run is on this node, else "".
+[[nodiscard]] std::string shared_by_ranks();
 
 }  // namespace tc::io

@@ -1,377 +1,567 @@
 #include "tc/io/case_schema.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
+#include <stdexcept>
+#include <vector>
 
-namespace tc::io::detail {
-
-int edit_distance(std::string_view a, std::string_view b) {
-  std::vector<int> prev(b.size() + 1), cur(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) prev[j] = static_cast<int>(j);
-  for (size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = static_cast<int>(i);
-    for (size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
-int line_of(const toml::node& n) {
-  return static_cast<int>(n.source().begin.line);
-}
+namespace tc::io::schema {
 
 namespace {
 
-std::string describe_float(double v) {
-  auto s = fmt::format("{}", v);
-  // Say 2.0, not 2, so "expected an integer" reads right.
-  if (std::isfinite(v) && s.find_first_of(".e") == std::string::npos) s += ".0";
-  return s;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Ranges, with the words of the messages ("found 0.0, expected a time step > 0").
+constexpr Range above_zero(std::string_view words) {
+  return {0, kInf, false, false, words};
 }
-
-/// The largest integer any count or iteration limit of a case may have (an int holds it).
-constexpr std::int64_t kMaxInteger = 1'000'000'000;
-
-}  // namespace
-
-std::string integer_issue(const toml::node& n, int min) {
-  if (const auto* i = n.as_integer(); i && i->get() >= min && i->get() <= kMaxInteger) return "";
-  // Beyond the limit "expected an integer ≥ 1" read as if 4294967297 were not an integer.
-  if (n.is_number() && *n.value<double>() > static_cast<double>(kMaxInteger))
-    return fmt::format("found {}, which is too large; expected an integer from {} to {}",
-                       describe(n), min, kMaxInteger);
-  return fmt::format("found {}, expected an integer ≥ {}", describe(n), min);
+constexpr Range from_zero(std::string_view words) {
+  return {0, kInf, true, false, words};
 }
+constexpr Range kTemperature = above_zero("a temperature > 0 K");
+constexpr Range kFraction{0, 1, false, false, "a number in (0, 1)"};
 
-std::string describe(const toml::node& n) {
-  if (const auto* s = n.as_string()) return fmt::format("\"{}\"", s->get());
-  if (const auto* i = n.as_integer()) return fmt::format("{}", i->get());
-  if (const auto* f = n.as_floating_point()) return describe_float(f->get());
-  if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
-  if (const auto* a = n.as_array())
-    return a->size() == 1 ? "an array of 1 entry"
-                          : fmt::format("an array of {} entries", a->size());
-  if (n.is_table()) return "a table";
-  return "a date or time";
-}
-
-void Issues::add(int line, std::string key, std::string message) {
-  issues_.push_back({file_, std::max(line, 1), std::move(key), std::move(message)});
-}
-
-void Issues::raise() {
-  std::stable_sort(issues_.begin(), issues_.end(),
-                   [](const InputIssue& a, const InputIssue& b) { return a.line < b.line; });
-  throw InputError(std::move(issues_));
-}
-
-Range positive(const std::string& what) {
-  return {[](double x) { return x > 0; }, what + " > 0"};
-}
-
-Range non_negative(const std::string& what) {
-  return {[](double x) { return x >= 0; }, what + " ≥ 0"};
-}
-
-std::string join(const std::string& path, std::string_view key) {
-  return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
-}
-
-std::string at(const std::string& path, size_t index) {
-  return fmt::format("{}[{}]", path, index);
-}
+using T = Type;
 
 // ---------------------------------------------------------------------------------------
-// TableReader
+// The root and [time], [physics]
 
-TableReader::TableReader(const toml::table& t, std::string path, Issues& issues,
-                         std::initializer_list<std::string_view> keys)
-    : t_(&t), path_(std::move(path)), issues_(&issues) {
-  for (const auto& [k, v] : t) {
-    const std::string_view name = k.str();
-    if (std::find(keys.begin(), keys.end(), name) != keys.end()) continue;
-    std::string_view best;
-    int best_distance = 3;  // suggest only within edit distance 2
-    for (const auto known : keys)
-      if (const int d = edit_distance(name, known); d < best_distance) {
-        best_distance = d;
-        best = known;
-      }
-    const auto hint = best.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", best);
-    issues.add(
-        line_of(v), join(path_, name),
-        fmt::format("found an unknown key{}, expected one of: {}", hint, fmt::join(keys, ", ")));
-  }
-}
-
-int TableReader::line(std::string_view k) const {
-  const auto* n = t_->get(k);
-  return n ? line_of(*n) : line();
-}
-
-void TableReader::issue(std::string_view k, std::string message) const {
-  issues_->add(line(k), key(k), std::move(message));
-}
-
-const toml::node* TableReader::get(std::string_view k, Need need, std::string_view expected) const {
-  const auto* n = t_->get(k);
-  if (!n && need == Need::required) issue(k, fmt::format("missing; expected {}", expected));
-  return n;
-}
-
-std::optional<double> TableReader::number(std::string_view k, Need need, const Range& range) const {
-  const auto* n = get(k, need, range.expected);
-  return n ? read_number(*n, key(k), *issues_, range) : std::nullopt;
-}
-
-std::optional<int> TableReader::integer(std::string_view k, Need need, int min) const {
-  const auto expected = fmt::format("an integer ≥ {}", min);
-  const auto* n = get(k, need, expected);
-  if (!n) return std::nullopt;
-  if (auto problem = integer_issue(*n, min); !problem.empty()) {
-    issue(k, std::move(problem));
-    return std::nullopt;
-  }
-  return static_cast<int>(n->as_integer()->get());
-}
-
-std::optional<std::string> TableReader::string(std::string_view k, Need need) const {
-  const auto* n = get(k, need, "a string");
-  if (!n) return std::nullopt;
-  if (const auto* s = n->as_string()) return s->get();
-  issue(k, fmt::format("found {}, expected a string", describe(*n)));
-  return std::nullopt;
-}
-
-std::optional<bool> TableReader::boolean(std::string_view k) const {
-  const auto* n = get(k, Need::optional, "true or false");
-  if (!n) return std::nullopt;
-  if (const auto* b = n->as_boolean()) return b->get();
-  issue(k, fmt::format("found {}, expected true or false", describe(*n)));
-  return std::nullopt;
-}
-
-std::optional<std::string> TableReader::choice(
-    std::string_view k, Need need, std::initializer_list<std::string_view> choices) const {
-  std::vector<std::string> quoted;
-  for (const auto c : choices) quoted.push_back(fmt::format("\"{}\"", c));
-  const auto expected = fmt::format("one of {}", fmt::join(quoted, ", "));
-  const auto* n = get(k, need, expected);
-  if (!n) return std::nullopt;
-  const auto* s = n->as_string();
-  if (s && std::find(choices.begin(), choices.end(), s->get()) != choices.end()) return s->get();
-  issue(k, fmt::format("found {}, expected {}", describe(*n), expected));
-  return std::nullopt;
-}
-
-std::optional<TableReader> TableReader::sub_table(
-    std::string_view k, Need need, std::initializer_list<std::string_view> keys) const {
-  const auto* n = get(k, need, "a table");
-  if (!n) return std::nullopt;
-  if (const auto* t = n->as_table()) return TableReader(*t, key(k), *issues_, keys);
-  issue(k, fmt::format("found {}, expected a table", describe(*n)));
-  return std::nullopt;
-}
-
-// ---------------------------------------------------------------------------------------
-// Values
-
-std::optional<double> read_number(const toml::node& n, const std::string& key, Issues& issues,
-                                  const Range& range) {
-  if (!n.is_number()) {
-    const auto expected = range.ok ? fmt::format("a number ({})", range.expected) : range.expected;
-    issues.add(line_of(n), key, fmt::format("found {}, expected {}", describe(n), expected));
-    return std::nullopt;
-  }
-  const double v = *n.value<double>();
-  if (!std::isfinite(v) || (range.ok && !range.ok(v))) {
-    issues.add(line_of(n), key, fmt::format("found {}, expected {}", describe(n), range.expected));
-    return std::nullopt;
-  }
-  return v;
-}
-
-namespace {
-
-/// The non-empty array of numbers at member k of a time table.
-std::optional<std::vector<double>> read_list(const TableReader& t, std::string_view k,
-                                             const Range& range) {
-  const auto* n = t.get(k, Need::required, "a non-empty array of numbers");
-  if (!n) return std::nullopt;
-  const auto* a = n->as_array();
-  if (!a || a->empty()) {
-    t.issue(k, fmt::format("found {}, expected a non-empty array of numbers", describe(*n)));
-    return std::nullopt;
-  }
-  std::vector<double> out;
-  bool good = true;
-  for (size_t i = 0; i < a->size(); ++i) {
-    const auto v = read_number(*a->get(i), at(t.key(k), i), t.issues(), range);
-    good = good && v.has_value();
-    out.push_back(v.value_or(0.0));
-  }
-  return good ? std::optional(std::move(out)) : std::nullopt;
-}
-
-/// The abscissa of a table: its key and the word for its entries in the messages.
-struct Abscissa {
-  std::string_view key, plural;
+constexpr Key kRoot[] = {
+    {.name = "title",
+     .type = T::string,
+     .default_value = "\"\"",
+     .doc = "echoed in the summary; at most 4096 bytes"},
+    {.name = "dimension",
+     .type = T::dimension,
+     .default_value = "required",
+     .doc = "2 (plane strain) or 3",
+     .expected = "2 (plane strain) or 3"},
+    {.name = "time",
+     .type = T::table,
+     .default_value = "required",
+     .doc = "the time scheme and the steps"},
+    {.name = "physics", .type = T::table, .doc = "the thermo-mechanical coupling terms"},
+    {.name = "materials",
+     .type = T::named_tables,
+     .default_value = "required",
+     .doc = "[materials.NAME] tables of constants",
+     .expected = "[materials.NAME] tables"},
+    {.name = "bodies",
+     .type = T::tables,
+     .default_value = "required",
+     .doc = "[[bodies]], one table per body"},
+    {.name = "boundary", .type = T::tables, .doc = "[[boundary]], one per loaded or held face"},
+    {.name = "contact",
+     .type = T::contact_tables,
+     .doc = "[contact] (one pair) or [[contact]] tables"},
+    {.name = "solver", .type = T::table, .doc = "tolerances, limits and methods"},
+    {.name = "output", .type = T::table, .doc = "where and how often results are written"},
 };
-constexpr Abscissa kTime{"t", "times"};
-constexpr Abscissa kInterfaceTemperature{"temperature", "temperatures"};
 
-bool strictly_increasing(const TableReader& t, const std::vector<double>& x, Abscissa a) {
-  for (size_t i = 1; i < x.size(); ++i)
-    if (!(x[i] > x[i - 1])) {
-      t.issue(a.key, fmt::format("found {}[{}] = {} after {}[{}] = {}, expected strictly "
-                                 "increasing {}",
-                                 a.key, i, x[i], a.key, i - 1, x[i - 1], a.plural));
-      return false;
-    }
-  return true;
-}
+constexpr std::string_view kSchemes[] = {"dynamic", "quasistatic"};
+constexpr std::string_view kContactSchemes[] = {"stabilised", "plain", "modified_mass"};
 
-/// The points and values of a table { <a.key> = [...], value = [...] }: the points strictly
-/// increasing and within `x_range`, as many values as points (≥ 1), each within `range`.
-std::optional<std::pair<std::vector<double>, std::vector<double>>> read_points(const TableReader& t,
-                                                                               Abscissa a,
-                                                                               const Range& x_range,
-                                                                               const Range& range) {
-  const auto x = read_list(t, a.key, x_range);
-  const auto values = read_list(t, "value", range);
-  if (!x || !values) return std::nullopt;
-  bool good = strictly_increasing(t, *x, a);
-  if (x->size() != values->size()) {
-    t.issue("value", fmt::format("found {} values for {} {}, expected as many values as {}",
-                                 values->size(), x->size(), a.plural, a.plural));
-    good = false;
-  }
-  if (!good) return std::nullopt;
-  return std::pair{*x, *values};
-}
+constexpr Key kTime[] = {
+    {.name = "scheme",
+     .type = T::choice,
+     .choices = kSchemes,
+     .default_value = "\"dynamic\"",
+     .doc = "Newmark (u) + backward Euler (θ), or no inertia"},
+    {.name = "step",
+     .type = T::number,
+     .range = above_zero("a time step > 0"),
+     .default_value = "required",
+     .unit = "s",
+     .doc = "τ"},
+    {.name = "end",
+     .type = T::number,
+     .range = above_zero("an end time > 0"),
+     .default_value = "required",
+     .unit = "s",
+     .doc = "T; the run has round(end/step) steps"},
+    {.name = "contact_scheme",
+     .type = T::choice,
+     .choices = kContactSchemes,
+     .default_value = "\"modified_mass\"",
+     .doc = "how Newmark meets contact (dynamic runs)"},
+};
 
-/// The array at n with `size` entries (0: 2 or 3, the dimension being unknown), or an issue
-/// "expected an array of <size> <what> (dimension = <size>)<detail>".
-const toml::array* sized_array(const toml::node& n, const std::string& key, Issues& issues,
-                               int size, std::string_view what, std::string_view detail = "") {
-  const auto* a = n.as_array();
-  const int count = a ? static_cast<int>(a->size()) : -1;
-  if (a && (size == 0 ? (count == 2 || count == 3) : count == size)) return a;
-  const auto expected = size == 0 ? fmt::format("2 or 3 {}", what)
-                                  : fmt::format("{} {} (dimension = {})", size, what, size);
-  issues.add(line_of(n), key,
-             fmt::format("found {}, expected an array of {}{}", describe(n), expected, detail));
-  return nullptr;
-}
+constexpr std::string_view kHeatCapacities[] = {"consistent", "lumped"};
+
+constexpr Key kPhysics[] = {
+    {.name = "reference_temperature",
+     .type = T::number,
+     .range = kTemperature,
+     .default_value = "293.15",
+     .unit = "K",
+     .doc = "θ₀, the stress-free temperature"},
+    {.name = "thermal_expansion",
+     .type = T::boolean,
+     .default_value = "true",
+     .doc = "the K_uθ term of (2.5)"},
+    {.name = "thermoelastic_heating",
+     .type = T::boolean,
+     .default_value = "true",
+     .doc = "the K_θu term of (2.8)"},
+    {.name = "heat_capacity",
+     .type = T::choice,
+     .choices = kHeatCapacities,
+     .default_value = "\"consistent\"",
+     .doc = "M_θ as assembled, or lumped to its row sums"},
+};
+
+constexpr Key kMaterial[] = {
+    {.name = "density",
+     .type = T::number,
+     .range = above_zero("a density > 0"),
+     .default_value = "required",
+     .unit = "kg/m³",
+     .doc = "ρ"},
+    {.name = "young_modulus",
+     .type = T::number,
+     .range = above_zero("a modulus > 0"),
+     .default_value = "required",
+     .unit = "Pa",
+     .doc = "E"},
+    {.name = "poisson_ratio",
+     .type = T::number,
+     .range = {0, 0.5, true, false, "a number in [0, 0.5)"},
+     .default_value = "required",
+     .doc = "ν"},
+    {.name = "thermal_expansion",
+     .type = T::number,
+     .range = from_zero("a number ≥ 0"),
+     .default_value = "required",
+     .unit = "1/K",
+     .doc = "α"},
+    {.name = "specific_heat",
+     .type = T::number,
+     .range = above_zero("a number > 0"),
+     .default_value = "required",
+     .unit = "J/(kg·K)",
+     .doc = "c_p; the heat equation uses ρ·c_p"},
+    {.name = "thermal_conductivity",
+     .type = T::number,
+     .range = above_zero("a number > 0"),
+     .default_value = "required",
+     .unit = "W/(m·K)",
+     .doc = "κ"},
+};
+
+// ---------------------------------------------------------------------------------------
+// [[bodies]]
+
+constexpr std::string_view kInitialStates[] = {"rest", "equilibrium"};
+
+constexpr Key kBody[] = {
+    {.name = "name",
+     .type = T::name,
+     .default_value = "required",
+     .doc = "unique; 1–64 letters, digits, _ - . (not first)"},
+    {.name = "material",
+     .type = T::name,
+     .default_value = "required",
+     .doc = "a NAME of [materials.NAME]"},
+    {.name = "mesh",
+     .type = T::table,
+     .default_value = "required",
+     .doc = "box = { min, max, cells } or file = \"NAME.msh\""},
+    {.name = "initial_temperature",
+     .type = T::number,
+     .range = kTemperature,
+     .default_value = "physics.reference_temperature",
+     .unit = "K",
+     .doc = "θ at t = 0"},
+    {.name = "initial_velocity",
+     .type = T::vector,
+     .default_value = "[0.0, 0.0, 0.0]",
+     .unit = "m/s",
+     .doc = "u̇ at t = 0"},
+    {.name = "initial_state",
+     .type = T::choice,
+     .choices = kInitialStates,
+     .default_value = "\"rest\"",
+     .doc = "u⁰ = u_D(0), or the static equilibrium"},
+    {.name = "body_force",
+     .type = T::components,
+     .default_value = "[0.0, 0.0, 0.0]",
+     .unit = "N/m³",
+     .doc = "f of (2.1); per component a number or a time table"},
+    {.name = "heat_source",
+     .type = T::time_table,
+     .default_value = "0.0",
+     .unit = "W/m³",
+     .doc = "r of (2.8)"},
+    {.name = "subdomains",
+     .type = T::subdomains,
+     .default_value = "\"auto\"",
+     .doc = "FETI subdomains (METIS); 1 = the body itself"},
+};
+
+constexpr Key kMesh[] = {
+    {.name = "box", .type = T::table, .doc = "a box of hexahedra (quadrilaterals in 2D)"},
+    {.name = "file", .type = T::string, .doc = "a Gmsh 4 file, relative to the case file"},
+};
+
+constexpr Key kBox[] = {
+    {.name = "min",
+     .type = T::vector,
+     .default_value = "required",
+     .unit = "m",
+     .doc = "the lower corner",
+     .expected = "an array of numbers"},
+    {.name = "max",
+     .type = T::vector,
+     .default_value = "required",
+     .unit = "m",
+     .doc = "the upper corner, > min on every axis",
+     .expected = "an array of numbers"},
+    {.name = "cells",
+     .type = T::counts,
+     .default_value = "required",
+     .doc = "cells per axis; at most 10⁸ in all",
+     .expected = "an array of integers ≥ 1"},
+};
+
+// ---------------------------------------------------------------------------------------
+// [[boundary]]
+
+constexpr Key kBoundary[] = {
+    {.name = "body", .type = T::name, .default_value = "required", .doc = "the name of a body"},
+    {.name = "where",
+     .type = T::name,
+     .default_value = "required",
+     .doc = "a box face (xmin … zmax) or a Gmsh physical group"},
+    {.name = "displacement",
+     .type = T::components,
+     .unit = "m",
+     .doc = "per component a number, a time table or \"free\""},
+    {.name = "traction",
+     .type = T::components,
+     .unit = "Pa",
+     .doc = "p_N; per component a number, a time table or \"free\""},
+    {.name = "force",
+     .type = T::components,
+     .unit = "N",
+     .doc = "a resultant through a rigid coupling (load control)"},
+    {.name = "temperature",
+     .type = T::time_table,
+     .range = kTemperature,
+     .unit = "K",
+     .doc = "θ_D"},
+    {.name = "heat_flux", .type = T::time_table, .unit = "W/m²", .doc = "q_N into the body"},
+    {.name = "film", .type = T::table, .doc = "q = h(θ − θ∞) leaves the body"},
+    {.name = "radiation", .type = T::table, .doc = "q = εσ(θ⁴ − θ∞⁴) leaves the body"},
+};
+
+constexpr Key kFilm[] = {
+    {.name = "coefficient",
+     .type = T::time_table,
+     .range = above_zero("a film coefficient h [W/(m²K)] > 0"),
+     .default_value = "required",
+     .unit = "W/(m²·K)",
+     .doc = "h"},
+    {.name = "ambient",
+     .type = T::time_table,
+     .range = kTemperature,
+     .default_value = "required",
+     .unit = "K",
+     .doc = "θ∞"},
+};
+
+constexpr Key kRadiation[] = {
+    {.name = "emissivity",
+     .type = T::time_table,
+     .range = {0, 1, false, true, "an emissivity in (0, 1]"},
+     .default_value = "required",
+     .doc = "ε"},
+    {.name = "ambient",
+     .type = T::time_table,
+     .range = kTemperature,
+     .default_value = "required",
+     .unit = "K",
+     .doc = "θ∞"},
+};
+
+// ---------------------------------------------------------------------------------------
+// [contact]
+
+constexpr Key kContact[] = {
+    {.name = "name",
+     .type = T::string,
+     .default_value = "\"contact\"",
+     .doc = "required for several pairs: letters, digits, _"},
+    {.name = "slave",
+     .type = T::table,
+     .default_value = "required",
+     .doc = "{ body, where }: the slave surface"},
+    {.name = "master",
+     .type = T::table,
+     .default_value = "required",
+     .doc = "{ body, where }: the master surface"},
+    {.name = "friction",
+     .type = T::temperature_table,
+     .range = from_zero("a coefficient ≥ 0"),
+     .default_value = "0.0",
+     .doc = "𝔉 (Coulomb); a number or a table in θ_Γ"},
+    {.name = "conductance",
+     .type = T::table,
+     .doc = "{ slave = γ_C^s, master = γ_C^m }, needed while heat crosses"},
+    {.name = "heat_conduction",
+     .type = T::boolean,
+     .default_value = "true",
+     .doc = "the β_C λ_n [θ] term (L_θγ)"},
+    {.name = "frictional_heating",
+     .type = T::boolean,
+     .default_value = "true",
+     .doc = "the δ_C 𝔉 λ_n ‖[u̇]_τ‖ term (d_θγ)"},
+};
+
+constexpr Key kSurface[] = {
+    {.name = "body", .type = T::name, .default_value = "required", .doc = "the name of a body"},
+    {.name = "where",
+     .type = T::name,
+     .default_value = "required",
+     .doc = "a boundary of that body"},
+};
+
+constexpr Key kConductance[] = {
+    {.name = "slave",
+     .type = T::temperature_table,
+     .range = from_zero("a conductance ≥ 0"),
+     .default_value = "required",
+     .unit = "W/(m²·K·Pa)",
+     .doc = "γ_C^s; a number or a table in θ_Γ"},
+    {.name = "master",
+     .type = T::temperature_table,
+     .range = from_zero("a conductance ≥ 0"),
+     .default_value = "required",
+     .unit = "W/(m²·K·Pa)",
+     .doc = "γ_C^m; a number or a table in θ_Γ"},
+};
+
+// ---------------------------------------------------------------------------------------
+// [solver], [output]
+
+constexpr std::string_view kCouplingOrders[] = {"auto", "heat_first", "mechanics_first"};
+constexpr std::string_view kFrictionLoops[] = {"nested", "staggered"};
+constexpr std::string_view kFactorizations[] = {"auto", "mumps", "cholmod", "petsc"};
+constexpr std::string_view kPreconditioners[] = {"dirichlet", "lumped", "none"};
+constexpr std::string_view kContactDuals[] = {"auto", "nested", "combined"};
+constexpr std::string_view kConductanceTreatments[] = {"implicit", "lagged"};
+
+constexpr Key kSolver[] = {
+    {.name = "coupling_tolerance",
+     .type = T::number,
+     .range = kFraction,
+     .default_value = "1e-6",
+     .doc = "staggered fixed point: relative change of θ and λ"},
+    {.name = "max_coupling_iterations",
+     .type = T::integer,
+     .default_value = "20",
+     .doc = "iterations of the staggered fixed point"},
+    {.name = "coupling_order",
+     .type = T::choice,
+     .choices = kCouplingOrders,
+     .default_value = "\"auto\"",
+     .doc = "which half of each iteration comes first"},
+    {.name = "friction_loop",
+     .type = T::choice,
+     .choices = kFrictionLoops,
+     .default_value = "\"nested\"",
+     .doc = "where γ = λ_n of (6.3) is updated"},
+    {.name = "qp_tolerance",
+     .type = T::number,
+     .range = kFraction,
+     .default_value = "1e-8",
+     .doc = "relative norm of the projected gradient"},
+    {.name = "max_qp_iterations",
+     .type = T::integer,
+     .default_value = "2000",
+     .doc = "iterations of one QP"},
+    {.name = "factorization",
+     .type = T::choice,
+     .choices = kFactorizations,
+     .default_value = "\"auto\"",
+     .doc = "the Cholesky package of an undecomposed body"},
+    {.name = "feti_tolerance",
+     .type = T::number,
+     .range = kFraction,
+     .default_value = "1e-10",
+     .doc = "FETI: ‖B u − c‖ relative to ‖P d‖"},
+    {.name = "max_feti_iterations",
+     .type = T::integer,
+     .default_value = "1000",
+     .doc = "iterations of FETI's projected CG"},
+    {.name = "feti_preconditioner",
+     .type = T::choice,
+     .choices = kPreconditioners,
+     .default_value = "\"dirichlet\"",
+     .doc = "FETI's preconditioner"},
+    {.name = "contact_dual",
+     .type = T::choice,
+     .choices = kContactDuals,
+     .default_value = "\"nested\"",
+     .doc = "the contact QP: nested or one TFETI QP"},
+    {.name = "newton_tolerance",
+     .type = T::number,
+     .range = kFraction,
+     .default_value = "1e-10",
+     .doc = "Newton in a heat step with radiation or h(t)"},
+    {.name = "max_newton_iterations",
+     .type = T::integer,
+     .default_value = "50",
+     .doc = "Newton iterations of one heat step"},
+    {.name = "coupling_acceleration",
+     .type = T::boolean,
+     .default_value = "true",
+     .doc = "Aitken's Δ² on γ = λ_n (6.3)"},
+    {.name = "conductance_treatment",
+     .type = T::choice,
+     .choices = kConductanceTreatments,
+     .default_value = "\"implicit\"",
+     .doc = "L_θγ on the left, or lagged as (6.2)"},
+    {.name = "qp_forcing",
+     .type = T::number,
+     .range = kFraction,
+     .default_value = "1e-2",
+     .doc = "friction: a QP to this × the last relative residual"},
+    {.name = "qp_forcing_cap",
+     .type = T::number,
+     .range = kFraction,
+     .default_value = "1e-3",
+     .doc = "the loosest forced QP tolerance, ≥ qp_tolerance"},
+    {.name = "loop_forcing",
+     .type = T::number,
+     .range = kFraction,
+     .default_value = "1e-2",
+     .doc = "nested loop: the fall that ends it at one θ"},
+    {.name = "max_friction_updates",
+     .type = T::integer,
+     .default_value = "100",
+     .doc = "nested loop: updates γ = λ_n at one θ"},
+    {.name = "explicit_dual_limit",
+     .type = T::integer,
+     .min = 0,
+     .default_value = "1500",
+     .doc = "rows up to which the nested dual forms F"},
+    {.name = "max_cutbacks",
+     .type = T::integer,
+     .min = 0,
+     .max = 20,
+     .default_value = "4",
+     .doc = "halvings of a failed step"},
+};
+
+constexpr Key kOutput[] = {
+    {.name = "directory",
+     .type = T::string,
+     .default_value = "\"out\"",
+     .doc = "relative to the case file unless absolute"},
+    {.name = "every",
+     .type = T::integer,
+     .default_value = "1",
+     .doc = "fields every n steps (history.csv gets every step)"},
+    {.name = "checkpoint_every",
+     .type = T::integer,
+     .min = 0,
+     .default_value = "0",
+     .doc = "checkpoint.bin after every n steps (0: not by count)"},
+    {.name = "checkpoint_seconds",
+     .type = T::number,
+     .range = from_zero("checkpoint_seconds (s) ≥ 0"),
+     .default_value = "10.0",
+     .unit = "s",
+     .doc = "checkpoint.bin every s of wall time (0: not by time)"},
+};
+
+constexpr Section kSections[] = {
+    {"", kRoot},
+    {"time", kTime},
+    {"physics", kPhysics},
+    {"materials.*", kMaterial},
+    {"bodies", kBody},
+    {"bodies.mesh", kMesh},
+    {"bodies.mesh.box", kBox},
+    {"boundary", kBoundary},
+    {"boundary.film", kFilm},
+    {"boundary.radiation", kRadiation},
+    {"contact", kContact},
+    {"contact.slave", kSurface},
+    {"contact.master", kSurface},
+    {"contact.conductance", kConductance},
+    {"solver", kSolver},
+    {"output", kOutput},
+};
 
 }  // namespace
 
-std::optional<core::TimeTable> read_time_table(const toml::node& n, const std::string& key,
-                                               Issues& issues, const Range& range) {
-  if (n.is_number()) {
-    const auto v = read_number(n, key, issues, range);
-    return v ? std::optional<core::TimeTable>(*v) : std::nullopt;
-  }
-  const auto* table = n.as_table();
-  if (!table) {
-    issues.add(line_of(n), key,
-               fmt::format("found {}, expected {} or a table {{ t = [...], value = [...] }}",
-                           describe(n), range.expected));
-    return std::nullopt;
-  }
-  const TableReader t(*table, key, issues, {"t", "value"});
-  const auto points = read_points(t, kTime, {}, range);
-  if (!points) return std::nullopt;
-  return core::TimeTable(points->first, points->second);
+std::span<const Section> sections() {
+  return kSections;
 }
 
-std::optional<core::TemperatureTable> read_temperature_table(const toml::node& n,
-                                                             const std::string& key, Issues& issues,
-                                                             const Range& range) {
-  if (n.is_number()) {
-    const auto v = read_number(n, key, issues, range);
-    return v ? std::optional<core::TemperatureTable>(*v) : std::nullopt;
-  }
-  const auto* table = n.as_table();
-  if (!table) {
-    issues.add(line_of(n), key,
-               fmt::format("found {}, expected {} or a table in the interface temperature "
-                           "{{ temperature = [...], value = [...] }}",
-                           describe(n), range.expected));
-    return std::nullopt;
-  }
-  // `t` is accepted by the schema only to say what is wrong with it: a law of the interface
-  // is a function of its temperature, never of time.
-  const TableReader t(*table, key, issues, {"temperature", "value", "t"});
-  if (t.has("t")) {
-    t.issue("t",
-            "found a table in time, expected a table in the interface temperature "
-            "{ temperature = [...] (K), value = [...] }");
-    return std::nullopt;
-  }
-  const Range kelvin{[](double x) { return x > 0; }, "a temperature > 0 K"};
-  const auto points = read_points(t, kInterfaceTemperature, kelvin, range);
-  if (!points) return std::nullopt;
-  return core::TemperatureTable(points->first, points->second);
+const Section& section(std::string_view path) {
+  for (const auto& s : kSections)
+    if (s.path == path) return s;
+  throw std::logic_error(fmt::format("case schema: no section \"{}\"", path));
 }
 
-std::optional<std::array<double, 3>> read_vector(const toml::node& n, const std::string& key,
-                                                 Issues& issues, int size) {
-  const auto* a = sized_array(n, key, issues, size, "numbers");
-  if (!a) return std::nullopt;
-  std::array<double, 3> out{};
-  bool good = true;
-  for (size_t k = 0; k < a->size(); ++k) {
-    const auto v = read_number(*a->get(k), at(key, k), issues);
-    good = good && v.has_value();
-    out[k] = v.value_or(0.0);
-  }
-  return good ? std::optional(out) : std::nullopt;
+const Key& key(const Section& s, std::string_view name) {
+  for (const auto& k : s.keys)
+    if (k.name == name) return k;
+  throw std::logic_error(fmt::format("case schema: no key \"{}\" in \"{}\"", name, s.path));
 }
 
-std::optional<std::array<int, 3>> read_counts(const toml::node& n, const std::string& key,
-                                              Issues& issues, int size) {
-  const auto* a = sized_array(n, key, issues, size, "integers ≥ 1");
-  if (!a) return std::nullopt;
-  std::array<int, 3> out{1, 1, 1};
-  bool good = true;
-  for (size_t k = 0; k < a->size(); ++k) {
-    const auto& e = *a->get(k);
-    if (auto problem = integer_issue(e, 1); !problem.empty()) {
-      issues.add(line_of(e), at(key, k), std::move(problem));
-      good = false;
-      continue;
+std::string full_name(const Section& s, const Key& k) {
+  return s.path.empty() ? std::string(k.name) : fmt::format("{}.{}", s.path, k.name);
+}
+
+std::string type_words(const Key& k) {
+  const auto range = [&](std::string_view what) {
+    return k.range.words.empty() ? std::string(what) : fmt::format("{}: {}", what, k.range.words);
+  };
+  switch (k.type) {
+    case T::number:
+      return range("number");
+    case T::integer:
+      return k.max > 0 ? fmt::format("integer {} to {}", k.min, k.max)
+                       : fmt::format("integer ≥ {}", k.min);
+    case T::boolean:
+      return "true or false";
+    case T::string:
+      return "string";
+    case T::name:
+      return "name";
+    case T::choice: {
+      std::vector<std::string> quoted;
+      for (const auto c : k.choices) quoted.push_back(fmt::format("\"{}\"", c));
+      return fmt::format("{}", fmt::join(quoted, " or "));
     }
-    out[k] = static_cast<int>(e.as_integer()->get());
+    case T::time_table:
+      return range("number or time table");
+    case T::temperature_table:
+      return range("number or table in θ");
+    case T::vector:
+      return "array of numbers";
+    case T::counts:
+      return "array of integers ≥ 1";
+    case T::components:
+      return "array of components";
+    case T::subdomains:
+      return "integer ≥ 1 or \"auto\"";
+    case T::dimension:
+      return "2 or 3";
+    case T::table:
+      return "table";
+    case T::tables:
+      return "array of tables";
+    case T::named_tables:
+      return "tables by name";
+    case T::contact_tables:
+      return "table or array of tables";
   }
-  return good ? std::optional(out) : std::nullopt;
+  return "";
 }
 
-std::optional<Components> read_components(const toml::node& n, const std::string& key,
-                                          Issues& issues, int size, bool free_allowed) {
-  const auto* a = sized_array(
-      n, key, issues, size, "components",
-      free_allowed ? ", each a number, a table or \"free\"" : ", each a number or a table");
-  if (!a) return std::nullopt;
-  Components out;
-  for (size_t k = 0; k < a->size(); ++k) {
-    const auto& e = *a->get(k);
-    const auto ek = at(key, k);
-    if (const auto* s = e.as_string()) {
-      if (!free_allowed || s->get() != "free")
-        issues.add(line_of(e), ek,
-                   fmt::format("found {}, expected a number or a table{}", describe(e),
-                               free_allowed ? " or \"free\"" : ""));
-      continue;
-    }
-    out[k] = read_time_table(e, ek, issues);
-  }
-  // Bad entries are reported and left empty: the caller still checks the others.
-  return out;
-}
-
-}  // namespace tc::io::detail
+}  // namespace tc::io::schema

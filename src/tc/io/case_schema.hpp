@@ -1,127 +1,82 @@
 #pragma once
-// Private to the io layer: the pieces read_case validates a TOML case file with.
-// `Issues` collects every problem with its line (nothing is thrown until the whole file has
-// been read); `TableReader` reads one TOML table at a dotted key path with typed getters that
-// record what is wrong ("found X, expected Y") and reports the keys it does not know, with the
-// closest known key as a suggestion. The node-level readers serve array entries and values
-// (time tables, vectors) that are not a table member of their own.
-#include <toml++/toml.h>
-
-#include <array>
-#include <functional>
-#include <initializer_list>
-#include <optional>
+// The keys of a case file, declared once as data (case-format.md is their contract): per
+// table of the file its keys in the order the messages list them, each with its type, the
+// values it takes (a range in the words of the messages, or choices), its default, its unit
+// and one line of doc. The reader validates from it (TableReader), docs/case-format.md's key
+// tables are tested against it (tests/unit/io_case_schema_test.cpp), and so are Problem's
+// defaults (docs/choices.md, "One schema for the case keys").
+#include <limits>
+#include <span>
 #include <string>
 #include <string_view>
-#include <vector>
 
-#include "tc/core/error.hpp"
-#include "tc/core/table.hpp"
+namespace tc::io::schema {
 
-namespace tc::io::detail {
-
-/// Levenshtein distance (insertions, deletions, substitutions).
-[[nodiscard]] int edit_distance(std::string_view a, std::string_view b);
-/// Line of a node in its file (0 when unknown).
-[[nodiscard]] int line_of(const toml::node& n);
-/// What a node is, for "found ...": `"fast"`, `0.5`, `2.0`, `true`, `an array of 3 entries`.
-[[nodiscard]] std::string describe(const toml::node& n);
-/// "" when n is an integer from `min` to 10⁹, otherwise the issue: "found X, expected an
-/// integer ≥ min", or "found X, which is too large; expected an integer from min to 10⁹".
-[[nodiscard]] std::string integer_issue(const toml::node& n, int min);
-
-/// The problems of one case file, thrown together as one InputError.
-class Issues {
- public:
-  explicit Issues(std::string file) : file_(std::move(file)) {}
-  /// A line < 1 (unknown) is reported as line 1 so every issue points into the file.
-  void add(int line, std::string key, std::string message);
-  [[nodiscard]] bool empty() const { return issues_.empty(); }
-  [[nodiscard]] size_t size() const { return issues_.size(); }
-  /// Throws InputError with the issues in file order (stable by line).
-  [[noreturn]] void raise();
-
- private:
-  std::string file_;
-  std::vector<InputIssue> issues_;
+enum class Type {
+  number,             // a finite number within `range`
+  integer,            // an integer from `min` to `max` (10⁹ when max is 0)
+  boolean,            // true or false
+  string,             // any string
+  name,               // a string that names something (a body, a boundary, a material)
+  choice,             // one of `choices`
+  time_table,         // a number or { t = [...], value = [...] } within `range`
+  temperature_table,  // a number or { temperature = [...], value = [...] } within `range`
+  vector,             // `dimension` numbers
+  counts,             // `dimension` integers ≥ 1
+  components,         // `dimension` entries, each a number, a time table or "free"
+  subdomains,         // an integer ≥ 1 or "auto"
+  dimension,          // 2 or 3
+  table,              // a table whose keys are the section `<path>.<key>`
+  tables,             // an array of tables, each of the section `<key>`
+  named_tables,       // tables NAME = { ... }, each of the section `<key>.*`
+  contact_tables,     // one table or an array of tables, each of the section `<key>`
 };
 
-/// A constraint on a number: the predicate and the words that say what is expected.
+/// An interval of numbers with its words ("a time step > 0"); no words: any finite number.
 struct Range {
-  std::function<bool(double)> ok;  // empty = any finite number
-  std::string expected = "a number";
-};
-[[nodiscard]] Range positive(const std::string& what);      // "<what> > 0"
-[[nodiscard]] Range non_negative(const std::string& what);  // "<what> ≥ 0"
-
-enum class Need { optional, required };
-
-/// Joins a dotted key path: join("", "a") = "a", join("a", "b") = "a.b".
-[[nodiscard]] std::string join(const std::string& path, std::string_view key);
-/// Indexed key: at("bodies", 1) = "bodies[1]".
-[[nodiscard]] std::string at(const std::string& path, size_t index);
-
-/// One TOML table at a dotted key path with its schema (the keys it may hold). Constructing it
-/// reports every other key as unknown. Holds references: the table and Issues must outlive it.
-class TableReader {
- public:
-  TableReader(const toml::table& t, std::string path, Issues& issues,
-              std::initializer_list<std::string_view> keys);
-
-  [[nodiscard]] const std::string& path() const { return path_; }
-  [[nodiscard]] std::string key(std::string_view k) const { return join(path_, k); }
-  [[nodiscard]] int line() const { return line_of(*t_); }
-  [[nodiscard]] const toml::table& table() const { return *t_; }
-  [[nodiscard]] Issues& issues() const { return *issues_; }
-  [[nodiscard]] bool has(std::string_view k) const { return t_->contains(k); }
-  /// Line of member k, or of the table when k is absent.
-  [[nodiscard]] int line(std::string_view k) const;
-  /// Records an issue about member k (at its line, or the table's when absent).
-  void issue(std::string_view k, std::string message) const;
-
-  /// Member k; when absent and required, an issue "missing; expected <expected>".
-  const toml::node* get(std::string_view k, Need need, std::string_view expected) const;
-  std::optional<double> number(std::string_view k, Need need, const Range& range = {}) const;
-  std::optional<int> integer(std::string_view k, Need need, int min) const;
-  std::optional<std::string> string(std::string_view k, Need need) const;
-  std::optional<bool> boolean(std::string_view k) const;
-  /// A string that must be one of `choices`.
-  std::optional<std::string> choice(std::string_view k, Need need,
-                                    std::initializer_list<std::string_view> choices) const;
-  /// Member k as a table with its own schema.
-  std::optional<TableReader> sub_table(std::string_view k, Need need,
-                                       std::initializer_list<std::string_view> keys) const;
-
- private:
-  const toml::table* t_;
-  std::string path_;
-  Issues* issues_;
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_closed = false, hi_closed = false;
+  std::string_view words;
+  [[nodiscard]] bool contains(double x) const {
+    return (x > lo || (lo_closed && x == lo)) && (x < hi || (hi_closed && x == hi));
+  }
 };
 
-/// A finite number within `range`, or an issue at `key`.
-std::optional<double> read_number(const toml::node& n, const std::string& key, Issues& issues,
-                                  const Range& range = {});
-/// A number or a table { t = [...], value = [...] }: t strictly increasing, as many values as
-/// times (≥ 1), every value within `range`.
-std::optional<core::TimeTable> read_time_table(const toml::node& n, const std::string& key,
-                                               Issues& issues, const Range& range = {});
-/// A number or a table in the interface temperature { temperature = [...], value = [...] }:
-/// temperatures > 0 K and strictly increasing, as many values as temperatures (≥ 1), every
-/// value within `range`; a table in time ({ t = ... }) is an issue of its own.
-std::optional<core::TemperatureTable> read_temperature_table(const toml::node& n,
-                                                             const std::string& key, Issues& issues,
-                                                             const Range& range = {});
-/// An array of `n` finite numbers (n = 0: 2 or 3 entries, the dimension being unknown).
-std::optional<std::array<double, 3>> read_vector(const toml::node& n, const std::string& key,
-                                                 Issues& issues, int size);
-/// An array of `n` integers ≥ 1 (n = 0: 2 or 3 entries); absent entries are 1.
-std::optional<std::array<int, 3>> read_counts(const toml::node& n, const std::string& key,
-                                              Issues& issues, int size);
+struct Key {
+  std::string_view name;
+  Type type;
+  Range range{};  // number, time_table, temperature_table
+  int min = 1;    // integer
+  int max = 0;    // integer: 0 = up to 10⁹
+  std::span<const std::string_view> choices{};
+  /// The value an absent key stands for, as TOML (`1e-6`, `"nested"`, `true`), or `required`,
+  /// `none` (nothing is prescribed), or the key whose value it takes
+  /// (`physics.reference_temperature`).
+  std::string_view default_value = "none";
+  std::string_view unit = "";
+  std::string_view doc = "";
+  /// What a missing key or a wrong value is expected to be, where its type alone does not say.
+  std::string_view expected = "";
+  [[nodiscard]] bool required() const { return default_value == "required"; }
+};
 
-/// Per component a number, a time table, or (when free_allowed) the string "free", which
-/// leaves the component empty like an absent one.
-using Components = std::array<std::optional<core::TimeTable>, 3>;
-std::optional<Components> read_components(const toml::node& n, const std::string& key,
-                                          Issues& issues, int size, bool free_allowed);
+struct Section {
+  /// The table's path as the key reference writes it: "" (the root), "time", "materials.*"
+  /// (each named material), "bodies" (each [[bodies]] entry), "bodies.mesh.box".
+  std::string_view path;
+  std::span<const Key> keys;
+};
 
-}  // namespace tc::io::detail
+/// Every section of the case file, the root first.
+[[nodiscard]] std::span<const Section> sections();
+/// The section at `path`; throws std::logic_error when there is none (a reader bug).
+[[nodiscard]] const Section& section(std::string_view path);
+/// The key `name` of `s`; throws std::logic_error when it has none (a reader bug).
+[[nodiscard]] const Key& key(const Section& s, std::string_view name);
+/// The key's full path in the reference: "solver.qp_tolerance", "bodies.mesh.box.min".
+[[nodiscard]] std::string full_name(const Section& s, const Key& k);
+/// The key's type in words for the reference: "number > 0", "\"plain\" | \"stabilised\"".
+[[nodiscard]] std::string type_words(const Key& k);
+
+}  // namespace tc::io::schema

@@ -73,8 +73,8 @@ double coulomb_fixed_point(TrescaIteration& t, const core::Vector& lambda,
   const double qp_tol = p.qp_tolerance;
   double residual = 0;
   // Inexact where it cannot matter (forcing terms as in inexact Newton methods):
-  // - a QP to qp_forcing (1e-2) of the last fixed-point residual, clamped to [qp_tolerance,
-  //   qp_forcing_cap = 1e-3] (a cap below the QP tolerance means no forcing); a residual that
+  // - a QP to qp_forcing of the last fixed-point residual, clamped to [qp_tolerance,
+  //   qp_forcing_cap] (a cap below the QP tolerance means no forcing); a residual that
   //   doubles shows a loose QP's λ passed for converged (seen on bench/contact's long
   //   quasistatic slides: the loop cycled), and the step's QPs are exact from then on;
   // - with thermal expansion, while the residual is above the tolerance, the loop at this θ

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tc/core/petsc.hpp"
+#include "tc/physics/problem.hpp"
 
 namespace tc::physics {
 
@@ -45,8 +46,10 @@ struct CoulombFixedPoint {
   double qp_tolerance = 0;
   // The forcing terms (FrictionFixedPointSettings, problem.hpp): a QP to qp_forcing × the last
   // residual within [qp_tolerance, qp_forcing_cap]; a cut-short loop stops after a
-  // 1/loop_forcing-fold fall.
-  double qp_forcing = 1e-2, qp_forcing_cap = 1e-3, loop_forcing = 1e-2;
+  // 1/loop_forcing-fold fall. Their defaults are the case's (one copy: problem.hpp).
+  double qp_forcing = FrictionFixedPointSettings{}.qp_forcing;
+  double qp_forcing_cap = FrictionFixedPointSettings{}.qp_forcing_cap;
+  double loop_forcing = FrictionFixedPointSettings{}.loop_forcing;
   int max_updates = 1;
   int step = 0, outer = 0;  // for the messages: the step and the staggered iteration
 };
