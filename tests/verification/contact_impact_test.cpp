@@ -152,10 +152,12 @@ TEST_P(ContactImpact, NoPenetrationForceThenRelease) {
       // O(τ): each halving of τ must shrink it (measured 2.4 / 0.81 / 0.32 %: ×0.34, ×0.39;
       // 0.75 leaves room for the O(τ²) part without admitting a change that does not fall).
       const auto no_growth_but_at_release = [](const Recorder& r, const std::string& what) {
-        for (size_t i = 1; i < r.energy.size(); ++i)
-          if (r.active[i] >= r.active[i - 1])
+        for (size_t i = 1; i < r.energy.size(); ++i) {
+          if (r.active[i] >= r.active[i - 1]) {
             EXPECT_LE(r.energy[i], r.energy[i - 1] * (1 + 1e-8))
                 << what << ": the energy grew at step " << i << " where no node released";
+          }
+        }
       };
       no_growth_but_at_release(rec, "τ");
       double change = std::abs(e_end / e0 - 1);
