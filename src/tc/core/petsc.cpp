@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -16,9 +15,11 @@
 #include <cstring>
 #include <iterator>
 
+#include "tc/core/cholmod_factor.hpp"
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/threads.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::core {
 
@@ -333,9 +334,10 @@ SparseMatrix::SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscIn
 SparseMatrix SparseMatrix::over_ranks(const RowBlocks& rows, const RowBlocks& cols,
                                       std::span<const PetscInt> diagonal,
                                       std::span<const PetscInt> off_diagonal) {
-  assert(rows.spread() && cols.comm == rows.comm &&
-         diagonal.size() == static_cast<size_t>(rows.here()) &&
-         off_diagonal.size() == diagonal.size());
+  TC_VERIFY(rows.spread() && cols.comm == rows.comm &&
+                diagonal.size() == static_cast<size_t>(rows.here()) &&
+                off_diagonal.size() == diagonal.size(),
+            "a spread matrix is preallocated for each of this rank's rows");
   SparseMatrix a;
   a.blocks_ = rows;
   a.col_blocks_ = cols;
@@ -456,8 +458,10 @@ double mean_diagonal(const SparseMatrix& a) {
 std::vector<std::string> available_cholesky_packages() {
   // The packages register with Mat's initialisation, which nothing may have triggered yet.
   TC_PETSC(MatInitializePackage());
-  std::vector<std::string> out;
-  for (const char* p : {MATSOLVERCHOLMOD, MATSOLVERMUMPS, MATSOLVERPETSC}) {
+  // CHOLMOD is this project's own (CholmodFactor, required at configure time), first: the
+  // automatic choice on one rank. The others are PETSc's.
+  std::vector<std::string> out{MATSOLVERCHOLMOD};
+  for (const char* p : {MATSOLVERMUMPS, MATSOLVERPETSC}) {
     PetscBool found = PETSC_FALSE;
     TC_PETSC(MatSolverTypeGet(p, MATSEQAIJ, MAT_FACTOR_CHOLESKY, &found, nullptr, nullptr));
     if (found) out.emplace_back(p);
@@ -489,6 +493,10 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package
     return;
   }
 
+  if (package_ == MATSOLVERCHOLMOD) {
+    cholmod_ = std::make_shared<const CholmodFactor>(a.get());
+    return;
+  }
   TC_PETSC(MatSetOption(a.get(), MAT_SYMMETRIC, PETSC_TRUE));
   TC_PETSC(MatSetOption(a.get(), MAT_SPD, PETSC_TRUE));
   // The KSP only factorises: the factor is kept and the KSP dropped, so that it no longer
@@ -571,9 +579,20 @@ void CholeskySolver::solve(const Vector& b, Vector& x) const {
 }
 
 void CholeskySolver::solve_raw(::Vec b, ::Vec x) const {
-  assert(b != x && "MatSolve needs distinct vectors");
+  TC_VERIFY(b != x, "MatSolve and CHOLMOD need distinct vectors");
   if (distributed()) {
     solve_over_ranks(b, x);
+    return;
+  }
+  if (cholmod_) {
+    const double* bv = nullptr;
+    double* xv = nullptr;
+    TC_PETSC(VecGetArrayRead(b, &bv));
+    TC_PETSC(VecGetArrayWrite(x, &xv));
+    const int n = cholmod_->size();
+    cholmod_->solve(bv, n, xv, n, 1);
+    TC_PETSC(VecRestoreArrayWrite(x, &xv));
+    TC_PETSC(VecRestoreArrayRead(b, &bv));
     return;
   }
   TC_PETSC(MatSolve(factor_.get(), b, x));
@@ -582,6 +601,20 @@ void CholeskySolver::solve_raw(::Vec b, ::Vec x) const {
 void CholeskySolver::solve_many(::Mat b, ::Mat x) const {
   if (distributed()) {
     solve_many_over_ranks(b, x);
+    return;
+  }
+  if (cholmod_) {
+    PetscInt n = 0, k = 0, ldb = 0, ldx = 0;
+    TC_PETSC(MatGetSize(b, &n, &k));
+    TC_PETSC(MatDenseGetLDA(b, &ldb));
+    TC_PETSC(MatDenseGetLDA(x, &ldx));
+    const double* bv = nullptr;
+    double* xv = nullptr;
+    TC_PETSC(MatDenseGetArrayRead(b, &bv));
+    TC_PETSC(MatDenseGetArrayWrite(x, &xv));
+    cholmod_->solve(bv, static_cast<int>(ldb), xv, static_cast<int>(ldx), static_cast<int>(k));
+    TC_PETSC(MatDenseRestoreArrayWrite(x, &xv));
+    TC_PETSC(MatDenseRestoreArrayRead(b, &bv));
     return;
   }
   TC_PETSC(MatMatSolve(factor_.get(), b, x));
@@ -595,8 +628,9 @@ void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const Pe
   r = RowBlocks::over(PETSC_COMM_WORLD, a.rows());
   const int size = static_cast<int>(r.count.size());
   // A matrix spread over the ranks is spread as the factor is (the same rule).
-  assert(!a.distributed() ||
-         (a.row_blocks().first() == r.first() && a.row_blocks().here() == r.here()));
+  TC_VERIFY(!a.distributed() ||
+                (a.row_blocks().first() == r.first() && a.row_blocks().here() == r.here()),
+            "a spread matrix is spread as its factor");
   const PetscInt first = r.first();
   const PetscInt m = r.here();
 
