@@ -197,11 +197,10 @@ bool CholeskySolver::forward_compliance_pays(std::span<const PetscInt> dofs, int
       restricted += forward_flops(super[s + 1] - super[s], lpi[s + 1] - lpi[s],
                                   static_cast<double>(part.size()));
   }
-  // Below `negligible` (a third of a second at the 30 GFlop/s of one core here) the restricted
-  // solves cost next to nothing, and a switch would change the set-up's rounding for no
-  // measurable time: they are kept there. Above it the fewer flops win: at 10⁶ dofs the
-  // plate's forward solves are 2.5× fewer flops and 3.5× less time than its restricted ones
-  // (bench/RESULTS.md), whether or not those stay below the factorisation.
+  // Below `negligible` (a fraction of a second on one core at the level-3 BLAS rate) the
+  // restricted solves cost next to nothing, and a switch would change the set-up's rounding for
+  // no measurable time: they are kept there. Above it the fewer flops win, in time too
+  // (bench/RESULTS.md, the 10⁶-dof plate), whether or not those stay below the factorisation.
   constexpr double negligible = 1e10;
   return restricted > negligible && forward < restricted;
 }
