@@ -6,7 +6,8 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake pkg-config git
-  petsc-dev libopenmpi-dev openmpi-bin    # PETSc 3.18 with MPI, MUMPS and SuiteSparse (CHOLMOD)
+  petsc-dev libopenmpi-dev openmpi-bin    # PETSc 3.18 with MPI and MUMPS
+  libsuitesparse-dev                      # CHOLMOD, called through its own API (any PETSc version)
   libopenblas0-pthread                    # optimised BLAS: CHOLMOD factorises 5x faster than with reference BLAS
   libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libmetis-dev
   libgmsh-dev gmsh

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "tc/core/cholmod_factor.hpp"
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
@@ -501,6 +502,7 @@ int info(const char* program) {
   for (const auto& p : tc::core::available_cholesky_packages())
     packages += (packages.empty() ? "" : ", ") + p;
   fmt::print("Cholesky factorizations: {}\n", packages);
+  fmt::print("CHOLMOD: {}\n", tc::core::cholmod_path());
   fmt::print("Gmsh: {}\n", GMSH_API_VERSION);
   return 0;
 }

@@ -35,6 +35,9 @@ TEST(Cli, InfoNamesPetscAndTheFactorizations) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("PETSc"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Cholesky"), std::string::npos) << r.output;
+  // The CHOLMOD path built in (issue 40): its own API, not PETSc's private factor.
+  EXPECT_NE(r.output.find("CHOLMOD: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("through its public API"), std::string::npos) << r.output;
 }
 
 TEST(Cli, EveryInvalidCaseExitsWithTwoNamingFileLineAndKey) {

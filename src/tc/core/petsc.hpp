@@ -207,7 +207,8 @@ class SparseMatrix {
 /// dofs, so that a matrix with them replaced by a scaled identity keeps its conditioning.
 [[nodiscard]] double mean_diagonal(const SparseMatrix& a);
 
-struct CholeskyColumns;  // cholmod_columns.cpp
+class CholmodFactor;     // cholmod_factor.hpp
+struct CholeskyColumns;  // cholmod_supernodes.hpp
 struct ForwardColumns;  // cholmod_columns.cpp: Y = L⁻¹P E_T kept between forward_compliance calls
 struct ForwardColumnsDeleter {
   void operator()(ForwardColumns* y) const;
@@ -219,8 +220,9 @@ using ForwardColumnsPtr = std::unique_ptr<ForwardColumns, ForwardColumnsDeleter>
 enum class FactorRanks { this_rank, all_ranks };
 
 /// A direct Cholesky factorisation of an SPD SparseMatrix, done once, solved many times.
-/// The package is "mumps" or "cholmod" (PETSc's MatSolverType); it may be overridden with the
-/// PETSc option -tc_factor_package.
+/// The package is "mumps", "cholmod" or "petsc" (PETSc's MatSolverType names); it may be
+/// overridden with the PETSc option -tc_factor_package. CHOLMOD on one rank is called through
+/// SuiteSparse's public API (CholmodFactor), the others through PETSc.
 ///
 /// With FactorRanks::all_ranks on more than one rank, and the package MUMPS or left to the
 /// solver, or with a matrix whose rows are spread over the ranks (SparseMatrix::over_ranks),
@@ -299,7 +301,8 @@ class CholeskySolver {
   void inverse_entries_chunk(std::span<const PetscInt> asked, std::span<const PetscInt> wanted,
                              std::vector<double>& entries) const;
 
-  Handle<::Mat, MatDestroy> factor_;  // PETSc's factored matrix (MATSOLVERCHOLMOD or MUMPS)
+  Handle<::Mat, MatDestroy> factor_;              // PETSc's factored matrix (MUMPS or PETSc's own)
+  std::shared_ptr<const CholmodFactor> cholmod_;  // or CHOLMOD's, through its own API
   std::string package_;
   RowBlocks ranks_;
   mutable std::shared_ptr<CholeskyColumns> columns_;  // the factor's structure, on first use

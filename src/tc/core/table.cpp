@@ -1,7 +1,8 @@
 #include "tc/core/table.hpp"
 
 #include <algorithm>
-#include <cassert>
+
+#include "tc/core/verify.hpp"
 
 namespace tc::core {
 
@@ -17,15 +18,17 @@ double piecewise_linear(const std::vector<double>& x, const std::vector<double>&
 
 TimeTable::TimeTable(std::vector<double> t, std::vector<double> v)
     : t_(std::move(t)), v_(std::move(v)) {
-  assert(!v_.empty() && t_.size() == v_.size());
-  assert(std::is_sorted(t_.begin(), t_.end()));
+  TC_VERIFY(!v_.empty() && t_.size() == v_.size(), "a time table pairs each time with a value");
+  TC_VERIFY(std::is_sorted(t_.begin(), t_.end()), "the reader sorts a time table's times");
   if (t_.size() == 1) t_.clear();
 }
 
 TemperatureTable::TemperatureTable(std::vector<double> theta, std::vector<double> v)
     : theta_(std::move(theta)), v_(std::move(v)) {
-  assert(!v_.empty() && theta_.size() == v_.size());
-  assert(std::is_sorted(theta_.begin(), theta_.end()));
+  TC_VERIFY(!v_.empty() && theta_.size() == v_.size(),
+            "a temperature table pairs each temperature with a value");
+  TC_VERIFY(std::is_sorted(theta_.begin(), theta_.end()),
+            "the reader sorts a temperature table's temperatures");
   // Flat: the constant itself, bit for bit (interpolating between equal values need not give
   // that value back in floating point).
   if (std::all_of(v_.begin(), v_.end(), [&](double x) { return x == v_.front(); })) {

@@ -5,11 +5,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::fem {
 
@@ -82,8 +82,9 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
                             const CellKernel& kernel, const core::RowBlocks* spread,
                             const core::RowBlocks* spread_cols) {
   if (spread && !spread_cols) spread_cols = spread;  // square
-  assert(!spread ||
-         (spread->n == row_block * m.n_nodes() && spread_cols->n == col_block * m.n_nodes()));
+  TC_VERIFY(!spread ||
+                (spread->n == row_block * m.n_nodes() && spread_cols->n == col_block * m.n_nodes()),
+            "the rows spread over the ranks are the mesh's dofs");
   core::SparseMatrix out;
   if (spread) {  // this rank's rows: entries in its block of columns and outside it
     const PetscInt first = spread->first(), end = first + spread->here();
@@ -122,8 +123,9 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
           std::none_of(rows.begin(), rows.end(), [&](PetscInt r) { return spread->owns(r); }))
         continue;  // another rank's cell
       ke = kernel(c, m.cell_type(c), cell_coords(m, c));
-      assert(ke.rows() == static_cast<Eigen::Index>(rows.size()) &&
-             ke.cols() == static_cast<Eigen::Index>(cols.size()));
+      TC_VERIFY(ke.rows() == static_cast<Eigen::Index>(rows.size()) &&
+                    ke.cols() == static_cast<Eigen::Index>(cols.size()),
+                "the cell kernel's matrix matches the cell's dofs");
       out.add_values(rows, cols, ke.data());
     }
   };

@@ -7,11 +7,11 @@
 // allocations of a kernel are its result.
 #include "tc/fem/element.hpp"
 
-#include <cassert>
 #include <cmath>
 #include <vector>
 
 #include "tc/core/error.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::fem {
 
@@ -204,7 +204,8 @@ void map_point(const Coords& x, const NodeGrad& dn, double w, PointData& p) {
 
 template <class F>
 void for_each_point(CellType t, const Coords& x, F&& f) {
-  assert(x.rows() == mesh::n_nodes(t) && x.cols() == mesh::dimension(t));
+  TC_VERIFY(x.rows() == mesh::n_nodes(t) && x.cols() == mesh::dimension(t),
+            "a cell's coordinates are its nodes × its dimension");
   PointData p;
   for (const auto& q : table(t)) {
     map_point(x, q.dn, q.weight, p);
@@ -355,7 +356,7 @@ Eigen::VectorXd cell_load(CellType t, const Coords& x, const Func& f) {
 Eigen::VectorXd facet_load(FacetType t, const Coords& x, const Func& f) {
   // ∫_facet f N_a dS: the Neumann parts of f_u and f_θ (2.3, 2.10). The surface element is
   // |∂x/∂ξ| (edge) or |∂x/∂ξ × ∂x/∂η| (face); the facet lives in the body's `dim` space.
-  assert(x.rows() == mesh::n_nodes(t));
+  TC_VERIFY(x.rows() == mesh::n_nodes(t), "a facet's coordinates are its nodes'");
   Eigen::VectorXd v = Eigen::VectorXd::Zero(x.rows());
   SmallMatrix tangents;
   for (const auto& q : table(t)) {
@@ -365,7 +366,7 @@ Eigen::VectorXd facet_load(FacetType t, const Coords& x, const Func& f) {
     if (tangents.cols() == 1) {
       measure = tangents.col(0).norm();
     } else {
-      assert(x.cols() == 3);
+      TC_VERIFY(x.cols() == 3, "a face lives in 3D");
       const Eigen::Vector3d t1 = tangents.col(0), t2 = tangents.col(1);
       measure = t1.cross(t2).norm();
     }
@@ -377,7 +378,7 @@ Eigen::VectorXd facet_load(FacetType t, const Coords& x, const Func& f) {
 
 Eigen::MatrixXd facet_mass(FacetType t, const Coords& x) {
   // ∫_facet N_a N_b dS with the surface element of facet_load (film boundaries, h∫θv).
-  assert(x.rows() == mesh::n_nodes(t));
+  TC_VERIFY(x.rows() == mesh::n_nodes(t), "a facet's coordinates are its nodes'");
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(x.rows(), x.rows());
   SmallMatrix tangents;
   for (const auto& q : table(t)) {

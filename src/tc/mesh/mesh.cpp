@@ -1,9 +1,9 @@
 #include "tc/mesh/mesh.hpp"
 
 #include <algorithm>
-#include <cassert>
 
 #include "tc/core/error.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::mesh {
 
@@ -69,8 +69,9 @@ int Mesh::add_point(const Point& p) {
 }
 
 int Mesh::add_cell(CellType t, std::span<const int> nodes) {
-  assert(static_cast<int>(nodes.size()) == mesh::n_nodes(t));
-  assert(dimension(t) == dim_);
+  TC_VERIFY(static_cast<int>(nodes.size()) == mesh::n_nodes(t),
+            "a cell lists as many nodes as its type has");
+  TC_VERIFY(dimension(t) == dim_, "a cell has the mesh's dimension");
   types_.push_back(t);
   cell_nodes_.insert(cell_nodes_.end(), nodes.begin(), nodes.end());
   offsets_.push_back(static_cast<int>(cell_nodes_.size()));

@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cassert>
 #include <set>
 
 #include "tc/core/error.hpp"
+#include "tc/core/verify.hpp"
 #include "tc/physics/boundary_heat.hpp"
 #include "tc/physics/contact_heat.hpp"
 
@@ -25,7 +25,7 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
   conductance_.resize(n_pairs);
   bodies_.clear();
   for (const auto& it : pairs) bodies_.push_back(it.bodies);
-  assert(heat_.size() == n_pairs);  // set_pairs
+  TC_VERIFY(heat_.size() == n_pairs, "set_pairs sized the pairs' heat");
   std::vector<std::vector<double>> gamma(n_pairs);
   bool any_frictional = false;
   for (size_t q = 0; q < n_pairs; ++q) {
@@ -224,7 +224,7 @@ void ContactHeatCoupling::account_step(const BodyGroup& group, double tau) {
 }
 
 void ContactHeatCoupling::set_pair_heat(std::span<const ContactHeat> heat) {
-  assert(heat.size() == heat_.size());
+  TC_VERIFY(heat.size() == heat_.size(), "one interface heat per contact pair");
   std::copy(heat.begin(), heat.end(), heat_.begin());
   sum_heat();
 }

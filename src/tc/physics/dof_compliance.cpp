@@ -1,10 +1,10 @@
 #include "tc/physics/dof_compliance.hpp"
 
 #include <algorithm>
-#include <cassert>
 
 #include "tc/core/error.hpp"
 #include "tc/core/threads.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::physics {
 
@@ -135,7 +135,7 @@ PetscInt DofCompliance::cover(std::span<const PetscInt> dofs) {
     by_forward_ = solver_.forward_compliance_pays(dofs_, static_cast<int>(block));
   }
   if (by_forward_) {  // CHOLMOD's factor, on this rank alone: S whole
-    assert(ranks_ == 1);
+    TC_VERIFY(ranks_ == 1, "the forward solves need the factor on this rank alone");
     const auto fresh = std::span(dofs_).subspan(static_cast<size_t>(old));
     if (old == 0 && solver_.forward_compliance(forward_, fresh, s_.data()))
       return static_cast<PetscInt>(t);  // S(T, T), exactly symmetric

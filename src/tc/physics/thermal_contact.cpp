@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cassert>
 #include <limits>
 
 #include "tc/core/blas.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::physics {
 
@@ -164,7 +164,7 @@ void InterfaceHeatSolver::lu_solve(Eigen::VectorXd& y) const {
   const int n = static_cast<int>(y.size()), one = 1;
   int info = 0;
   dgetrs_("N", &n, &one, lu_.data(), &n, pivots_.data(), y.data(), &n, &info);
-  assert(info == 0);
+  TC_VERIFY(info == 0, "dgetrs is called with valid arguments");
 }
 
 void InterfaceHeatSolver::interface_solve(Eigen::VectorXd& y) const {

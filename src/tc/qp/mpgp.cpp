@@ -2,11 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <cassert>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
+
+#include "tc/core/verify.hpp"
 
 namespace tc::qp {
 
@@ -32,7 +33,7 @@ Mpgp::Mpgp(const LinearOperator& f, const FeasibleSet& set, QpOptions options)
 
 Mprgp::Mprgp(const LinearOperator& f, const FeasibleSet& set, QpOptions options)
     : impl_(f, set, options) {
-  assert(!set.has_discs() && "discs need Mpgp");
+  TC_VERIFY(!set.has_discs(), "MPRGP projects on boxes; friction discs need Mpgp");
 }
 
 namespace {

@@ -2,12 +2,12 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <utility>
 #include <vector>
 
 #include "tc/core/blas.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::qp {
 
@@ -28,8 +28,7 @@ SymmetricDenseOperator::SymmetricDenseOperator(::Mat a) : a_(a) {
   TC_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a), MATSEQDENSE, &dense));
   PetscInt m = 0;
   TC_PETSC(MatGetSize(a, &m, &n_));
-  assert(dense && m == n_);
-  (void)dense;
+  TC_VERIFY(dense && m == n_, "the dense dual operator is square and MATSEQDENSE");
 }
 
 void SymmetricDenseOperator::apply(const Vector& x, Vector& y) const {

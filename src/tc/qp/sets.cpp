@@ -3,7 +3,8 @@
 #include <mpi.h>
 
 #include <algorithm>
-#include <cassert>
+
+#include "tc/core/verify.hpp"
 
 namespace tc::qp {
 
@@ -33,12 +34,14 @@ FeasibleSet::FeasibleSet(const Vector& layout)
       in_disc_(static_cast<size_t>(layout.local_size()), 0) {}
 
 void FeasibleSet::set_interval(PetscInt i, Interval iv) {
-  assert(iv.lo <= iv.hi);
+  // Written so that a NaN bound passes: it is reported by the finite checks with its step.
+  TC_VERIFY(!(iv.lo > iv.hi), "an interval's lower bound is not above its upper one");
   intervals_.at(static_cast<size_t>(i)) = iv;
 }
 
 void FeasibleSet::add_disc(DiscBlock block) {
-  assert(block.disc.r >= 0 && block.first != block.second);
+  TC_VERIFY(!(block.disc.r < 0) && block.first != block.second,
+            "a friction disc has a radius and two distinct components");
   in_disc_.at(static_cast<size_t>(block.first)) = 1;
   in_disc_.at(static_cast<size_t>(block.second)) = 1;
   discs_.push_back(block);
