@@ -3,7 +3,6 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <atomic>
-#include <cassert>
 #include <cmath>
 #include <exception>
 #include <mutex>
@@ -14,6 +13,7 @@
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/threads.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::physics {
 
@@ -24,7 +24,7 @@ const char* name(DualOperator k) {
 DualContactSolver::DualContactSolver(std::vector<const ConstrainedSolver*> bodies,
                                      std::vector<PetscInt> n_u, DualContactSettings settings)
     : bodies_(std::move(bodies)), settings_(std::move(settings)) {
-  assert(bodies_.size() == n_u.size());
+  TC_VERIFY(bodies_.size() == n_u.size(), "one dof count per body");
   // S's rows dealt over the ranks when every body's factor is (all or none: F is then summed
   // over the ranks, each rank's part from its rows of every S).
   const bool over_ranks = std::all_of(bodies_.begin(), bodies_.end(),
@@ -65,7 +65,7 @@ void DualContactSolver::set_rows(ContactRows rows) {
 }
 
 void DualContactSolver::set_rows(std::vector<ContactRows> pairs, std::vector<PairBodies> bodies) {
-  assert(pairs.size() == bodies.size() && !pairs.empty());
+  TC_VERIFY(pairs.size() == bodies.size() && !pairs.empty(), "one body pair per row block");
   pairs_ = std::move(pairs);
   pair_bodies_ = std::move(bodies);
   clear_rank_one();
@@ -97,7 +97,8 @@ void DualContactSolver::stack_rows() {
   offsets_.assign(1, 0);
   gap_.clear();
   for (const auto& r : pairs_) {
-    assert(r.dim == dim_ && r.slave.rows() == r.n_rows() && r.master.rows() == r.n_rows());
+    TC_VERIFY(r.dim == dim_ && r.slave.rows() == r.n_rows() && r.master.rows() == r.n_rows(),
+              "the pair's rows have the solver's dimension");
     offsets_.push_back(offsets_.back() + r.n_nodes());
     gap_.insert(gap_.end(), r.gap.begin(), r.gap.end());
   }

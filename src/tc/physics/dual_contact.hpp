@@ -12,12 +12,12 @@
 // stay on dofs seen before, whatever the geometry of the step.
 #include <Eigen/Dense>
 #include <array>
-#include <cassert>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "tc/contact/contact_rows.hpp"
+#include "tc/core/verify.hpp"
 #include "tc/physics/constrained_solver.hpp"
 #include "tc/physics/dof_compliance.hpp"
 #include "tc/qp/mpgp.hpp"
@@ -85,7 +85,7 @@ class DualContactSolver {
   [[nodiscard]] PetscInt pair_offset(int p) const { return offsets_[p]; }
   /// The rows of the one pair (set_rows with a single pair).
   [[nodiscard]] const ContactRows& rows() const {
-    assert(pairs_.size() == 1);
+    TC_VERIFY(pairs_.size() == 1, "one contact pair");
     return pairs_.front();
   }
   [[nodiscard]] int dim() const { return dim_; }
