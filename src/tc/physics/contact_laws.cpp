@@ -69,8 +69,8 @@ void ContactLaws::check(const PairLaws& p, double unit, double coupling_toleranc
     const double f = k < p.friction.size() ? p.friction[k] : 0.0;
     const double qb = k < p.qp_bound.size() ? p.qp_bound[k] : 0.0;
     const double c = lt - f * std::max(p.lambda[r], 0.0);
-    // Never the user's looser tolerance: the fixed point iterates until every node is within
-    // cone_tolerance (coulomb_fixed_point), so that no row has T/N above 𝔉 by more.
+    // Never the user's looser tolerance: with one, the nodes outside their cone were scaled
+    // onto it before (ContactCoupling::scale_into_cones), so that no row has T/N above 𝔉.
     const double cone_bound =
         f * std::min(coupling_tolerance, cone_tolerance) * lambda_norm + 16 * eps * (qb + lt);
     cone.offer(unit * c, unit * cone_bound, step, node, p.name);
