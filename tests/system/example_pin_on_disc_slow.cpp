@@ -8,7 +8,8 @@
 //   the normals of the rows, in the configuration of t^k) differs from it by the friction's
 //   share along z, 𝔉 × the tilt of the rows' normals: the pin's face bends under 𝔉N and the
 //   track bulges round the hot spot, by up to α(θ_max − θ₀) ≈ 1.15e-5 × 400 K ≈ 4.6e-3 rad
-//   (measured: 4.1e-4 of the load, README);
+//   (measured: 4.1e-4 of the load, README); contact_force_z, the resultant of the contact on
+//   the pin in space (−Σ B_sᵀλ over its z dofs), is the load to 1e-6;
 // - the heat: heat_generated = 𝔉 N × the 0.2 m of slide within 0.5 % (the slip differs from the
 //   holder's travel by the pin's elastic lag, µm), split ½ / ½ (δ_C = ½), and the heat ledger
 //   thermal_energy = heat_generated − heat_film at every step, to 1e-6 of the heat generated;
@@ -44,6 +45,8 @@ TEST(ExamplePinOnDisc, HoldsTheLoadAndHeatsByCoulomb) {
   const auto thermal = column(h, "thermal_energy");
   const auto film = column(h, "heat_film");
   const auto tmax = column(h, "max_temperature");
+  const auto fz = column(h, "contact_force_z");
+  ASSERT_EQ(fz.size(), h.rows.size());
   const double friction = 0.4, force = 200.0, slide = 0.2;
   for (size_t k = 1; k < h.rows.size(); ++k) {
     // The coupling balances the load to 10 × qp_tolerance (1e-7) of it: 1e-6 with a margin.
@@ -52,6 +55,9 @@ TEST(ExamplePinOnDisc, HoldsTheLoadAndHeatsByCoulomb) {
     // friction then carries up to 𝔉·tilt of the load along z, tilt ≤ α(θ_max − θ₀).
     const double tilt = 1.15e-5 * (tmax[k] - 293.15);
     EXPECT_NEAR(n[k], force, friction * tilt * force + 1e-6 * force) << "step " << k;
+    // The resultant of the contact on the pin, normal and tangential parts in space, is what
+    // holds it along z: the load, to the coupling's 1e-7 with the margin above.
+    EXPECT_NEAR(fz[k], force, 1e-6 * force) << "step " << k;
     // The top moves by the indentation and the thermal expansion: micrometres.
     EXPECT_LT(std::abs(w[k]), 1e-5) << "step " << k;
   }

@@ -161,4 +161,77 @@ TEST(FrictionLaw, ARestartAcrossACutBackIsBitForBit) {
   }
 }
 
+/// T/N of every row with N > 0 over 𝔉: at most 1 + `slack`, or the first row beyond.
+void expect_cone_in_every_row(const fs::path& out, double friction, double slack) {
+  const auto h = tc::test::read_history(out / "history.csv");
+  ASSERT_TRUE(h.whole);
+  ASSERT_GT(h.rows.size(), 1u);
+  const auto n = col_of(h, "contact_normal_force"), t = col_of(h, "contact_tangential_force");
+  bool sliding = false;
+  for (size_t i = 1; i < h.rows.size(); ++i) {
+    if (!(h.rows[i][n] > 0)) continue;
+    EXPECT_LE(h.rows[i][t], friction * h.rows[i][n] * (1 + slack)) << out << " row " << i;
+    sliding = sliding || h.rows[i][t] > 0.99 * friction * h.rows[i][n];
+  }
+  EXPECT_TRUE(sliding) << out;  // the case does reach the cone
+}
+
+TEST(FrictionLaw, LooseTolerancesNeverWriteARowAboveTheCone) {
+  // qp_tolerance = coupling_tolerance = 1e-2 on sliding cases with λ_n ≥ 0 at every node
+  // (every scheme since the release floor went; the dynamic runs here use plain Newmark): the
+  // fixed point then leaves nodes with ‖λ_τ‖ up to 𝔉·1e-2‖λ‖ above 𝔉λ_n, and history.csv
+  // had T/N = 0.3034 (load-control-2d), 0.3015 (sliding-2d, quasistatic), 0.3027 (sliding-2d,
+  // dynamic) with 𝔉 = 0.3 and 0.4003 (pin-dead-load, 𝔉 = 0.4). The tangential multipliers
+  // are scaled into the cone of max(λ_n, 0) before the row: T = ‖Σ w λ_τ‖ ≤ Σ w ‖λ_τ‖ ≤
+  // 𝔉 Σ w λ_n = 𝔉N, to the round-off of the sums (1e-12 of them; measured ≤ 6e-17 over 𝔉).
+  const std::string loose = " --set solver.qp_tolerance=1e-2 --set solver.coupling_tolerance=1e-2";
+  const std::string quasistatic = " --set time.scheme=quasistatic";
+  const std::string plain = " --set time.contact_scheme=plain";
+  const struct {
+    fs::path c;
+    std::string set, name;
+    double friction;
+  } runs[] = {{source / "tests/cases/restart/load-control-2d.toml", quasistatic, "lc", 0.3},
+              {sliding, quasistatic, "sq", 0.3},
+              {sliding, plain, "sd", 0.3},
+              {pin, plain, "pd", 0.4}};
+  for (const auto& run : runs) {
+    const auto& c = run.c;
+    const auto out = tc::test::fresh_dir("fl-loose-" + run.name);
+    const auto r =
+        thermocontact("run " + c.string() + " --output " + out.string() + loose + run.set);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    expect_cone_in_every_row(out, run.friction, 1e-12);
+    const auto summary = tc::test::read_file(out / "summary.json");
+    EXPECT_LE(summary_number(summary, "ratio", "cone"), 1.0) << summary;
+    if (run.name != "lc") continue;
+    // u moved with the scaled multipliers: the upper block's equilibrium still passes its
+    // top's force and its support's drag to the contact's resultant, to the solves' round-off
+    // (1e-9 of the 1e6 N/m load, as in load_control_cli_test; measured 6e-12).
+    const auto h = tc::test::read_history(out / "history.csv");
+    const auto fy = col_of(h, "contact_force_y"), load = col_of(h, "force_upper_ymax_y");
+    const auto fx = col_of(h, "contact_force_x"), drag = col_of(h, "reaction_upper_ymax_x");
+    for (size_t i = 1; i < h.rows.size(); ++i) {
+      EXPECT_NEAR(h.rows[i][fy], h.rows[i][load], 1e-9 * 1e6) << "row " << i;
+      EXPECT_NEAR(h.rows[i][fx], h.rows[i][drag], 1e-9 * 1e6) << "row " << i;
+    }
+  }
+}
+
+TEST(FrictionLaw, TheFetiBodysPenetrationIsWithinItsBound) {
+  // tests/cases/valid/two-blocks-3d: the slave is cut into 2 FETI subdomains, whose solves
+  // leave u off the glued, supported body by their misfit ‖B u − c‖ (≤ feti_tolerance ‖P d‖):
+  // the penetration was 4.4–9.2 × the QP's bound (2e-10 m at step 19), a penetration the QP
+  // never saw (qp_tolerance 1e-10 left it at 1.99e-10 m; feti_tolerance 1e-12 took it to
+  // 0.23 of the bound). With 10 × the misfit in the bound it holds, and no step is cut back.
+  const auto out = tc::test::fresh_dir("fl-feti-gap");
+  const auto r = thermocontact("run " + (source / "tests/cases/valid/two-blocks-3d.toml").string() +
+                               " --output " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = tc::test::read_file(out / "summary.json");
+  EXPECT_LE(summary_number(summary, "ratio", "penetration"), 1.0) << summary;
+  EXPECT_GT(summary_number(summary, "value", "penetration"), 0.0) << summary;
+  EXPECT_EQ(summary_number(summary, "cut_back_steps"), 0.0) << summary;
+}
+
 }  // namespace

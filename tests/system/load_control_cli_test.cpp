@@ -49,6 +49,39 @@ TEST(LoadControlCli, TheForceIsHeldAndARestartIsBitForBit) {
   EXPECT_EQ(max_relative_difference(a, b, {"wall_seconds"}), 0.0);
 }
 
+TEST(LoadControlCli, TheContactForceOnTheSlaveIsTheLoadAlongIt) {
+  // The upper block (the master) is held along y by its top's force and the contact alone, so
+  // the contact's resultant on the lower block (the slave), −Σ_d (B_sᵀλ)_d over its y dofs,
+  // is the load at every step, friction on; contact_normal_force is not (tilted normals).
+  const auto out = fresh_dir("load-control-force");
+  const auto r = thermocontact("run " + kCase.string() + " --output " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto h = read_history(out / "history.csv");
+  ASSERT_TRUE(h.whole);
+  const auto load = column(h, "force_upper_ymax_y");
+  const auto fy = column(h, "contact_force_y");
+  const auto fx = column(h, "contact_force_x");
+  const auto drag = column(h, "reaction_upper_ymax_x");
+  ASSERT_EQ(fy.size(), h.rows.size());
+  ASSERT_EQ(drag.size(), h.rows.size());
+  EXPECT_TRUE(column(h, "contact_force_z").empty());  // 2D: x and y only
+  for (size_t k = 1; k < h.rows.size(); ++k) {
+    // The coupling holds the face's force to 10 qp_tolerance = 1e-7 of the load; 1e-6 leaves
+    // a margin (as the test above).
+    EXPECT_NEAR(fy[k], -1e6, 1e-6 * 1e6) << "step " << k;
+    // The upper block's equilibrium passes the face's force to the contact exactly, and the
+    // mortar's master integrals sum to the slave's weights where the master covers the
+    // slave's active nodes: equal to the round-off of the solves (ε κ(K) ~ 1e-16 × 1e7;
+    // measured 1.4e-12 of the load).
+    EXPECT_NEAR(fy[k], load[k], 1e-9 * 1e6) << "step " << k;
+    // Along x the support drags the upper block: its reaction balances the friction, which
+    // the contact passes to the slave (measured 2e-11 of the load apart).
+    EXPECT_NEAR(fx[k], drag[k], 1e-9 * 1e6) << "step " << k;
+  }
+  // The friction is on and carries 𝔉 = 0.3 of the load once the block slides.
+  EXPECT_NEAR(std::abs(fx.back()), 0.3e6, 1e-3 * 0.3e6);
+}
+
 TEST(LoadControlCli, AForceOnAFetiBodyIsRefusedByCheck) {
   const auto r = thermocontact(
       "check " +

@@ -54,15 +54,51 @@ TEST(ContactLaws, WithinTheBoundsTheWorstIsRecorded) {
   EXPECT_GE(laws.gap.node, 7);
 }
 
-TEST(ContactLaws, APenetrationBeyondTheQpBoundIsRecordedWithItsNode) {
+TEST(ContactLaws, APenetrationBeyondTheQpBoundStopsTheStep) {
   TwoNodes t;
   t.bu[3] += 1e-7;  // node 9 penetrates by 1e-7 (weighted), ≫ 2 × 1e-8 + round-off
   ContactLaws laws;
-  EXPECT_NO_THROW(laws.check(t.laws(), 1.0, tol, lambda_norm, qp_tol, 5));
+  try {
+    laws.check(t.laws(), 1.0, tol, lambda_norm, qp_tol, 5);
+    FAIL() << "no error";
+  } catch (const tc::NumericalError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("penetrates"), std::string::npos) << m;
+    EXPECT_NE(m.find("slave node 9"), std::string::npos) << m;
+    EXPECT_NE(m.find("[solver] qp_tolerance"), std::string::npos) << m;
+    // Factorised bodies: their solves leave nothing that feti_tolerance would change.
+    EXPECT_EQ(m.find("feti_tolerance"), std::string::npos) << m;
+  }
   EXPECT_NEAR(laws.gap.value, 1e-7 / 0.5, 1e-15);  // per unit weight: a length
   EXPECT_GT(laws.gap.ratio, 1.0);
   EXPECT_EQ(laws.gap.node, 9);
   EXPECT_EQ(laws.gap.step, 5);
+}
+
+TEST(ContactLaws, AFetiBodysMisfitWidensThePenetrationBound) {
+  // The same penetration (2e-7 per unit weight) with a body solved by FETI whose step left a
+  // misfit of 1e-7 m: the bound grows by 10 × 1e-7 (feti_misfit_factor), and it holds.
+  TwoNodes t;
+  t.bu[3] += 1e-7;
+  auto p = t.laws();
+  p.solve_error = ContactLaws::feti_misfit_factor * 1e-7;
+  p.feti_tolerance = 1e-10;
+  ContactLaws laws;
+  EXPECT_NO_THROW(laws.check(p, 1.0, tol, lambda_norm, qp_tol, 5));
+  EXPECT_NEAR(laws.gap.bound, 2 * 1e-8 / 0.5 + 1e-6, 1e-12);
+  EXPECT_LT(laws.gap.ratio, 1.0);
+  // Beyond it the message names both settings.
+  t.bu[3] += 1e-6;
+  p = t.laws();
+  p.solve_error = ContactLaws::feti_misfit_factor * 1e-7;
+  p.feti_tolerance = 1e-10;
+  try {
+    laws.check(p, 1.0, tol, lambda_norm, qp_tol, 6);
+    FAIL() << "no error";
+  } catch (const tc::NumericalError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("[solver] feti_tolerance (now 1e-10)"), std::string::npos) << m;
+  }
 }
 
 TEST(ContactLaws, AConeViolationBeyondTheFixedPointBoundStopsTheStep) {
@@ -79,6 +115,18 @@ TEST(ContactLaws, AConeViolationBeyondTheFixedPointBoundStopsTheStep) {
     EXPECT_NE(m.find("[solver] coupling_tolerance"), std::string::npos) << m;
   }
   EXPECT_NEAR(laws.cone.value, 2.0 * 0.4, 1e-12);  // in traction units (2 per multiplier)
+}
+
+TEST(ContactLaws, ALooseCouplingToleranceDoesNotWidenTheCone) {
+  // With coupling_tolerance 1e-2 the fixed point leaves |γ − λ_n| up to 1e-2 ‖λ‖ = 0.15: a
+  // cone bound of 𝔉 tol ‖λ‖ = 0.06 would pass node 7's ‖λ_τ‖ − 𝔉λ_n = 0.04. The bound stays
+  // that of 1e-6 (ContactLaws::cone_tolerance): the multipliers are scaled into the cone
+  // before the check (ContactCoupling::scale_into_cones), so what is left is a defect.
+  TwoNodes t;
+  t.lambda[0] = 9.9;  // ‖λ_τ‖ = 4 > 𝔉λ_n = 3.96
+  ContactLaws laws;
+  EXPECT_THROW(laws.check(t.laws(), 1.0, 1e-2, lambda_norm, qp_tol, 4), tc::NumericalError);
+  EXPECT_NEAR(laws.cone.bound, 0.4 * ContactLaws::cone_tolerance * lambda_norm, 1e-12);
 }
 
 TEST(ContactLaws, AReleasedNodeIsNotACone) {

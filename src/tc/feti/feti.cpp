@@ -461,6 +461,7 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
   stats_.last_iterations = it;
   stats_.iterations += it;
   stats_.last_residual = worst;
+  stats_.peak_residual = std::max(stats_.peak_residual, w_norm.maxCoeff());
   // α = (GGᵀ)⁻¹G(Fλ − d) of the floating subdomains, returned in the last rows.
   Block out(m + (singular_ ? n_kernel_ : 0), k);
   out.topRows(m) = lambda;

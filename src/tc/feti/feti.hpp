@@ -31,6 +31,7 @@
 // core::collective_check: a failure on one rank throws on all, "rank r: <phase>: <message>".
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
@@ -81,7 +82,11 @@ struct FetiStatistics {
   long iterations = 0;        // PCG iterations over all solves (shared by a block's columns)
   int last_iterations = 0;    // of the last solve
   double last_residual = 0;   // ‖B u − c‖ / ‖P d‖ at the end of the last solve
-  double seconds = 0;         // wall time in the solves (dual and primal), this rank
+  /// The largest ‖B u − c‖ (absolute: a length for elasticity, the gluing rows orthonormal)
+  /// at the end of the solves since Feti::clear_peak_residual, over their right-hand sides:
+  /// the misfit of the glued and supported body that the solves left (physics::ContactLaws).
+  double peak_residual = 0;
+  double seconds = 0;  // wall time in the solves (dual and primal), this rank
   // The solves with one right-hand side alone (an iteration of a block costs k columns):
   long single_solves = 0, single_iterations = 0;
   double single_seconds = 0;
@@ -89,6 +94,7 @@ struct FetiStatistics {
   FetiStatistics& operator+=(const FetiStatistics& o) {
     solves += o.solves, right_hand_sides += o.right_hand_sides, iterations += o.iterations;
     last_iterations = o.last_iterations, last_residual = o.last_residual;
+    peak_residual = std::max(peak_residual, o.peak_residual);
     seconds += o.seconds, single_solves += o.single_solves;
     single_iterations += o.single_iterations, single_seconds += o.single_seconds;
     return *this;
@@ -123,6 +129,8 @@ class Feti {
   }
   [[nodiscard]] int coarse_dimension() const { return static_cast<int>(n_kernel_); }
   [[nodiscard]] const FetiStatistics& statistics() const { return stats_; }
+  /// Starts FetiStatistics::peak_residual anew (a caller's window of solves, e.g. a step).
+  void clear_peak_residual() const { stats_.peak_residual = 0; }
   [[nodiscard]] const std::string& package() const { return package_; }
 
   // What a dual over the subdomains of several bodies (ContactFeti) builds on.

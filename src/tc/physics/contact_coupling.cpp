@@ -248,14 +248,41 @@ std::vector<double> ContactCoupling::slip(int q) const {
   return nodes_of(slip_, problem_.dimension, lambda_at_[q], lambda_at_[q + 1]);
 }
 
+std::array<double, 3> ContactCoupling::slave_force(int q, std::span<const double> lq) const {
+  // Σ_d (B_sᵀλ)_d over the dofs of one axis is the resultant of the nodal forces the rows
+  // put on the slave body, normal and tangential parts and the normals' tilt included: it is
+  // what the slave's equilibrium balances, where Σ_k w_kλ_n,k is not (docs/case-format.md).
+  std::array<double, 3> f{0, 0, 0};
+  if (lq.empty()) return f;
+  const auto& rows = method_.enforcement->dual().pair_rows(q);
+  const int dim = problem_.dimension;
+  const auto& mesh = problem_.bodies[pairs_[q].settings->slave_body].mesh;
+  core::Vector bl(dim * static_cast<PetscInt>(mesh.n_nodes()));
+  rows.slave.mult_transpose_add(core::Vector::from(lq), bl);
+  const auto v = bl.read();
+  const double unit = traction_per_multiplier();
+  for (PetscInt d = 0; d < bl.size(); ++d) f[static_cast<size_t>(d % dim)] -= unit * v[d];
+  return f;
+}
+
 void ContactCoupling::register_history(History& h) const {
   stats_.register_history(h);
   heat_.heat().register_history(h);
+  // The resultant contact force on the slave bodies (added after the standard columns and the
+  // reactions, so that a case without contact keeps its columns).
+  const char* axes = "xyz";
+  const auto force_columns = [&](const std::array<double, 3>& f, const std::string& suffix) {
+    if (pairs_.empty()) return;
+    for (int k = 0; k < problem_.dimension; ++k)
+      h.add(std::string("contact_force_") + axes[k] + suffix, History::value_of(f[k]));
+  };
+  force_columns(slave_force_, "");
   if (pairs_.size() < 2) return;
   for (size_t q = 0; q < pairs_.size(); ++q) {
     const std::string suffix = "_" + pairs_[q].settings->name;
     pairs_[q].stats.register_pair_history(h, suffix);
     heat_.pair_heat()[q].register_history(h, suffix);
+    force_columns(pairs_[q].slave_force, suffix);
   }
 }
 
@@ -423,6 +450,8 @@ int ContactCoupling::couple(int step) {
   stats_.qp_iterations = 0;
   stats_.operator_applications = 0;
   stats_.friction_iterations = 0;
+  for (const auto* f : g.fields)  // the FETI misfit of this step's solves (check_laws)
+    if (f->mech && f->mech->feti()) f->mech->feti()->clear_peak_residual();
   set_rows(g);
   auto& dual = enforcement.dual();
   const int dim = dual.dim();
@@ -547,7 +576,11 @@ int ContactCoupling::couple(int step) {
         step, iteration - 1, change);
   iterate_slip_.clear();
   qp_bound_ = std::move(tresca.qp_bound);  // empty without friction
-  if (tresca.defer) {                      // u_new holds u_free of the last iteration
+  // A coupling tolerance looser than the cone's leaves nodes outside their Coulomb cone by up
+  // to 𝔉 tol ‖λ‖ (history's T/N above 𝔉): scale them onto it, u to match (docs/choices.md).
+  if (tol > ContactLaws::cone_tolerance && !enforcement.qp_gives_displacements())
+    scale_into_cones(g, !tresca.defer);
+  if (tresca.defer) {  // u_new holds u_free of the last iteration
     auto scope = timers_.scope("qp");
     dual.recover(lambda_, g.field(&BodyField::u_new));
     shift_loaded_face(g);
@@ -567,6 +600,34 @@ int ContactCoupling::couple(int step) {
   for (int i = 0; i < g.size(); ++i)
     end_step(problem_, *g.systems[i], bodies_.states[g.index[i]], *g.fields[i]);
   return iteration;
+}
+
+void ContactCoupling::scale_into_cones(const BodyGroup& g, bool u_formed) {
+  auto& dual = method_.enforcement->dual();
+  const int dim = dual.dim();
+  const auto& friction = nodal_laws_.friction;
+  auto l = lambda_.to_std();
+  std::vector<double> delta(l.size(), 0.0);  // λ' − λ
+  bool any = false;
+  for (size_t k = 0; k < friction.size() && dim * (k + 1) <= l.size(); ++k) {
+    const size_t r = dim * k;
+    double lt2 = 0;
+    for (int i = 1; i < dim; ++i) lt2 += l[r + i] * l[r + i];
+    const double lt = std::sqrt(lt2), cap = friction[k] * std::max(l[r], 0.0);
+    if (!(lt > cap)) continue;
+    for (int i = 1; i < dim; ++i) {
+      const double scaled = l[r + i] * (cap / lt);
+      delta[r + i] = scaled - l[r + i];
+      l[r + i] = scaled;
+    }
+    // On its Coulomb circle now: a slipping node (ContactStatistics' test against the bound).
+    if (k < qp_bound_.size()) qp_bound_[k] = cap;
+    any = true;
+  }
+  if (!any) return;
+  lambda_ = core::Vector::from(l);
+  // u = u_free − A⁻¹Bᵀλ' = u − A⁻¹Bᵀ(λ' − λ): the equilibrium with the scaled multipliers.
+  if (u_formed) dual.recover(core::Vector::from(delta), g.field(&BodyField::u_new));
 }
 
 void ContactCoupling::check_laws(const BodyGroup& g, std::span<const double> targets, int step) {
@@ -603,6 +664,15 @@ void ContactCoupling::check_laws(const BodyGroup& g, std::span<const double> tar
                .gap_tolerance = nodes_of_pair(gap_tolerance),
                .held = held.size() >= from + n ? std::span<const char>(held).subspan(from, n)
                                                : std::span<const char>()};
+    // u formed by FETI solves misses the glued, supported body by their misfit ‖B u − c‖,
+    // which the QP's view of B u (its F formed by such solves) does not see.
+    for (const int b : {pairs_[q].bodies.slave, pairs_[q].bodies.master}) {
+      const auto* f = g.fields[static_cast<size_t>(b)];
+      if (f->mech && f->mech->feti())
+        p.solve_error +=
+            ContactLaws::feti_misfit_factor * f->mech->feti()->statistics().peak_residual;
+    }
+    p.feti_tolerance = problem_.solver.feti_tolerance;
     laws_.check(p, traction_per_multiplier(), problem_.solver.coupling_tolerance, ln,
                 problem_.solver.qp_tolerance, step);
   }
@@ -622,6 +692,7 @@ void ContactCoupling::bookkeeping() {
                            ? std::vector<double>{}
                            : std::vector<double>(qp_bound_.begin() + from, qp_bound_.begin() + to);
     pr.stats.record_step(rows, lq, nodes_of(slip_, dim, from, to), unit, bound, pr.mortar.get());
+    pr.slave_force = slave_force(q, lq);
     if (pr.mortar) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
       const auto& c = *pr.settings;
       pr.heat_flux.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
@@ -636,6 +707,9 @@ void ContactCoupling::bookkeeping() {
     }
   }
   sum_pair_statistics();
+  slave_force_ = {0, 0, 0};
+  for (const auto& pr : pairs_)
+    for (size_t x = 0; x < 3; ++x) slave_force_[x] += pr.slave_force[x];
   total_qp_ += stats_.qp_iterations;
   total_applications_ += stats_.operator_applications;
 }

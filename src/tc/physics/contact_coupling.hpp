@@ -5,6 +5,7 @@
 // ContactEnforcement inside the Tresca → Coulomb fixed point (coulomb_fixed_point), with the
 // ContactTimeScheme of the run around it; the multipliers carried from step to step
 // (MultiplierTransfer) and what the contact reports (ContactStatistics, heat flux).
+#include <array>
 #include <memory>
 #include <span>
 #include <vector>
@@ -39,6 +40,9 @@ struct ContactPairState {
   /// Slave nodes that also lie on the slave surface of an earlier pair with the same slave
   /// body (crosspoints): their multipliers are the earlier pair's, this pair's are held at 0.
   std::vector<char> crosspoint;
+  /// The resultant force of the contact on its slave body after the last step, per axis
+  /// (ContactCoupling::slave_force).
+  std::array<double, 3> slave_force{0, 0, 0};
 };
 
 class ContactCoupling {
@@ -102,7 +106,8 @@ class ContactCoupling {
   [[nodiscard]] long total_operator_applications() const { return total_applications_; }
 
   /// Its history.csv columns: those of its statistics and of the interface heat, summed over
-  /// the pairs, and with several pairs each pair's own, suffixed by its name.
+  /// the pairs, and with several pairs each pair's own, suffixed by its name; with contact
+  /// pairs, the resultant contact force on the slave bodies, contact_force_x|y(|z).
   void register_history(History& h) const;
 
   /// The contact's part of the restart record, and back.
@@ -131,6 +136,12 @@ class ContactCoupling {
   void shift_loaded_face(const BodyGroup& g);
   [[nodiscard]] bool any_pair(bool (InterfaceLaws::*law)() const) const;
   void sum_pair_statistics();  // the pairs' forces, counts and dissipation into stats_
+  // −(traction per multiplier)·Σ_{dofs d of axis x}(B_sᵀλ)_d of pair q's rows and multipliers
+  // `lq`: the force the master puts on the slave body, per axis.
+  [[nodiscard]] std::array<double, 3> slave_force(int q, std::span<const double> lq) const;
+  // λ_τ,k scaled into the cone of 𝔉_k max(λ_n,k, 0) where outside it; with `u_formed`, u_new
+  // moved to the scaled multipliers (a solve per body), else recover() forms it from them.
+  void scale_into_cones(const BodyGroup& g, bool u_formed);
   // Non-penetration and the friction cone at every contact node of u_new and λ (ContactLaws):
   // throws NumericalError beyond the solvers' bounds.
   void check_laws(const BodyGroup& g, std::span<const double> targets, int step);
@@ -148,6 +159,7 @@ class ContactCoupling {
   // B(u − u^k) of the current iterate while the displacements are deferred (empty: from u)
   std::vector<double> iterate_slip_;
   ContactStatistics stats_;
+  std::array<double, 3> slave_force_{0, 0, 0};  // the pairs' slave_force summed
   ContactHeatCoupling heat_;
   NodalLaws nodal_laws_;          // every pair's, at the last coupling iterate
   std::vector<double> qp_bound_;  // the Tresca bounds 𝔉_kγ_k of the step's last QP

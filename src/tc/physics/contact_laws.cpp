@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -48,11 +49,18 @@ void ContactLaws::check(const PairLaws& p, double unit, double coupling_toleranc
     const double gap_bound =
         2 * p.gap_tolerance[k] +
         1e3 * eps * (std::abs(p.targets[r]) + std::abs(p.constraint_values[r]));
-    gap.offer(-g / w, gap_bound / w, step, node, p.name);
-    // Recorded, not a stop: the bound is exceeded on tests/cases/valid/two-blocks-3d (ratio
-    // 4.4–9), a difference between the QP's c − B u and the u formed after it that the bound
-    // does not explain yet (docs/choices.md, "The bounds of the contact laws"); a stop there
-    // would cut back steps whose solution is right.
+    const double gap_length_bound = gap_bound / w + p.solve_error;
+    gap.offer(-g / w, gap_length_bound, step, node, p.name);
+    if (-g / w > gap_length_bound)
+      throw NumericalError(
+          fmt::format("the contact penetrates at {} after the step: a weighted gap of {:.3e} m "
+                      "below 0, beyond the {:.3e} m that the contact QP (6.9) and the bodies' "
+                      "solves guarantee: lower [solver] qp_tolerance (now {:g}){}",
+                      where(p, k), -g / w, gap_length_bound, qp_tolerance,
+                      p.solve_error > 0
+                          ? fmt::format(" or [solver] feti_tolerance (now {:g})", p.feti_tolerance)
+                          : std::string()),
+          step, 0, -g / w);
     // The friction cone: ‖λ_τ‖ ≤ 𝔉γ exactly (the QP's projection), γ within the fixed point's
     // tolerance of max(λ_n, 0).
     double lt2 = 0;
@@ -61,7 +69,10 @@ void ContactLaws::check(const PairLaws& p, double unit, double coupling_toleranc
     const double f = k < p.friction.size() ? p.friction[k] : 0.0;
     const double qb = k < p.qp_bound.size() ? p.qp_bound[k] : 0.0;
     const double c = lt - f * std::max(p.lambda[r], 0.0);
-    const double cone_bound = f * coupling_tolerance * lambda_norm + 16 * eps * (qb + lt);
+    // Never the user's looser tolerance: with one, the nodes outside their cone were scaled
+    // onto it before (ContactCoupling::scale_into_cones), so that no row has T/N above 𝔉.
+    const double cone_bound =
+        f * std::min(coupling_tolerance, cone_tolerance) * lambda_norm + 16 * eps * (qb + lt);
     cone.offer(unit * c, unit * cone_bound, step, node, p.name);
     if (c > cone_bound)
       throw NumericalError(

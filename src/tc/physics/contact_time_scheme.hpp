@@ -1,6 +1,6 @@
 #pragma once
 // How the time scheme meets contact ([time] contact_scheme, docs/choices.md): what a step does
-// before its QPs (the modified mass's release bound, the stabilised predictor) and where the
+// before its QPs (the stabilised predictor) and where the
 // slip is measured from (5.4). One implementation per scheme; choose_contact_method
 // (contact_method.hpp) picks it.
 #include <memory>

@@ -41,7 +41,8 @@ constexpr std::array<const char*, 25> kStandardColumns = {
     "heat_radiation",                // BoundaryHeat
 };
 
-constexpr std::array<const char*, 10> kPairColumns = {"contact_normal_force",
+// (contact_force_z only in 3D: listed so that the case reader's check covers it.)
+constexpr std::array<const char*, 13> kPairColumns = {"contact_normal_force",
                                                       "contact_tangential_force",
                                                       "frictional_dissipation",
                                                       "active_nodes",
@@ -50,7 +51,10 @@ constexpr std::array<const char*, 10> kPairColumns = {"contact_normal_force",
                                                       "heat_generated",
                                                       "heat_to_slave",
                                                       "heat_to_master",
-                                                      "heat_conducted"};
+                                                      "heat_conducted",
+                                                      "contact_force_x",
+                                                      "contact_force_y",
+                                                      "contact_force_z"};
 
 }  // namespace
 

@@ -20,7 +20,8 @@ class History {
   /// The columns every history.csv opens with, in their order (docs/case-format.md).
   [[nodiscard]] static std::span<const char* const> standard_columns();
   /// The columns each contact pair has with two or more pairs, as <column>_<pair name>
-  /// (ContactStatistics::register_pair_history, ContactHeat::register_history); the case
+  /// (ContactStatistics::register_pair_history, ContactHeat::register_history,
+  /// ContactCoupling::register_history); the case
   /// reader refuses pair names that make two of them one.
   [[nodiscard]] static std::span<const char* const> pair_columns();
 
