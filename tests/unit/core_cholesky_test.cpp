@@ -14,19 +14,7 @@
 TEST(Petsc, CholeskySolvesAnSpdSystem) {
   // 1D Laplacian with Dirichlet ends: tridiag(-1, 2, -1), solution of A x = A·1 is 1.
   const PetscInt n = 50;
-  std::vector<PetscInt> nnz(n, 3);
-  tc::core::SparseMatrix a(n, n, nnz);
-  for (PetscInt i = 0; i < n; ++i) {
-    const double d = 2.0;
-    a.add_values(std::span(&i, 1), std::span(&i, 1), &d);
-    if (i + 1 < n) {
-      const PetscInt j = i + 1;
-      const double o = -1.0;
-      a.add_values(std::span(&i, 1), std::span(&j, 1), &o);
-      a.add_values(std::span(&j, 1), std::span(&i, 1), &o);
-    }
-  }
-  a.assemble();
+  const auto a = tc::test::tridiagonal(n, 2.0);
   for (const auto& package : tc::core::available_cholesky_packages()) {
     tc::core::CholeskySolver solver(a, package);
     tc::core::Vector one(n), b(n), x(n);

@@ -105,22 +105,6 @@ void compare_with_petsc(const tc::core::SparseMatrix& a, bool supernodal) {
                    "solve, n = " + std::to_string(n));
 }
 
-tc::core::SparseMatrix tridiagonal(PetscInt n, double diagonal) {
-  std::vector<PetscInt> nnz(static_cast<size_t>(n), 3);
-  tc::core::SparseMatrix a(n, n, nnz);
-  for (PetscInt i = 0; i < n; ++i) {
-    a.add_values(std::span(&i, 1), std::span(&i, 1), &diagonal);
-    if (i + 1 < n) {
-      const PetscInt j = i + 1;
-      const double o = -1.0;
-      a.add_values(std::span(&i, 1), std::span(&j, 1), &o);
-      a.add_values(std::span(&j, 1), std::span(&i, 1), &o);
-    }
-  }
-  a.assemble();
-  return a;
-}
-
 }  // namespace
 
 TEST(Cholmod, SupernodalSolvesArePetscsCholmodBitForBit) {
@@ -130,7 +114,7 @@ TEST(Cholmod, SupernodalSolvesArePetscsCholmodBitForBit) {
 
 TEST(Cholmod, SimplicialSolvesArePetscsCholmodBitForBit) {
   // A small band: CHOLMOD keeps a simplicial factor (no restricted solves there).
-  compare_with_petsc(tridiagonal(60, 2.5), false);
+  compare_with_petsc(tc::test::tridiagonal(60, 2.5), false);
 }
 
 TEST(Cholmod, IsTheAutomaticPackageOnOneRank) {
