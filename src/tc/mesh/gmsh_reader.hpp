@@ -36,6 +36,13 @@ struct RawMesh {
   std::unordered_map<int, std::string> type_names;  // gmsh's name of every type seen
 };
 
+/// The first half of read_gmsh (gmsh_parse.cpp): refuses a file whose first line is not
+/// `$MeshFormat` (MeshError naming `where`) without reading more than 4 KiB ...
+void check_header(const std::filesystem::path& file, const std::string& where);
+/// ... then parses it with libgmsh in a forked child and returns what libgmsh saw (MeshError
+/// when the child fails, crashes or is stopped).
+[[nodiscard]] RawMesh read_raw_isolated(const std::filesystem::path& file, int dim);
+
 /// The second half of read_gmsh, our own code: numbering, cells, checks, boundaries (exposed
 /// for tests/fuzz/fuzz_gmsh_layer, which fuzzes it without libgmsh). Throws MeshError.
 [[nodiscard]] Mesh build_mesh(const RawMesh& raw, int dim, const std::string& file);
