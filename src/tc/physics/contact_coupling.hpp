@@ -136,6 +136,9 @@ class ContactCoupling {
   void shift_loaded_face(const BodyGroup& g);
   [[nodiscard]] bool any_pair(bool (InterfaceLaws::*law)() const) const;
   void sum_pair_statistics();  // the pairs' forces, counts and dissipation into stats_
+  /// Entries [dim·from, dim·to) of a node-major vector (empty if it is shorter).
+  static std::vector<double> nodes_of(std::span<const double> v, int dim, PetscInt from,
+                                      PetscInt to);
   // −(traction per multiplier)·Σ_{dofs d of axis x}(B_sᵀλ)_d of pair q's rows and multipliers
   // `lq`: the force the master puts on the slave body, per axis.
   [[nodiscard]] std::array<double, 3> slave_force(int q, std::span<const double> lq) const;
