@@ -20,6 +20,11 @@ TEST(TrapezoidalRinging, AnInstantStartAlternatesByTheJumpTwoStepsLater) {
   EXPECT_NEAR(r.alternation, 1.0, 1e-9);  // |Δv|, exactly (the data are linear after it)
   EXPECT_NEAR(r.at_time, 0.006, 1e-12);   // the jump at 4 ms, two steps on
   EXPECT_NEAR(r.max_speed, 1.0, 1e-9);
+  // A run of 10⁸ steps (the case format's most) is looked at up to two steps past the table's
+  // last point, where nothing changes any more: the same answer, at once.
+  const auto long_run = trapezoidal_ringing(d, 0.0, 0.001, 100000000);
+  EXPECT_EQ(long_run.alternation, r.alternation);
+  EXPECT_EQ(long_run.at_time, r.at_time);
 }
 
 TEST(TrapezoidalRinging, AParabolaSampledAtTheStepsIsFollowedExactly) {

@@ -4,15 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 namespace tc::io {
 
 RingingData trapezoidal_ringing(const core::TimeTable& d, double v0, double tau, int steps) {
   RingingData r;
-  std::vector<double> excess(static_cast<size_t>(std::max(steps, 0)));
+  // Beyond the table's last point d is constant or linear: the speed no longer changes and the
+  // alternation stays as it is, so two steps past it are enough (a run may have 10⁸ steps).
+  const double last = d.times().empty() ? 0.0 : d.times().back();
   double v = v0, s_before = v0, s_last = v0;  // u̇^k, s_{k−2}, s_{k−1}
-  for (int k = 0; k < steps; ++k) {
+  for (int k = 0; k < steps && k * tau <= last + 2 * tau; ++k) {
     const double s = (d((k + 1) * tau) - d(k * tau)) / tau;
     r.max_speed = std::max(r.max_speed, std::abs(s));
     v = 2 * s - v;  // u̇^{k+1}
@@ -20,16 +21,12 @@ RingingData trapezoidal_ringing(const core::TimeTable& d, double v0, double tau,
     s_last = s;
     // A smooth d keeps |u̇^{k+1} − s_k| ≤ |s_k − s_{k−1}| (half the step's change of speed, for a
     // parabola); what is above it alternates and stays.
-    excess[static_cast<size_t>(k)] = std::abs(v - s_last) - std::abs(s_last - s_before);
-    r.alternation = std::max(r.alternation, excess[static_cast<size_t>(k)]);
+    const double excess = std::abs(v - s_last) - std::abs(s_last - s_before);
+    // The alternation stays once made, so a jump shows as the first value that more than
+    // doubles the largest so far (round-off before it does not name the place).
+    if (excess > 2 * r.alternation) r.at_time = (k + 1) * tau;
+    r.alternation = std::max(r.alternation, excess);
   }
-  // Where it starts: the alternation stays, so its largest value recurs (to round-off) at
-  // every later step; the first step that reaches half of it names the jump.
-  for (int k = 0; k < steps && r.alternation > 0; ++k)
-    if (excess[static_cast<size_t>(k)] >= 0.5 * r.alternation) {
-      r.at_time = (k + 1) * tau;
-      break;
-    }
   return r;
 }
 

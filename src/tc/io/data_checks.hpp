@@ -18,8 +18,8 @@ namespace tc::io {
 /// The alternation the trapezoidal velocity update leaves in the data d(t) over steps of τ from
 /// u̇(0) = v0: max_k of |u̇^k − s_{k−1}| − |s_{k−1} − s_{k−2}| (s_k = the mean speed of step
 /// k), which a smooth d(t) keeps ≤ 0 and a jump Δv at a step raises to |Δv|, two steps after
-/// the jump; with the time t_{k+1} where it first reaches half its largest value, and the
-/// largest |s_k|.
+/// the jump; with the time t_{k+1} where it first appears, and the largest |s_k|. Stops two
+/// steps past the table's last point, beyond which nothing changes.
 struct RingingData {
   double alternation = 0;
   double at_time = 0;
