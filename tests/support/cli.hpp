@@ -32,7 +32,12 @@ inline CommandResult run_command(const std::string& command) {
 }
 
 inline CommandResult thermocontact(const std::string& args) {
-  return run_command(std::string(TC_BINARY) + " " + args);
+  // Appended, not `std::string(TC_BINARY) + " " + args`: GCC 12 inlines that operator+ into a
+  // false -Warray-bounds in some files (seen with the precompiled header).
+  std::string command = TC_BINARY;
+  command += ' ';
+  command += args;
+  return run_command(command);
 }
 
 /// `s` with every occurrence of `from` replaced by `to` (variants of a case file).

@@ -23,7 +23,9 @@
 
 namespace fs = std::filesystem;
 using namespace tc::mesh;
-using Vec = std::array<double, 3>;
+// Vec3, not Vec: PETSc names its vector type Vec in the global namespace (the tests'
+// precompiled header includes it).
+using Vec3 = std::array<double, 3>;
 
 namespace {
 
@@ -139,31 +141,31 @@ std::function<void()> rectangle(const Rect& r) {
 
 // ---- Geometry helpers ------------------------------------------------------------------------
 
-Vec sub(const Point& a, const Point& b) {
+Vec3 sub(const Point& a, const Point& b) {
   return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
 }
-Vec cross(const Vec& a, const Vec& b) {
+Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double dot(const Vec& a, const Vec& b) {
+double dot(const Vec3& a, const Vec3& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-Vec centroid(const Mesh& m, std::span<const int> nodes) {
-  Vec c{};
+Vec3 centroid(const Mesh& m, std::span<const int> nodes) {
+  Vec3 c{};
   for (const int n : nodes)
     for (int k = 0; k < 3; ++k) c[k] += m.point(n)[k] / static_cast<double>(nodes.size());
   return c;
 }
 
 /// Unit normal of a facet, computed from its node order only (mesh.hpp's convention).
-Vec unit_normal(const Mesh& m, const Facet& f) {
+Vec3 unit_normal(const Mesh& m, const Facet& f) {
   const auto v = f.node_span();
   const auto p = [&](int a) { return m.point(v[a]); };
-  Vec n{};
+  Vec3 n{};
   switch (f.type) {
     case FacetType::Line2: {
-      const Vec t = sub(p(1), p(0));
+      const Vec3 t = sub(p(1), p(0));
       n = {t[1], -t[0], 0};
       break;
     }
@@ -198,7 +200,7 @@ int count_cells(const Mesh& m, CellType t) {
 /// Every facet of boundary `name` lies on its cell and points out of it (facet centroid on
 /// the positive side from the cell centroid); with `expected` given, its normal is that vector.
 void expect_boundary(const Mesh& m, const std::string& name, std::size_t n_facets,
-                     const std::function<Vec(const Vec&)>& expected = {}) {
+                     const std::function<Vec3(const Vec3&)>& expected = {}) {
   ASSERT_TRUE(m.has_boundary(name)) << name;
   const auto& facets = m.boundary(name);
   EXPECT_EQ(facets.size(), n_facets) << name;
@@ -208,8 +210,8 @@ void expect_boundary(const Mesh& m, const std::string& name, std::size_t n_facet
     const auto cell = m.cell(f.cell);
     for (const int v : f.node_span())
       EXPECT_NE(std::find(cell.begin(), cell.end(), v), cell.end()) << name << ": not a face";
-    const Vec n = unit_normal(m, f);
-    const Vec fc = centroid(m, f.node_span());
+    const Vec3 n = unit_normal(m, f);
+    const Vec3 fc = centroid(m, f.node_span());
     EXPECT_GT(dot(n, sub(fc, centroid(m, cell))), 0) << name << ": normal points inward";
     if (expected) {
       EXPECT_NEAR(dot(n, expected(fc)), 1.0, 1e-12) << name;
@@ -217,7 +219,7 @@ void expect_boundary(const Mesh& m, const std::string& name, std::size_t n_facet
   }
 }
 
-Vec constant(double x, double y, double z) {
+Vec3 constant(double x, double y, double z) {
   return {x, y, z};
 }
 
@@ -248,10 +250,10 @@ std::string mesh_error(F&& f) {
   EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
 
 void expect_rectangle_sides(const Mesh& m, const Rect& r) {
-  expect_boundary(m, "bottom", r.nx, [](const Vec&) { return constant(0, -1, 0); });
-  expect_boundary(m, "right", r.ny, [](const Vec&) { return constant(1, 0, 0); });
-  expect_boundary(m, "top", r.nx, [](const Vec&) { return constant(0, 1, 0); });
-  expect_boundary(m, "left", r.ny, [](const Vec&) { return constant(-1, 0, 0); });
+  expect_boundary(m, "bottom", r.nx, [](const Vec3&) { return constant(0, -1, 0); });
+  expect_boundary(m, "right", r.ny, [](const Vec3&) { return constant(1, 0, 0); });
+  expect_boundary(m, "top", r.nx, [](const Vec3&) { return constant(0, 1, 0); });
+  expect_boundary(m, "left", r.ny, [](const Vec3&) { return constant(-1, 0, 0); });
 }
 
 // ---- 2D ------------------------------------------------------------------------------------
@@ -289,7 +291,7 @@ double first_raw_cell_area(const fs::path& file) {
   std::vector<std::vector<std::size_t>> tags, nodes;
   gmsh::model::mesh::getElements(types, tags, nodes, 2);
   std::vector<double> x, u;
-  std::array<Vec, 3> p{};
+  std::array<Vec3, 3> p{};
   for (int a = 0; a < 3; ++a) {
     gmsh::model::mesh::getNode(nodes.at(0).at(static_cast<std::size_t>(a)), x, u);
     p[static_cast<std::size_t>(a)] = {x[0], x[1], x[2]};
@@ -377,10 +379,10 @@ TEST(GmshReader, QuarterDiscOfMostlyQuads) {
   const double exact = std::numbers::pi * radius * radius / 4;
   EXPECT_GT(deficit, 1e-4 * exact);  // so the check below is not just "close to the disc"
   EXPECT_NEAR(total_measure(m), exact - deficit, 1e-12 * exact);
-  expect_boundary(m, "bottom", 12, [](const Vec&) { return constant(0, -1, 0); });
-  expect_boundary(m, "left", 12, [](const Vec&) { return constant(-1, 0, 0); });
+  expect_boundary(m, "bottom", 12, [](const Vec3&) { return constant(0, -1, 0); });
+  expect_boundary(m, "left", 12, [](const Vec3&) { return constant(-1, 0, 0); });
   // The outward normal of a chord is the radial direction at its midpoint.
-  expect_boundary(m, "arc", n_arc, [](const Vec& c) {
+  expect_boundary(m, "arc", n_arc, [](const Vec3& c) {
     const double r = std::hypot(c[0], c[1]);
     return constant(c[0] / r, c[1] / r, 0);
   });
@@ -416,11 +418,11 @@ std::function<void()> box(int n, bool hex) {
 }
 
 void expect_box_faces(const Mesh& m, std::size_t per_face) {
-  const std::pair<const char*, Vec> faces[] = {{"xmin", {-1, 0, 0}}, {"xmax", {1, 0, 0}},
-                                               {"ymin", {0, -1, 0}}, {"ymax", {0, 1, 0}},
-                                               {"zmin", {0, 0, -1}}, {"zmax", {0, 0, 1}}};
+  const std::pair<const char*, Vec3> faces[] = {{"xmin", {-1, 0, 0}}, {"xmax", {1, 0, 0}},
+                                                {"ymin", {0, -1, 0}}, {"ymax", {0, 1, 0}},
+                                                {"zmin", {0, 0, -1}}, {"zmax", {0, 0, 1}}};
   for (const auto& [name, n] : faces)
-    expect_boundary(m, name, per_face, [n = n](const Vec&) { return n; });
+    expect_boundary(m, name, per_face, [n = n](const Vec3&) { return n; });
   EXPECT_EQ(m.boundary_names().size(), 6u);
 }
 
@@ -483,7 +485,7 @@ TEST(GmshReader, InvertedTetrahedronIsAnError) {
   const Mesh good = read_gmsh(write_text("tet_good.msh", one_tet("1 2 3 4")), 3);
   ASSERT_EQ(good.n_cells(), 1);
   EXPECT_NEAR(cell_measure(good, 0), 1.0 / 6.0, 1e-15);
-  expect_boundary(good, "base", 1, [](const Vec&) { return constant(0, 0, -1); });
+  expect_boundary(good, "base", 1, [](const Vec3&) { return constant(0, 0, -1); });
 
   const auto bad = write_text("tet_inverted.msh", one_tet("1 3 2 4"));
   const std::string what = mesh_error([&] { (void)read_gmsh(bad, 3); });
@@ -507,7 +509,7 @@ std::string square_with_line(const std::string& line_nodes, double z = 0) {
 TEST(GmshReader, BoundaryFacetsMustBoundExactlyOneCell) {
   // Control: the edge 2→1 of the bottom is found and turned to run counter-clockwise.
   const Mesh m = read_gmsh(write_text("square_ok.msh", square_with_line("2 1")), 2);
-  expect_boundary(m, "edge", 1, [](const Vec&) { return constant(0, -1, 0); });
+  expect_boundary(m, "edge", 1, [](const Vec3&) { return constant(0, -1, 0); });
 
   const auto off = write_text("square_off.msh", square_with_line("2 4"));  // not an edge
   const std::string what = mesh_error([&] { (void)read_gmsh(off, 2); });
@@ -603,7 +605,7 @@ std::vector<std::pair<int, int>> brute_force_duplicates(const Mesh& m, double to
   std::vector<std::pair<int, int>> out;
   for (int i = 0; i < m.n_nodes(); ++i)
     for (int j = i + 1; j < m.n_nodes(); ++j) {
-      const Vec d = sub(m.point(i), m.point(j));
+      const Vec3 d = sub(m.point(i), m.point(j));
       if (std::abs(d[0]) <= tol && std::abs(d[1]) <= tol && std::abs(d[2]) <= tol)
         out.emplace_back(i, j);
     }
