@@ -304,11 +304,13 @@ std::string bad_forward_compliance() {
 }
 
 /// The case's warnings (implausible in SI) and the geometric ones, by rank 0.
-void print_warnings(const tc::physics::Problem& problem, const std::vector<std::string>& more,
-                    bool with_the_readers = true) {
+/// The reader's warnings, then those of the checks that need the whole case: the geometry (which
+/// throws on overlapping contact surfaces, on every rank) and the time data against the scheme.
+void print_warnings(const tc::physics::Problem& problem) {
+  auto more = tc::io::check_geometry(problem);
+  for (auto& w : tc::io::check_time_data(problem)) more.push_back(std::move(w));
   if (tc::core::PetscSession::rank() != 0) return;
-  if (with_the_readers)
-    for (const auto& w : problem.warnings) fmt::print(stderr, "warning: {}\n", w);
+  for (const auto& w : problem.warnings) fmt::print(stderr, "warning: {}\n", w);
   for (const auto& w : more) fmt::print(stderr, "warning: {}\n", w);
 }
 
@@ -340,8 +342,7 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     auto problem = tc::io::read_case(case_file, overrides);
     if (!output.empty()) problem.output.directory = output;
     if (!restart.empty()) problem.output.directory = restart;  // continued where it stopped
-    print_warnings(problem, tc::io::check_geometry(problem));
-    print_warnings(problem, tc::io::check_time_data(problem), false);
+    print_warnings(problem);
     // Held until the run returns: a second run into the same directory is refused (exit 2)
     // before it sets anything up, instead of mixing its rows with this one's.
     const auto earlier = !restart.empty() ? tc::io::EarlierRun::keep
@@ -429,8 +430,7 @@ int check(const std::string& case_file, const std::vector<std::string>& override
   install_signal_handlers();                     // a stop signal ends a long mesh read (exit 1)
   try {
     const auto problem = tc::io::read_case(case_file, overrides);
-    print_warnings(problem, tc::io::check_geometry(problem));
-    print_warnings(problem, tc::io::check_time_data(problem), false);
+    print_warnings(problem);
     if (tc::core::PetscSession::rank() != 0) return 0;  // every rank read it; one reports
     int nodes = 0, cells = 0;
     for (const auto& b : problem.bodies) nodes += b.mesh.n_nodes(), cells += b.mesh.n_cells();
