@@ -35,7 +35,7 @@
 #include "tc/io/geometry_checks.hpp"
 #include "tc/io/output.hpp"
 #include "tc/io/output_lock.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace {
 

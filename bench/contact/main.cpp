@@ -18,7 +18,7 @@
 #include "../support/sliding_blocks.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace {
 

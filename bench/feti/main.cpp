@@ -47,8 +47,8 @@
 #include "tc/core/petsc.hpp"
 #include "tc/feti/dual_distribution.hpp"
 #include "tc/mesh/box.hpp"
-#include "tc/physics/body_system.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/physics/body/body_system.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace {
 

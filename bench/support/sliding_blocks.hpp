@@ -7,7 +7,7 @@
 #include "../../tests/support/problems.hpp"  // steel(): the constants the tests use
 #include "tc/core/table.hpp"
 #include "tc/mesh/mesh.hpp"
-#include "tc/physics/problem.hpp"
+#include "tc/model/problem.hpp"
 
 namespace tc::bench {
 

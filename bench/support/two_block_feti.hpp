@@ -14,11 +14,11 @@
 
 #include "matching_rows.hpp"
 #include "sliding_blocks.hpp"
+#include "tc/dual/constrained_solver.hpp"
+#include "tc/dual/dual_contact.hpp"
 #include "tc/feti/contact_feti.hpp"
 #include "tc/mesh/box.hpp"
-#include "tc/physics/body_system.hpp"
-#include "tc/physics/constrained_solver.hpp"
-#include "tc/physics/dual_contact.hpp"
+#include "tc/physics/body/body_system.hpp"
 
 namespace tc::bench {
 

@@ -20,7 +20,7 @@
 
 #include "tc/core/petsc.hpp"
 #include "tc/io/case_reader.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace {
 

@@ -13,8 +13,8 @@
 
 #include "support/vectors.hpp"
 #include "tc/core/petsc.hpp"
-#include "tc/physics/constrained_solver.hpp"
-#include "tc/physics/dof_compliance.hpp"
+#include "tc/dual/constrained_solver.hpp"
+#include "tc/dual/dof_compliance.hpp"
 
 namespace tc::test {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "support/contact_rows.hpp"
 #include "support/roller_blocks.hpp"
-#include "tc/physics/dual_contact.hpp"
+#include "tc/dual/dual_contact.hpp"
 
 namespace tc::test {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "support/problems.hpp"
 #include "tc/feti/feti.hpp"
-#include "tc/physics/body_system.hpp"
+#include "tc/physics/body/body_system.hpp"
 
 namespace tc::test {
 namespace {

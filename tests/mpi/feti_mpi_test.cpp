@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "support/problems.hpp"
-#include "tc/physics/body_system.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/physics/body/body_system.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

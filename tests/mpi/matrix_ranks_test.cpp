@@ -14,9 +14,9 @@
 #include "support/vectors.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/dual/constrained_solver.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/mesh/box.hpp"
-#include "tc/physics/constrained_solver.hpp"
 
 namespace tc::test {
 namespace {

@@ -2,7 +2,7 @@
 // One body's thermal energy as the heat ledger tests read it.
 #include <vector>
 
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "../../bench/support/matching_rows.hpp"
-#include "tc/physics/dual_contact.hpp"
+#include "tc/dual/dual_contact.hpp"
 
 namespace tc::test {
 

@@ -4,9 +4,9 @@
 #include <functional>
 
 #include "support/test_meshes.hpp"
+#include "tc/dual/constrained_solver.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/mesh/box.hpp"
-#include "tc/physics/constrained_solver.hpp"
 
 namespace tc::test {
 

@@ -6,7 +6,7 @@
 
 #include "tc/core/petsc.hpp"
 #include "tc/mesh/box.hpp"
-#include "tc/physics/problem.hpp"
+#include "tc/model/problem.hpp"
 
 namespace tc::test {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "support/problems.hpp"
+#include "tc/dual/constrained_solver.hpp"
 #include "tc/fem/assembler.hpp"
-#include "tc/physics/constrained_solver.hpp"
 
 namespace tc::test {
 

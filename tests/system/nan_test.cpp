@@ -11,7 +11,7 @@
 #include "support/cli.hpp"
 #include "tc/core/error.hpp"
 #include "tc/io/case_reader.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace fs = std::filesystem;
 using tc::test::thermocontact;

@@ -1,7 +1,7 @@
-// ContactLaws (physics/contact_laws.hpp): the checks after every step stop a step whose
+// ContactLaws (physics/contact/contact_laws.hpp): the checks after every step stop a step whose
 // multipliers or displacements leave the bounds the solvers guarantee, naming the node, the
 // step and the setting; within the bounds they record the worst.
-#include "tc/physics/contact_laws.hpp"
+#include "tc/physics/contact/contact_laws.hpp"
 
 #include <gtest/gtest.h>
 

@@ -14,9 +14,9 @@
 #include <map>
 #include <sstream>
 
+#include "tc/dual/dual_contact.hpp"
 #include "tc/io/case_reader.hpp"
 #include "tc/io/case_schema.hpp"
-#include "tc/physics/dual_contact.hpp"
 
 namespace {
 

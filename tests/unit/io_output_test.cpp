@@ -7,7 +7,7 @@
 #include "support/cli.hpp"
 #include "support/problems.hpp"
 #include "tc/io/output.hpp"
-#include "tc/physics/checks.hpp"
+#include "tc/model/checks.hpp"
 
 using namespace tc;
 

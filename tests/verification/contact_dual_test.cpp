@@ -13,8 +13,8 @@
 #include "support/problems.hpp"
 #include "support/roller_blocks.hpp"
 #include "support/vectors.hpp"
+#include "tc/dual/dual_contact.hpp"
 #include "tc/fem/assembler.hpp"
-#include "tc/physics/dual_contact.hpp"
 
 namespace tc::test {
 namespace {

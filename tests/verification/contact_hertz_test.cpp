@@ -20,7 +20,7 @@
 
 #include "support/problems.hpp"
 #include "tc/mesh/gmsh_reader.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "support/contact_rows.hpp"
 #include "support/problems.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

@@ -14,7 +14,7 @@
 
 #include "support/body_energy.hpp"
 #include "support/problems.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

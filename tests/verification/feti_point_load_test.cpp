@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "support/problems.hpp"
-#include "tc/physics/body_system.hpp"
-#include "tc/physics/constrained_solver.hpp"
+#include "tc/dual/constrained_solver.hpp"
+#include "tc/physics/body/body_system.hpp"
 
 namespace tc::test {
 namespace {

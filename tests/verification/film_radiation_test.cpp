@@ -19,9 +19,9 @@
 
 #include "support/problems.hpp"
 #include "support/test_meshes.hpp"
-#include "tc/physics/body_field.hpp"
-#include "tc/physics/boundary_heat.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/physics/body/body_field.hpp"
+#include "tc/physics/body/boundary_heat_newton.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

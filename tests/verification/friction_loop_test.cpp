@@ -17,7 +17,7 @@
 
 #include "support/history.hpp"
 #include "tc/io/case_reader.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "support/problems.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "support/problems.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 using namespace tc;
 

@@ -14,7 +14,7 @@
 #include <filesystem>
 
 #include "tc/io/case_reader.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

@@ -11,8 +11,8 @@
 #include <cmath>
 
 #include "support/problems.hpp"
-#include "tc/physics/body_field.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/physics/body/body_field.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

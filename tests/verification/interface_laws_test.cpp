@@ -9,7 +9,7 @@
 //  - Steady conduction through two pressed blocks with γ_C^s(θ) a table: the series
 //    resistance q = Δθ/(L/κ + 1/h + L/κ), h = β_C(θ_Γ) p_n, θ_Γ the mean of the end
 //    temperatures by symmetry.
-#include "tc/physics/interface_laws.hpp"
+#include "tc/physics/interface_heat/interface_laws.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@
 #include <iostream>
 
 #include "support/problems.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

@@ -1,4 +1,4 @@
-// Load control through a rigid coupling ([[boundary]] force; physics/rigid_coupling.hpp):
+// Load control through a rigid coupling ([[boundary]] force; physics/body/rigid_coupling.hpp):
 // (a) a bar clamped at x = 0 and pulled by a resultant force F on its coupled end face: with
 //     ν = 0 the exact field u_x = F x/(E A) lies in the trilinear space, so the end moves by
 //     F L/(E A) to round-off, every node of the face moves the same, and the clamp's reaction is
@@ -12,8 +12,8 @@
 #include <cmath>
 
 #include "support/problems.hpp"
-#include "tc/physics/checks.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/model/checks.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

@@ -14,8 +14,6 @@
 //  - InterfaceHeatSolver against the dense coupled solve (Dirichlet node on the interface), by
 //    its LU and by refinement with an earlier LU.
 //  - Aitken relaxation of the Coulomb fixed point: same answer, no more iterations.
-#include "tc/physics/thermal_contact.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,7 +25,8 @@
 #include "support/body_energy.hpp"
 #include "support/grid_laplacian.hpp"
 #include "support/problems.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/physics/interface_heat/interface_heat_solver.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::test {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "support/problems.hpp"
 #include "tc/fem/element.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 using namespace tc;
 

@@ -10,8 +10,8 @@
 
 #include "tc/core/error.hpp"
 #include "tc/mesh/partition.hpp"
-#include "tc/physics/checks.hpp"
-#include "tc/physics/history.hpp"
+#include "tc/model/checks.hpp"
+#include "tc/record/history.hpp"
 
 namespace tc::io::detail {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "tc/io/table_reader.hpp"
-#include "tc/physics/problem.hpp"
+#include "tc/model/problem.hpp"
 
 namespace tc::io::detail {
 

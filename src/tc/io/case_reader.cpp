@@ -11,7 +11,7 @@
 #include "tc/io/case_overrides.hpp"
 #include "tc/io/case_reader_detail.hpp"
 #include "tc/io/files.hpp"
-#include "tc/physics/checks.hpp"
+#include "tc/model/checks.hpp"
 
 namespace tc::io::detail {
 

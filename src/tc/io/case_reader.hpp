@@ -9,7 +9,7 @@
 #include <string_view>
 #include <utility>
 
-#include "tc/physics/problem.hpp"
+#include "tc/model/problem.hpp"
 
 namespace tc::io {
 

@@ -15,7 +15,7 @@
 #include <string>
 
 #include "tc/core/error.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::io {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/physics/problem.hpp"
+#include "tc/model/problem.hpp"
 
 namespace tc::io {
 

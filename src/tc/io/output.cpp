@@ -477,7 +477,7 @@ std::string OutputWriter::summary_text(const physics::Simulation& sim, const std
   const auto* enforcement = sim.contact_enforcement();
   out.print("  \"contact_dual\": {},\n", json_string(enforcement ? enforcement->name() : "none"));
   out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
-  // The contact laws checked after every step (physics/contact_laws.hpp; case-format.md).
+  // The contact laws checked after every step (physics/contact/contact_laws.hpp; case-format.md).
   const auto& laws = sim.contact().laws_checked();
   const auto law = [](const physics::LawViolation& v) {
     return fmt::format(

@@ -15,7 +15,7 @@
 
 #include "tc/io/files.hpp"
 #include "tc/io/vtu.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::io {
 

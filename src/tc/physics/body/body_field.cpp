@@ -1,0 +1,218 @@
+#include "tc/physics/body/body_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "tc/core/error.hpp"
+#include "tc/physics/body/time_scheme.hpp"
+
+namespace tc::physics {
+
+core::SparseMatrix combine(double a, const core::SparseMatrix& x, double b,
+                           const core::SparseMatrix& y) {
+  core::SparseMatrix out = x.copy();
+  out.scale(a);
+  out.axpy(b, y);
+  return out;
+}
+
+namespace {
+
+/// A_u of (5.3): 4/τ² M_u + K_u with Newmark, K_u with the quasistatic scheme.
+core::SparseMatrix mechanics_operator(const Problem& p, const core::SparseMatrix& mass_u,
+                                      const core::SparseMatrix& stiffness_u) {
+  return p.time.scheme == Scheme::dynamic
+             ? combine(newmark_mass_factor(p.time.step), mass_u, 1.0, stiffness_u)
+             : stiffness_u.copy();
+}
+
+/// A_θ of (5.6), M_θ/τ + K_θ (backward Euler; a constant film's h∫θv is added by the caller).
+core::SparseMatrix heat_operator(const Problem& p, const core::SparseMatrix& mass_theta,
+                                 const core::SparseMatrix& stiffness_theta) {
+  return combine(1.0 / p.time.step, mass_theta, 1.0, stiffness_theta);
+}
+
+/// A unit pivot, scaled by the mean diagonal, on the massless dofs of subdomain s's M_u.
+void massless_pivots(const BodySystem& sys, int s, core::SparseMatrix& mass) {
+  const auto& sub = sys.subdomains().at(static_cast<size_t>(s));
+  const int d = sys.dim();
+  core::Vector diag(mass.rows());
+  TC_PETSC(MatGetDiagonal(mass.get(), diag.get()));
+  double mean = 0;
+  {
+    const auto v = diag.read();
+    for (PetscInt i = 0; i < mass.rows(); ++i) mean += v[i];
+  }
+  mean /= static_cast<double>(std::max<PetscInt>(mass.rows(), 1));
+  const auto& massless = sys.massless_dofs();
+  {
+    auto v = diag.view();
+    for (PetscInt i = 0; i < mass.rows(); ++i) v[i] = 0.0;
+    for (size_t a = 0; a < sub.global_node.size(); ++a)
+      for (int k = 0; k < d; ++k)
+        if (std::binary_search(massless.begin(), massless.end(),
+                               static_cast<PetscInt>(d * sub.global_node[a] + k)))
+          v[d * static_cast<PetscInt>(a) + k] = mean;
+  }
+  TC_PETSC(MatDiagonalSet(mass.get(), diag.get(), ADD_VALUES));
+}
+
+}  // namespace
+
+std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySystem& sys,
+                                               const core::SparseMatrix& a, BodyOperator op) {
+  const bool mech = op != BodyOperator::heat;
+  std::vector<PetscInt> dirichlet = mech ? sys.u_dirichlet_dofs() : sys.theta_dirichlet_dofs();
+  if (op == BodyOperator::mass && !sys.massless_dofs().empty()) {
+    // M_u is singular on the massless dofs: ü = 0 there (their equations are static ones).
+    std::vector<PetscInt> both;
+    std::set_union(dirichlet.begin(), dirichlet.end(), sys.massless_dofs().begin(),
+                   sys.massless_dofs().end(), std::back_inserter(both));
+    dirichlet = std::move(both);
+  }
+  if (sys.subdomains().empty())
+    // One factorisation shared by the ranks rather than one per rank (core::CholeskySolver).
+    return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization,
+                                               core::FactorRanks::all_ranks);
+  const bool dynamic = p.time.scheme == Scheme::dynamic;
+  auto local = [&](int s) {
+    const auto m = sys.subdomain_matrices(s);
+    switch (op) {
+      case BodyOperator::mechanics:
+        return mechanics_operator(p, m.mass_u, m.stiffness_u);
+      case BodyOperator::statics:
+        return m.stiffness_u.copy();
+      case BodyOperator::heat: {
+        auto heat = heat_operator(p, m.mass_theta, m.stiffness_theta);
+        if (sys.constant_film()) heat.axpy(1.0, sys.subdomain_constant_film(s));
+        return heat;
+      }
+      case BodyOperator::mass: {
+        // TFETI keeps the Dirichlet dofs in the subdomain matrices (multipliers fix them), so
+        // the massless dofs, which ü = 0 constrains as Dirichlet dofs, need a pivot: the mean
+        // diagonal, which changes only their multipliers.
+        auto mass = m.mass_u.copy();
+        if (!sys.massless_dofs().empty()) massless_pivots(sys, s, mass);
+        return mass;
+      }
+    }
+    return core::SparseMatrix{};
+  };
+  // Without inertia the subdomains of an elastic body float: TFETI's rigid-body kernels. With
+  // it they nearly float when τ is large, and the same modes deflate (feti.hpp); constants
+  // likewise for heat. The mass matrix alone needs no coarse space.
+  const auto kernel = op == BodyOperator::heat   ? feti::Kernel::constant
+                      : op == BodyOperator::mass ? feti::Kernel::none
+                                                 : feti::Kernel::rigid;
+  const auto singular = (op == BodyOperator::mechanics && !dynamic) || op == BodyOperator::statics
+                            ? feti::Singular::yes
+                            : feti::Singular::no;
+  feti::FetiOptions options;
+  options.tolerance = p.solver.feti_tolerance;
+  options.max_iterations = p.solver.max_feti_iterations;
+  options.preconditioner = p.solver.feti_preconditioner;
+  options.package = p.solver.factorization;
+  return std::make_unique<ConstrainedSolver>(std::make_unique<feti::Feti>(
+      sys.subdomains(), sys.body().mesh.n_nodes(), mech ? sys.dim() : 1, dirichlet, kernel,
+      singular, local, options));
+}
+
+BodyField::BodyField(const Problem& p, const BodySystem& sys) {
+  const auto& m = sys.matrices();
+  a_theta = heat_operator(p, m.mass_theta, m.stiffness_theta);
+  if (const auto* film = sys.constant_film()) a_theta.axpy(1.0, *film);  // + h∫θv
+  // A_u (4/τ² M_u + K_u, or K_u quasistatic) only for its factorisation: products use M_u, K_u.
+  mech =
+      body_solver(p, sys, mechanics_operator(p, m.mass_u, m.stiffness_u), BodyOperator::mechanics);
+  heat = body_solver(p, sys, a_theta, BodyOperator::heat);
+  if (!sys.coupled_faces().empty()) {
+    const double c = p.time.scheme == Scheme::dynamic ? newmark_mass_factor(p.time.step) : 0.0;
+    coupling = std::make_unique<RigidCoupling>(
+        sys, *mech, [&m, c](const core::Vector& x, core::Vector& y) {  // A x = c M x + K x
+          m.stiffness_u.mult(x, y);
+          if (c != 0.0) {
+            core::Vector mx(x.size());
+            m.mass_u.mult(x, mx);
+            y.axpy(c, mx);
+          }
+        });
+  }
+  const bool coupled_material = sys.body().material.thermal_expansion != 0.0;
+  expansion = p.physics.thermal_expansion && coupled_material;
+  heating = p.physics.thermoelastic_heating && coupled_material;
+  for (auto* v : {&f_u, &rhs_u_base, &rhs_u, &u_new, &u_prev, &velocity, &work_u, &u_pred})
+    *v = core::Vector(sys.n_u());
+  for (auto* v : {&f_theta, &rhs_theta_base, &rhs_theta, &theta_new, &theta_prev, &dtheta,
+                  &work_theta, &theta0_load})
+    *v = core::Vector(sys.n_theta());
+  // M_θ's part formed as begin_step forms M_θ θ^k/τ (θ^k/τ, then added to a vector by the same
+  // product): for a body at θ₀ everywhere the two cancel to the bit.
+  const double theta0 = p.physics.reference_temperature;
+  work_theta.fill(theta0);
+  work_theta.scale(1.0 / p.time.step);
+  m.mass_theta.mult_add(work_theta, theta0_load);
+  if (const auto* film = sys.constant_film()) {
+    work_theta.fill(theta0);
+    film->mult_add(work_theta, theta0_load);
+  }
+}
+
+bool deviation_applies(const BodyField& s) {
+  return !s.heat->feti();
+}
+
+void heat_to_deviation(double theta0, BodyField& s) {
+  s.rhs_theta.axpy(-1.0, s.theta0_load);
+  s.theta_new.shift(-theta0);
+}
+
+void heat_from_deviation(double theta0, const BodySystem& sys, double t, BodyField& s) {
+  s.theta_new.shift(theta0);
+  sys.prescribe_theta(t, s.theta_new);
+}
+
+void solve_initial_acceleration(const BodySystem& sys, const core::Vector& r, core::Vector& a) {
+  std::vector<PetscInt> fixed;
+  const auto& dirichlet = sys.u_dirichlet_dofs();
+  const auto& massless = sys.massless_dofs();
+  std::set_union(dirichlet.begin(), dirichlet.end(), massless.begin(), massless.end(),
+                 std::back_inserter(fixed));
+  const auto& mass = sys.matrices().mass_u;
+  auto m = mass.copy();
+  m.zero_rows_columns(fixed, core::mean_diagonal(mass));
+  auto b = r.clone();
+  {
+    auto v = b.view();
+    for (const PetscInt d : fixed) v[d] = 0.0;
+  }
+  a.zero();
+  // Scaled to ‖b‖_∞ = 1: an extreme but finite load (1e290) would overflow CG's norms.
+  const double scale = b.max_abs();
+  if (scale == 0.0 || !std::isfinite(scale)) {
+    if (scale != 0.0) a.fill(scale);  // non-finite: left for the step's finiteness checks
+    return;
+  }
+  b.scale(1.0 / scale);
+  // Jacobi-scaled mass matrices have a condition number bounded independently of h (Wathen,
+  // IMA J. Numer. Anal. 7, 1987: ≤ 27 for trilinear hexahedra), so 1e-12 costs some 70
+  // iterations and leaves ü⁰ accurate to ~1e-11, far below the steps' own tolerances.
+  constexpr double rtol = 1e-12;
+  int iterations = 0;
+  const double reached = core::jacobi_cg(m, b, a, rtol, 10000, iterations);
+  if (!(reached <= rtol))
+    throw NumericalError("initial acceleration: CG on M_u did not converge", 0, iterations,
+                         reached);
+  a.scale(scale);
+}
+
+void subtract_thermal_force(const Problem& p, const BodySystem& sys, BodyField& s,
+                            const core::Vector& theta, core::Vector& f) {
+  // f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with the body's scratch vectors.
+  s.dtheta.copy_from(theta);
+  s.dtheta.shift(-p.physics.reference_temperature);
+  sys.matrices().coupling_u_theta.mult(s.dtheta, s.work_u);
+  f.axpy(-1.0, s.work_u);
+}
+
+}  // namespace tc::physics

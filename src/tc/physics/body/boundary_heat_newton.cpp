@@ -1,0 +1,184 @@
+#include "tc/physics/body/boundary_heat_newton.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tc/core/error.hpp"
+
+namespace tc::physics {
+
+namespace {
+
+/// Relative tolerance of the conjugate gradients of one Newton correction: Newton's
+/// convergence then stays quadratic until ‖r‖ is 1e-8 of where the correction started.
+constexpr double kInnerTolerance = 1e-8;
+constexpr int kMaxInnerIterations = 500;
+constexpr int kMaxHalvings = 30;
+
+/// Vectors of one size per block, and the block-wise operations Newton and CG need.
+struct Blocks {
+  std::vector<core::Vector> v;
+  explicit Blocks(const std::vector<const BodySystem*>& systems) {
+    for (const auto* s : systems) v.emplace_back(s->n_theta());
+  }
+  [[nodiscard]] std::vector<core::Vector*> out() {
+    std::vector<core::Vector*> p;
+    for (auto& x : v) p.push_back(&x);
+    return p;
+  }
+  [[nodiscard]] std::vector<const core::Vector*> in() const {
+    std::vector<const core::Vector*> p;
+    for (const auto& x : v) p.push_back(&x);
+    return p;
+  }
+};
+
+double dot(const std::vector<const core::Vector*>& x, const std::vector<const core::Vector*>& y) {
+  double s = 0;
+  for (size_t i = 0; i < x.size(); ++i) s += x[i]->dot(*y[i]);
+  return s;
+}
+
+double norm(const std::vector<const core::Vector*>& x) {
+  return std::sqrt(dot(x, x));
+}
+
+void zero_constrained(const BodySystem& sys, core::Vector& x) {
+  const auto& dofs = sys.theta_dirichlet_dofs();
+  if (dofs.empty()) return;
+  auto v = x.view();
+  for (const PetscInt d : dofs) v[d] = 0.0;
+}
+
+}  // namespace
+
+NewtonOutcome solve_boundary_heat(const HeatOperator& a, double t,
+                                  const std::vector<const core::Vector*>& b,
+                                  const std::vector<core::Vector*>& theta, double tolerance,
+                                  int max_iterations) {
+  const auto& systems = a.systems;
+  const size_t n = systems.size();
+  Blocks r(systems), at(systems), delta(systems), res(systems), z(systems), p(systems), q(systems),
+      trial(systems), r_trial(systems), b_free(systems);
+  for (size_t i = 0; i < n; ++i) {
+    b_free.v[i].copy_from(*b[i]);
+    zero_constrained(*systems[i], b_free.v[i]);
+  }
+  const double b_norm = norm(b_free.in());
+  Blocks zero(systems), n_zero(systems), n_part(systems);
+  for (size_t i = 0; i < n; ++i) systems[i]->add_boundary_term(t, zero.v[i], n_zero.v[i]);
+  // ‖N(t, 0)‖: the surroundings' side of the boundary terms (εσθ∞⁴), which cancels the body's
+  // side at equilibrium: part of the scale that the residual is measured against.
+  for (size_t i = 0; i < n; ++i) zero_constrained(*systems[i], n_zero.v[i]);
+  const double absorbed = norm(n_zero.in());
+  // ‖r(x)‖ with r = A x + N(t, x) − b on the free dofs; `scale` the size of the equation's
+  // terms at x: max(‖b‖, ‖A x‖, ‖N(t, x) − N(t, 0)‖, ‖N(t, 0)‖).
+  double scale = 0;
+  auto residual = [&](const std::vector<const core::Vector*>& x, Blocks& out) {
+    a.apply(x, at.out());
+    for (size_t i = 0; i < n; ++i) zero_constrained(*systems[i], at.v[i]);
+    for (size_t i = 0; i < n; ++i) {
+      n_part.v[i].zero();
+      systems[i]->add_boundary_term(t, *x[i], n_part.v[i]);
+      zero_constrained(*systems[i], n_part.v[i]);
+      out.v[i].copy_from(at.v[i]);
+      out.v[i].axpy(1.0, n_part.v[i]);
+      out.v[i].axpy(-1.0, *b[i]);
+      zero_constrained(*systems[i], out.v[i]);
+      n_part.v[i].axpy(-1.0, n_zero.v[i]);
+    }
+    scale = std::max({b_norm, norm(at.in()), norm(n_part.in()), absorbed});
+    return norm(out.in());
+  };
+  auto precondition = [&]() {  // z = A⁻¹ res
+    for (auto& x : z.v) x.zero();
+    a.solve(res.in(), z.out());
+    for (size_t i = 0; i < n; ++i) zero_constrained(*systems[i], z.v[i]);
+  };
+  std::vector<const core::Vector*> theta_in(theta.begin(), theta.end());
+  NewtonOutcome o;
+  double current = residual(theta_in, r);  // ‖r‖
+  auto relative = [&](double value) { return scale > 0 ? value / scale : value; };
+  o.residual = relative(current);
+  while (!(o.residual <= tolerance)) {
+    if (o.iterations >= max_iterations || !std::isfinite(o.residual)) return o;
+    ++o.iterations;
+    // (A + N'(θ)) δ = −r by preconditioned CG, δ = 0 on the constrained dofs.
+    for (size_t i = 0; i < n; ++i) {
+      delta.v[i].zero();
+      res.v[i].copy_from(r.v[i]);
+      res.v[i].scale(-1.0);
+    }
+    const double r0 = norm(res.in());
+    precondition();
+    for (size_t i = 0; i < n; ++i) p.v[i].copy_from(z.v[i]);
+    double rz = dot(res.in(), z.in());
+    for (int k = 0; k < kMaxInnerIterations && r0 > 0; ++k) {
+      ++o.inner_iterations;
+      a.apply(p.in(), q.out());
+      for (size_t i = 0; i < n; ++i) {
+        systems[i]->add_boundary_derivative(t, *theta[i], p.v[i], q.v[i]);
+        zero_constrained(*systems[i], q.v[i]);
+      }
+      const double pq = dot(p.in(), q.in());
+      if (!(pq > 0)) break;  // no descent left (round-off at the solution)
+      const double alpha = rz / pq;
+      for (size_t i = 0; i < n; ++i) {
+        delta.v[i].axpy(alpha, p.v[i]);
+        res.v[i].axpy(-alpha, q.v[i]);
+      }
+      // Converged before the preconditioner, a solve with A: its z would only make the next
+      // direction (one interface solve of three per heat step of the pin-on-plate).
+      if (norm(res.in()) <= kInnerTolerance * r0) break;
+      precondition();
+      const double rz_new = dot(res.in(), z.in());
+      for (size_t i = 0; i < n; ++i) {
+        p.v[i].scale(rz_new / rz);
+        p.v[i].axpy(1.0, z.v[i]);
+      }
+      rz = rz_new;
+    }
+    // θ + sδ, s halved while the residual grows (far from the solution θ⁴ overshoots).
+    double s = 1.0, next = 0;
+    for (int h = 0; h <= kMaxHalvings; ++h, s *= 0.5) {
+      for (size_t i = 0; i < n; ++i) {
+        trial.v[i].copy_from(*theta[i]);
+        trial.v[i].axpy(s, delta.v[i]);
+      }
+      next = residual(trial.in(), r_trial);
+      if (next < current || h == kMaxHalvings) break;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      theta[i]->copy_from(trial.v[i]);
+      r.v[i].copy_from(r_trial.v[i]);
+    }
+    current = next;
+    o.residual = relative(current);
+  }
+  o.converged = true;
+  return o;
+}
+
+NewtonOutcome solve_boundary_heat(const BodySystem& sys, const core::SparseMatrix& a,
+                                  const ConstrainedSolver& solver, double t, const core::Vector& b,
+                                  core::Vector& theta, double tolerance, int max_iterations) {
+  HeatOperator op;
+  op.systems = {&sys};
+  op.apply = [&](const auto& x, const auto& y) { a.mult(*x[0], *y[0]); };
+  op.solve = [&](const auto& r, const auto& z) { solver.solve(*r[0], *z[0]); };
+  return solve_boundary_heat(op, t, {&b}, {&theta}, tolerance, max_iterations);
+}
+
+void require_converged(const NewtonOutcome& o, const std::string& what, double tolerance, int step,
+                       int iteration) {
+  if (!o.converged)
+    throw NumericalError(
+        fmt::format("heat step (5.6): Newton's method for the radiation and film boundaries of "
+                    "{} did not converge to {:.1e} in {} iterations (staggered iteration {})",
+                    what, tolerance, o.iterations, iteration),
+        step, o.iterations, o.residual);
+}
+
+}  // namespace tc::physics

@@ -1,0 +1,103 @@
+#include "tc/physics/body/time_scheme.hpp"
+
+namespace tc::physics {
+
+namespace {
+
+/// rate = (u − u_old)/τ on the given dofs (the massless ones: massless_rates).
+void step_mean_rate(const std::vector<PetscInt>& dofs, const core::Vector& u,
+                    const core::Vector& u_old, double tau, core::Vector& rate) {
+  if (dofs.empty()) return;
+  const auto un = u.read();
+  const auto uo = u_old.read();
+  auto v = rate.view();
+  for (const PetscInt d : dofs) v[d] = (un[d] - uo[d]) / tau;
+}
+
+void massless_rates(const Problem& p, const BodySystem& sys, BodyState& st, const BodyField& s) {
+  // Dofs without inertia (modified mass) follow the equilibrium of each t^k: Newmark's
+  // u̇^{k+1} = 2/τ Δu − u̇^k would carry the step-to-step oscillation of a quasistatic
+  // variable (2v, 0, 2v, … after a sudden start) into the slip and the thermoelastic heat.
+  // Their rate is the step's mean Δu/τ, their acceleration zero (M ü has no entry there).
+  const auto& dofs = sys.massless_dofs();
+  step_mean_rate(dofs, s.u_new, st.u, p.time.step, st.v);
+  auto a = st.a.view();
+  for (const PetscInt d : dofs) a[d] = 0.0;
+}
+
+}  // namespace
+
+void begin_step(const Problem& p, const BodySystem& sys, const BodyState& st, BodyField& s,
+                double t) {
+  const double tau = p.time.step;
+  const bool dynamic = p.time.scheme == Scheme::dynamic;
+  const auto& m = sys.matrices();
+
+  // Right-hand sides that do not change within the fixed point.
+  sys.mechanical_load(t, s.f_u);
+  s.rhs_u_base.copy_from(s.f_u);
+  if (dynamic) {  // f_u^{k+1} of (5.3): + M(4/τ² u + 4/τ u̇ + ü) = M(4/τ² u_pred + ü)
+    s.u_pred.copy_from(st.u);
+    s.u_pred.axpy(tau, st.v);
+    s.work_u.copy_from(st.a);
+    s.work_u.axpy(newmark_mass_factor(tau), s.u_pred);
+    m.mass_u.mult_add(s.work_u, s.rhs_u_base);
+  }
+  sys.thermal_load(t, s.f_theta);
+  s.rhs_theta_base.copy_from(s.f_theta);  // f_θ^{k+1} of (5.6): + M_θ θ/τ
+  s.work_theta.copy_from(st.theta);
+  s.work_theta.scale(1.0 / tau);
+  m.mass_theta.mult_add(s.work_theta, s.rhs_theta_base);
+
+  // Predictor: Newmark with ü^{k+1} = ü^k (the thesis starts from u^k; this is closer).
+  s.u_new.copy_from(st.u);
+  s.u_new.axpy(tau, st.v);
+  if (dynamic) s.u_new.axpy(0.5 * tau * tau, st.a);
+  if (!dynamic) s.u_pred.copy_from(st.u);
+  s.theta_new.copy_from(st.theta);
+}
+
+void iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& st, BodyField& s) {
+  // The velocity of the current displacement iterate: (5.2) with γ = 1/2,
+  // u̇ = u̇^k + 2/τ(u − u_pred) (dynamic; u_pred projected when contact-stabilised), or
+  // (u − u^k)/τ (quasistatic, where u_pred = u^k).
+  const double tau = p.time.step;
+  s.velocity.copy_from(s.u_new);
+  s.velocity.axpy(-1.0, s.u_pred);
+  if (p.time.scheme == Scheme::dynamic) {
+    s.velocity.scale(2.0 / tau);
+    s.velocity.axpy(1.0, st.v);
+    step_mean_rate(sys.massless_dofs(), s.u_new, st.u, tau, s.velocity);
+  } else {
+    s.velocity.scale(1.0 / tau);
+  }
+}
+
+void end_step(const Problem& p, const BodySystem& sys, BodyState& st, BodyField& s) {
+  // Newmark / backward-difference updates of u̇ and ü.
+  const double tau = p.time.step;
+  if (p.time.scheme == Scheme::dynamic) {
+    s.work_u.copy_from(s.u_new);
+    s.work_u.axpy(-1.0, s.u_pred);  // u^{k+1} − u_pred = τ²/4 (ü^k + ü^{k+1})
+    st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
+    st.a.axpy(newmark_mass_factor(tau), s.work_u);
+    st.v.axpy(2.0 / tau, s.work_u);  // u̇^{k+1} = u̇^k + 2/τ(u^{k+1} − u_pred)
+    massless_rates(p, sys, st, s);
+  } else {
+    s.work_u.copy_from(s.u_new);
+    s.work_u.axpy(-1.0, st.u);
+    st.v.copy_from(s.work_u);
+    st.v.scale(1.0 / tau);
+  }
+  st.u.copy_from(s.u_new);
+  st.theta.copy_from(s.theta_new);
+  if (s.mass) {  // g^{k+1} = f^{k+1} − K u^{k+1} − K_uθ(θ^{k+1} − θ₀) (f_u still holds f^{k+1})
+    const auto& m = sys.matrices();
+    s.g_free.copy_from(s.f_u);
+    m.stiffness_u.mult(st.u, s.work_u);
+    s.g_free.axpy(-1.0, s.work_u);
+    if (p.physics.thermal_expansion) subtract_thermal_force(p, sys, s, st.theta, s.g_free);
+  }
+}
+
+}  // namespace tc::physics
