@@ -22,9 +22,8 @@ namespace {
 /// A_u of (5.3): 4/τ² M_u + K_u with Newmark, K_u with the quasistatic scheme.
 core::SparseMatrix mechanics_operator(const Problem& p, const core::SparseMatrix& mass_u,
                                       const core::SparseMatrix& stiffness_u) {
-  return p.time.scheme == Scheme::dynamic
-             ? combine(newmark_mass_factor(p.time.step), mass_u, 1.0, stiffness_u)
-             : stiffness_u.copy();
+  const double c = body_time_scheme(p).mass_factor(p.time.step);
+  return c != 0.0 ? combine(c, mass_u, 1.0, stiffness_u) : stiffness_u.copy();
 }
 
 /// A_θ of (5.6), M_θ/τ + K_θ (backward Euler; a constant film's h∫θv is added by the caller).
@@ -75,7 +74,7 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
     // One factorisation shared by the ranks rather than one per rank (core::CholeskySolver).
     return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization,
                                                core::FactorRanks::all_ranks);
-  const bool dynamic = p.time.scheme == Scheme::dynamic;
+  const bool inertia = body_time_scheme(p).mass_factor(p.time.step) != 0.0;
   auto local = [&](int s) {
     const auto m = sys.subdomain_matrices(s);
     switch (op) {
@@ -105,7 +104,7 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
   const auto kernel = op == BodyOperator::heat   ? feti::Kernel::constant
                       : op == BodyOperator::mass ? feti::Kernel::none
                                                  : feti::Kernel::rigid;
-  const auto singular = (op == BodyOperator::mechanics && !dynamic) || op == BodyOperator::statics
+  const auto singular = (op == BodyOperator::mechanics && !inertia) || op == BodyOperator::statics
                             ? feti::Singular::yes
                             : feti::Singular::no;
   feti::FetiOptions options;
@@ -127,7 +126,7 @@ BodyField::BodyField(const Problem& p, const BodySystem& sys) {
       body_solver(p, sys, mechanics_operator(p, m.mass_u, m.stiffness_u), BodyOperator::mechanics);
   heat = body_solver(p, sys, a_theta, BodyOperator::heat);
   if (!sys.coupled_faces().empty()) {
-    const double c = p.time.scheme == Scheme::dynamic ? newmark_mass_factor(p.time.step) : 0.0;
+    const double c = body_time_scheme(p).mass_factor(p.time.step);
     coupling = std::make_unique<RigidCoupling>(
         sys, *mech, [&m, c](const core::Vector& x, core::Vector& y) {  // A x = c M x + K x
           m.stiffness_u.mult(x, y);

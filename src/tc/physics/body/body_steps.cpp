@@ -2,11 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
+#include <memory>
 
 #include "tc/core/error.hpp"
 #include "tc/physics/body/boundary_heat_newton.hpp"
 #include "tc/physics/body/finite_checks.hpp"
+#include "tc/physics/body/staggered_loop.hpp"
 #include "tc/physics/body/time_scheme.hpp"
 
 namespace tc::physics {
@@ -16,7 +17,7 @@ void BodySteps::heat_rhs(int b) {
   auto& s = *bodies_.fields[b];
   s.rhs_theta.copy_from(s.rhs_theta_base);
   if (s.heating) {  // −K_θu u̇ = θ₀ K_uθᵀ u̇ (docs/choices.md)
-    iterate_velocity(problem_, sys, bodies_.states[b], s);
+    body_time_scheme(problem_).iterate_velocity(problem_, sys, bodies_.states[b], s);
     s.work_theta.zero();
     sys.matrices().coupling_u_theta.mult_transpose(s.velocity, s.work_theta);
     s.rhs_theta.axpy(problem_.physics.reference_temperature, s.work_theta);
@@ -73,45 +74,45 @@ void BodySteps::mech_step(int b, int step, int iteration) {
 int BodySteps::couple(int b, int step) {
   const auto& sys = *bodies_.systems[b];
   auto& s = *bodies_.fields[b];
-  begin_step(problem_, sys, bodies_.states[b], s, step * problem_.time.step);
-  int iteration = 1;
-  if (!(s.expansion && s.heating)) {
-    // One-way coupling: one pass in the right order is the exact solution of the step.
-    if (s.expansion) {
-      heat_step(b, step, iteration);
-      mech_step(b, step, iteration);
-    } else {
-      mech_step(b, step, iteration);
-      heat_step(b, step, iteration);
-    }
-  } else {
-    const double tol = problem_.solver.coupling_tolerance;
-    double change = 0;
-    for (iteration = 1; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
-      s.u_prev.copy_from(s.u_new);
-      s.theta_prev.copy_from(s.theta_new);
-      if (heat_before_mechanics(problem_.solver.coupling_order, s.heating)) {
-        heat_step(b, step, iteration);
-        mech_step(b, step, iteration);
-      } else {
-        mech_step(b, step, iteration);
-        heat_step(b, step, iteration);
-      }
-      s.u_prev.axpy(-1.0, s.u_new);
-      s.theta_prev.axpy(-1.0, s.theta_new);
-      const double du = s.u_prev.norm(), un = s.u_new.norm();
-      const double dth = s.theta_prev.norm(), thn = s.theta_new.norm();
-      change = std::max(un > 0 ? du / un : du, thn > 0 ? dth / thn : dth);
-      if (du <= tol * un && dth <= tol * thn) break;
-    }
-    if (iteration > problem_.solver.max_coupling_iterations)
-      throw NumericalError(
-          fmt::format("the staggered fixed point (6.3) of body '{}' did not converge to {:.1e}",
-                      sys.body().name, tol),
-          step, iteration - 1, change);
-  }
-  end_step(problem_, sys, bodies_.states[b], s);
-  return iteration;
+  body_time_scheme(problem_).begin_step(problem_, sys, bodies_.states[b], s,
+                                        step * problem_.time.step);
+  const double tol = problem_.solver.coupling_tolerance;
+  const bool two_way = s.expansion && s.heating;
+  // One-way coupling: one pass in the order of the dependence is the exact solution of the
+  // step; two-way: the sweeps of (6.3) in the case's order until u and θ are within ε.
+  const auto order = !two_way ? (s.expansion ? SweepOrder::heat_first : SweepOrder::mechanics_first)
+                     : heat_before_mechanics(problem_.solver.coupling_order, s.heating)
+                         ? SweepOrder::heat_first
+                         : SweepOrder::mechanics_first;
+  StaggeredLoop loop(order, two_way ? problem_.solver.max_coupling_iterations : 1);
+  if (two_way)
+    loop.stop_when(std::make_unique<ChangesWithin>(tol));
+  else
+    loop.stop_when(std::make_unique<OnePass>());
+  const StaggeredSweep sweep{.begin =
+                                 [&](SweepState&) {
+                                   if (!two_way) return;  // nothing to compare with
+                                   s.u_prev.copy_from(s.u_new);
+                                   s.theta_prev.copy_from(s.theta_new);
+                                 },
+                             .heat = [&](SweepState& st) { heat_step(b, step, st.iteration); },
+                             .mechanics = [&](SweepState& st) { mech_step(b, step, st.iteration); },
+                             .end =
+                                 [&](SweepState& st) {
+                                   if (!two_way) return;
+                                   s.u_prev.axpy(-1.0, s.u_new);
+                                   s.theta_prev.axpy(-1.0, s.theta_new);
+                                   st.primal = {s.u_prev.norm(), s.u_new.norm()};
+                                   st.theta = {s.theta_prev.norm(), s.theta_new.norm()};
+                                 }};
+  const auto result = loop.run(sweep);
+  if (!result.converged)
+    throw NumericalError(
+        fmt::format("the staggered fixed point (6.3) of body '{}' did not converge to {:.1e}",
+                    sys.body().name, tol),
+        step, result.iterations, result.change);
+  body_time_scheme(problem_).end_step(problem_, sys, bodies_.states[b], s);
+  return result.iterations;
 }
 
 }  // namespace tc::physics

@@ -27,68 +27,26 @@ void massless_rates(const Problem& p, const BodySystem& sys, BodyState& st, cons
 
 }  // namespace
 
-void begin_step(const Problem& p, const BodySystem& sys, const BodyState& st, BodyField& s,
-                double t) {
+void BodyTimeScheme::begin_step(const Problem& p, const BodySystem& sys, const BodyState& st,
+                                BodyField& s, double t) const {
   const double tau = p.time.step;
-  const bool dynamic = p.time.scheme == Scheme::dynamic;
   const auto& m = sys.matrices();
-
-  // Right-hand sides that do not change within the fixed point.
+  // Right-hand sides that do not change within the fixed point: f_u^{k+1} of (5.3) (with the
+  // inertia's part, predict), f_θ^{k+1} of (5.6) + M_θ θ/τ.
   sys.mechanical_load(t, s.f_u);
   s.rhs_u_base.copy_from(s.f_u);
-  if (dynamic) {  // f_u^{k+1} of (5.3): + M(4/τ² u + 4/τ u̇ + ü) = M(4/τ² u_pred + ü)
-    s.u_pred.copy_from(st.u);
-    s.u_pred.axpy(tau, st.v);
-    s.work_u.copy_from(st.a);
-    s.work_u.axpy(newmark_mass_factor(tau), s.u_pred);
-    m.mass_u.mult_add(s.work_u, s.rhs_u_base);
-  }
   sys.thermal_load(t, s.f_theta);
-  s.rhs_theta_base.copy_from(s.f_theta);  // f_θ^{k+1} of (5.6): + M_θ θ/τ
+  s.rhs_theta_base.copy_from(s.f_theta);
   s.work_theta.copy_from(st.theta);
   s.work_theta.scale(1.0 / tau);
   m.mass_theta.mult_add(s.work_theta, s.rhs_theta_base);
-
-  // Predictor: Newmark with ü^{k+1} = ü^k (the thesis starts from u^k; this is closer).
-  s.u_new.copy_from(st.u);
-  s.u_new.axpy(tau, st.v);
-  if (dynamic) s.u_new.axpy(0.5 * tau * tau, st.a);
-  if (!dynamic) s.u_pred.copy_from(st.u);
+  predict(p, sys, st, s);
   s.theta_new.copy_from(st.theta);
 }
 
-void iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& st, BodyField& s) {
-  // The velocity of the current displacement iterate: (5.2) with γ = 1/2,
-  // u̇ = u̇^k + 2/τ(u − u_pred) (dynamic; u_pred projected when contact-stabilised), or
-  // (u − u^k)/τ (quasistatic, where u_pred = u^k).
-  const double tau = p.time.step;
-  s.velocity.copy_from(s.u_new);
-  s.velocity.axpy(-1.0, s.u_pred);
-  if (p.time.scheme == Scheme::dynamic) {
-    s.velocity.scale(2.0 / tau);
-    s.velocity.axpy(1.0, st.v);
-    step_mean_rate(sys.massless_dofs(), s.u_new, st.u, tau, s.velocity);
-  } else {
-    s.velocity.scale(1.0 / tau);
-  }
-}
-
-void end_step(const Problem& p, const BodySystem& sys, BodyState& st, BodyField& s) {
-  // Newmark / backward-difference updates of u̇ and ü.
-  const double tau = p.time.step;
-  if (p.time.scheme == Scheme::dynamic) {
-    s.work_u.copy_from(s.u_new);
-    s.work_u.axpy(-1.0, s.u_pred);  // u^{k+1} − u_pred = τ²/4 (ü^k + ü^{k+1})
-    st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
-    st.a.axpy(newmark_mass_factor(tau), s.work_u);
-    st.v.axpy(2.0 / tau, s.work_u);  // u̇^{k+1} = u̇^k + 2/τ(u^{k+1} − u_pred)
-    massless_rates(p, sys, st, s);
-  } else {
-    s.work_u.copy_from(s.u_new);
-    s.work_u.axpy(-1.0, st.u);
-    st.v.copy_from(s.work_u);
-    st.v.scale(1.0 / tau);
-  }
+void BodyTimeScheme::end_step(const Problem& p, const BodySystem& sys, BodyState& st,
+                              BodyField& s) const {
+  update_rates(p, sys, st, s);
   st.u.copy_from(s.u_new);
   st.theta.copy_from(s.theta_new);
   if (s.mass) {  // g^{k+1} = f^{k+1} − K u^{k+1} − K_uθ(θ^{k+1} − θ₀) (f_u still holds f^{k+1})
@@ -98,6 +56,74 @@ void end_step(const Problem& p, const BodySystem& sys, BodyState& st, BodyField&
     s.g_free.axpy(-1.0, s.work_u);
     if (p.physics.thermal_expansion) subtract_thermal_force(p, sys, s, st.theta, s.g_free);
   }
+}
+
+void NewmarkScheme::predict(const Problem& p, const BodySystem& sys, const BodyState& st,
+                            BodyField& s) const {
+  const double tau = p.time.step;
+  // f_u^{k+1} of (5.3): + M(4/τ² u + 4/τ u̇ + ü) = M(4/τ² u_pred + ü).
+  s.u_pred.copy_from(st.u);
+  s.u_pred.axpy(tau, st.v);
+  s.work_u.copy_from(st.a);
+  s.work_u.axpy(newmark_mass_factor(tau), s.u_pred);
+  sys.matrices().mass_u.mult_add(s.work_u, s.rhs_u_base);
+  // Predictor: Newmark with ü^{k+1} = ü^k (the thesis starts from u^k; this is closer).
+  s.u_new.copy_from(st.u);
+  s.u_new.axpy(tau, st.v);
+  s.u_new.axpy(0.5 * tau * tau, st.a);
+}
+
+void NewmarkScheme::iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& st,
+                                     BodyField& s) const {
+  // (5.2) with γ = 1/2: u̇ = u̇^k + 2/τ(u − u_pred) (u_pred projected when contact-stabilised).
+  const double tau = p.time.step;
+  s.velocity.copy_from(s.u_new);
+  s.velocity.axpy(-1.0, s.u_pred);
+  s.velocity.scale(2.0 / tau);
+  s.velocity.axpy(1.0, st.v);
+  step_mean_rate(sys.massless_dofs(), s.u_new, st.u, tau, s.velocity);
+}
+
+void NewmarkScheme::update_rates(const Problem& p, const BodySystem& sys, BodyState& st,
+                                 BodyField& s) const {
+  const double tau = p.time.step;
+  s.work_u.copy_from(s.u_new);
+  s.work_u.axpy(-1.0, s.u_pred);  // u^{k+1} − u_pred = τ²/4 (ü^k + ü^{k+1})
+  st.a.scale(-1.0);               // ü^{k+1} = 4/τ²(u^{k+1} − u_pred) − ü^k
+  st.a.axpy(newmark_mass_factor(tau), s.work_u);
+  st.v.axpy(2.0 / tau, s.work_u);  // u̇^{k+1} = u̇^k + 2/τ(u^{k+1} − u_pred)
+  massless_rates(p, sys, st, s);
+}
+
+void QuasistaticScheme::predict(const Problem& p, const BodySystem&, const BodyState& st,
+                                BodyField& s) const {
+  // Predictor u^k + τu̇^k (the last step's rate); the velocity is taken from u_pred = u^k.
+  s.u_new.copy_from(st.u);
+  s.u_new.axpy(p.time.step, st.v);
+  s.u_pred.copy_from(st.u);
+}
+
+void QuasistaticScheme::iterate_velocity(const Problem& p, const BodySystem&, const BodyState&,
+                                         BodyField& s) const {
+  // (u − u^k)/τ, with u_pred = u^k.
+  s.velocity.copy_from(s.u_new);
+  s.velocity.axpy(-1.0, s.u_pred);
+  s.velocity.scale(1.0 / p.time.step);
+}
+
+void QuasistaticScheme::update_rates(const Problem& p, const BodySystem&, BodyState& st,
+                                     BodyField& s) const {
+  s.work_u.copy_from(s.u_new);
+  s.work_u.axpy(-1.0, st.u);
+  st.v.copy_from(s.work_u);
+  st.v.scale(1.0 / p.time.step);
+}
+
+const BodyTimeScheme& body_time_scheme(const Problem& p) {
+  static const NewmarkScheme newmark{};
+  static const QuasistaticScheme quasistatic{};
+  if (p.time.scheme == Scheme::dynamic) return newmark;
+  return quasistatic;
 }
 
 }  // namespace tc::physics

@@ -8,29 +8,10 @@
 
 #include "tc/core/error.hpp"
 #include "tc/physics/body/time_scheme.hpp"
+#include "tc/physics/contact/contact_loop.hpp"
 #include "tc/physics/interface_heat/contact_heat.hpp"
 
 namespace tc::physics {
-
-namespace {
-
-// The heat–mechanics sweep λ → θ(λ) → λ(θ) of the nested loop contracts (measured on the ch. 7
-// examples: by 1e-3 per sweep), so the distance to its fixed point is known before the next
-// sweep: with ρ = ‖λ^p − λ^{p−1}‖/‖λ^{p−1} − λ^{p−2}‖, ‖λ* − λ^p‖ ≤ ρ/(1 − ρ)‖λ^p − λ^{p−1}‖
-// (contraction mapping), and θ answers λ as in the last sweep, θ^{p+1} − θ^p ≈
-// (‖θ^p − θ^{p−1}‖/‖λ^{p−1} − λ^{p−2}‖)(λ^p − λ^{p−1}). Stopping when both are within the
-// tolerance saves the sweep that would only confirm it (3.1 → 2.4 sweeps per step on example
-// 05). All arguments are relative to ‖λ‖ and ‖θ‖.
-bool fixed_point_reached(double lambda_change, double theta_change, double previous_lambda_change,
-                         double tol) {
-  const double rho = lambda_change / previous_lambda_change;
-  if (!(rho <= 0.5)) return false;  // no clear contraction: confirm by another sweep
-  const double lambda_left = rho / (1 - rho) * lambda_change;
-  const double theta_left = theta_change / previous_lambda_change * lambda_change / (1 - rho);
-  return lambda_left <= tol && theta_left <= tol;
-}
-
-}  // namespace
 
 void ContactCoupling::add_pairs() {
   group_ = ContactGroup(problem_);
@@ -403,8 +384,8 @@ int ContactCoupling::couple(int step) {
   auto g = group();
   auto& enforcement = *method_.enforcement;
   for (int i = 0; i < g.size(); ++i)
-    begin_step(problem_, *g.systems[i], bodies_.states[g.index[i]], *g.fields[i],
-               step * problem_.time.step);
+    body_time_scheme(problem_).begin_step(problem_, *g.systems[i], bodies_.states[g.index[i]],
+                                          *g.fields[i], step * problem_.time.step);
   stats_.qp_iterations = 0;
   stats_.operator_applications = 0;
   stats_.friction_iterations = 0;
@@ -429,109 +410,94 @@ int ContactCoupling::couple(int step) {
   method_.scheme->slip_reference(g);  // into work_u
   const auto targets = dual.targets(g.state(&BodyState::u), g.field_in(&BodyField::work_u));
 
-  bool heating = false, expansion = false;
+  ContactLoopPhysics physics{.qp_gives_displacements = enforcement.qp_gives_displacements(),
+                             .friction_varies = any_pair(&InterfaceLaws::friction_varies),
+                             // θ iterates itself when the conductance is lagged or depends on θ
+                             // (then the heat step with the final λ is not the last one needed).
+                             .theta_iterates = heat_.treatment() == ConductanceTreatment::lagged ||
+                                               any_pair(&InterfaceLaws::conductance_varies)};
   for (const auto* f : g.fields) {
-    heating = heating || f->heating;
-    expansion = expansion || f->expansion;
+    physics.heating = physics.heating || f->heating;
+    physics.expansion = physics.expansion || f->expansion;
   }
+  const auto policy = choose_contact_loop(problem_.solver, physics);
+  const bool nested = policy.friction == FrictionPlacement::nested;
   TrescaIteration tresca;
   tresca.relax = problem_.solver.friction.acceleration && any_pair(&InterfaceLaws::frictional);
-  // u = u_free − A⁻¹Bᵀλ costs a solve per body; inside the fixed point only B u is needed (the
-  // frictional heat's slip, = B u_free − Fλ) unless the thermoelastic term wants u̇ of the
-  // whole body. Then u is formed once, after convergence. Combined, u comes with every QP.
-  tresca.defer = !enforcement.qp_gives_displacements() && !heating;
+  tresca.defer = policy.feedback == DisplacementFeedback::deferred;
+  tresca.cut_short = policy.cut_short;
   iterate_slip_.clear();
   if (tresca.defer) tresca.bu_old = dual.row_values(g.state(&BodyState::u));
   // An application of F is a solve per body: the set-up's solves in those units.
   stats_.operator_applications += dual.setup_solves() / g.size();
   core::Vector lambda_prev = lambda_.clone();
-  const bool nested = problem_.solver.friction_loop == FrictionLoop::nested;
-  const bool one_way = !expansion;
-  tresca.cut_short = nested && !one_way;
   const double tol = problem_.solver.coupling_tolerance;
   const auto norm = [&](core::Vector BodyField::*v) {  // ‖·‖ over the group, as one vector
     double sq = 0;
     for (const auto* f : g.fields) sq = std::hypot(sq, (f->*v).norm());
     return sq;
   };
-  // Without thermal expansion u_free does not depend on θ: λ at the Coulomb solution (to the
-  // tolerance) stays exact, and so is the heat step with it, unless the conductance is lagged
-  // or depends on θ (then θ itself iterates); not when 𝔉 depends on θ (then λ does).
-  const bool theta_iterates = heat_.treatment() == ConductanceTreatment::lagged ||
-                              any_pair(&InterfaceLaws::conductance_varies);
-  const bool lambda_final = one_way && !any_pair(&InterfaceLaws::friction_varies);
-  const bool heat_first = heat_before_mechanics(problem_.solver.coupling_order, heating);
-  double dth = 0, thn = 0;
-  // The heat step just taken was the last one needed: it had the final λ (λ_converged).
-  const auto heat_was_last = [&](bool lambda_converged) {
-    return lambda_final && lambda_converged && (!theta_iterates || dth <= tol * thn);
-  };
-  const auto heat_half = [&](int iteration) {  // θ^{p+1} and ‖θ^{p+1} − θ^p‖
-    for (auto* f : g.fields) f->theta_prev.copy_from(f->theta_new);
-    heat_step(step, iteration);
-    for (auto* f : g.fields) f->theta_prev.axpy(-1.0, f->theta_new);
-    dth = norm(&BodyField::theta_prev);
-    thn = norm(&BodyField::theta_new);
-  };
   const auto mechanical_half = [&](int iteration) {  // u_free, then the Coulomb QPs: residual
-    if (enforcement.qp_gives_displacements()) {      // the loads only: the QP solves for u itself
-      auto scope = timers_.scope("mechanical_solve");
-      for (const int b : group_.members) steps_.mech_load(b, step);
-    } else if (tresca.defer) {  // u_free = A⁻¹f with the Dirichlet data
-      for (const int b : group_.members) steps_.mech_step(b, step, iteration);
-    } else {
-      // The same, by halves where that saves a backward solve: finish_qps recovers u at once.
-      auto scope = timers_.scope("mechanical_solve");
-      for (int i = 0; i < g.size(); ++i) {
-        steps_.mech_load(group_.members[static_cast<size_t>(i)], step);
-        auto& f = *g.fields[i];
-        enforcement.dual().solve_free(i, f.rhs_u, f.u_new, lambda_);
-        require_finite(f.u_new, "displacement", step, iteration);
+    switch (policy.feedback) {
+      case DisplacementFeedback::from_qp: {  // the loads only: the QP solves for u itself
+        auto scope = timers_.scope("mechanical_solve");
+        for (const int b : group_.members) steps_.mech_load(b, step);
+        break;
+      }
+      case DisplacementFeedback::deferred:  // u_free = A⁻¹f with the Dirichlet data
+        for (const int b : group_.members) steps_.mech_step(b, step, iteration);
+        break;
+      case DisplacementFeedback::per_iterate: {
+        // The same, by halves where that saves a backward solve: finish_qps recovers u at once.
+        auto scope = timers_.scope("mechanical_solve");
+        for (int i = 0; i < g.size(); ++i) {
+          steps_.mech_load(group_.members[static_cast<size_t>(i)], step);
+          auto& f = *g.fields[i];
+          enforcement.dual().solve_free(i, f.rhs_u, f.u_new, lambda_);
+          require_finite(f.u_new, "displacement", step, iteration);
+        }
+        break;
       }
     }
     // Nested: γ = λ_n(γ) to convergence at this θ, Aitken restarted (the map changed with θ);
     // staggered: one update, the relaxation carried over the heat–mechanics iterations.
     if (nested || tresca.gamma.empty()) tresca.restart(lambda_, dim, nodal_laws_.friction);
-    return mech_step(tresca, targets, step, iteration,
-                     nested ? problem_.solver.friction.max_updates : 1);
+    return mech_step(tresca, targets, step, iteration, policy.max_updates(problem_.solver));
   };
-  int iteration = 1;
-  double change = 0;
-  double sweep_change = -1;  // ‖λ^p − λ^{p−1}‖/‖λ‖ of the previous iteration
-  for (; iteration <= problem_.solver.max_coupling_iterations; ++iteration) {
-    lambda_prev.copy_from(lambda_);
-    interface_laws();
-    double fixed_residual = 0;
-    if (heat_first) {
-      heat_half(iteration);
-      if (heat_was_last(tresca.converged)) {  // λ of the last iteration
-        change = thn > 0 ? dth / thn : dth;
-        break;
-      }
-      fixed_residual = mechanical_half(iteration);
-    } else {
-      fixed_residual = mechanical_half(iteration);
-      heat_half(iteration);
-    }
-    lambda_prev.axpy(-1.0, lambda_);
-    const double dl = lambda_prev.norm(), ln = lambda_.norm();
-    const double rl = ln > 0 ? dl / ln : dl, rth = thn > 0 ? dth / thn : dth;
-    change = std::max({rl, rth, ln > 0 ? fixed_residual / ln : fixed_residual});
-    const bool friction_met = fixed_residual <= tol * ln && tresca.converged;
-    if (!heat_first && heat_was_last(friction_met)) break;  // λ of this iteration
-    if (dl <= tol * ln && dth <= tol * thn && friction_met) break;
-    if (nested && friction_met && sweep_change > 0 &&
-        fixed_point_reached(rl, rth, sweep_change, tol))
-      break;
-    sweep_change = rl;
-  }
-  if (iteration > problem_.solver.max_coupling_iterations)
+  const StaggeredSweep sweep{
+      .begin =
+          [&](SweepState& st) {
+            lambda_prev.copy_from(lambda_);
+            interface_laws();
+            st.inner_converged = tresca.converged;  // of the last mechanical half
+          },
+      .heat =
+          [&](SweepState& st) {  // θ^{p+1} and ‖θ^{p+1} − θ^p‖
+            for (auto* f : g.fields) f->theta_prev.copy_from(f->theta_new);
+            heat_step(step, st.iteration);
+            for (auto* f : g.fields) f->theta_prev.axpy(-1.0, f->theta_new);
+            st.theta = {norm(&BodyField::theta_prev), norm(&BodyField::theta_new)};
+          },
+      .mechanics =
+          [&](SweepState& st) {
+            st.residual.difference = mechanical_half(st.iteration);
+            st.inner_converged = tresca.converged;
+          },
+      .end =
+          [&](SweepState& st) {
+            lambda_prev.axpy(-1.0, lambda_);
+            st.primal = {lambda_prev.norm(), lambda_.norm()};
+            st.residual.norm = st.primal.norm;  // the fixed point's residual is relative to ‖λ‖
+          }};
+  const auto result = policy.loop(problem_.solver).run(sweep);
+  if (!result.converged)
     throw NumericalError(
         fmt::format("the staggered fixed point (6.3) with contact did not converge to {:.1e} in {} "
                     "iterations: raise [solver] max_coupling_iterations (now {})",
                     tol, problem_.solver.max_coupling_iterations,
                     problem_.solver.max_coupling_iterations),
-        step, iteration - 1, change);
+        step, result.iterations, result.change);
+  const int iteration = result.iterations;
   iterate_slip_.clear();
   qp_bound_ = std::move(tresca.qp_bound);  // empty without friction
   // A coupling tolerance looser than the cone's leaves nodes outside their Coulomb cone by up
@@ -556,7 +522,8 @@ int ContactCoupling::couple(int step) {
   // that produced θ^{k+1}): then the thermal energy balance of the bodies closes to round-off.
   heat_.account_step(g, problem_.time.step);
   for (int i = 0; i < g.size(); ++i)
-    end_step(problem_, *g.systems[i], bodies_.states[g.index[i]], *g.fields[i]);
+    body_time_scheme(problem_).end_step(problem_, *g.systems[i], bodies_.states[g.index[i]],
+                                        *g.fields[i]);
   return iteration;
 }
 
