@@ -58,17 +58,26 @@ void begin_step(const Problem& p, const BodySystem& sys, const BodyState& st, Bo
 }
 
 void iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& st, BodyField& s) {
-  // The velocity of the current displacement iterate: (5.2) with γ = 1/2,
-  // u̇ = u̇^k + 2/τ(u − u_pred) (dynamic; u_pred projected when contact-stabilised), or
-  // (u − u^k)/τ (quasistatic, where u_pred = u^k).
+  // The rate of the current displacement iterate in the thermoelastic term θ₀K_uθᵀu̇ (5.6).
+  // Backward Euler's (u − u^k)/τ by default, the discrete d/dt of the strain as (5.5) has θ̇:
+  // the heat the term puts in over the steps then sums to θ₀K_uθᵀ(u^n − u⁰), the strain's
+  // change, whatever the velocities did. Newmark's u̇ = u̇^k + 2/τ(u − u_pred) (dynamic; u_pred
+  // projected when contact-stabilised), as (5.6) writes it, on request: after a jump of
+  // velocity it alternates ±Δv from step to step (no numerical damping), and where
+  // neighbouring nodes ring differently (the massless contact faces of the modified mass,
+  // which take the mean rate) the ringing is a strain rate of Δv/h that heats and cools the
+  // first layer of cells by turns.
   const double tau = p.time.step;
-  s.velocity.copy_from(s.u_new);
-  s.velocity.axpy(-1.0, s.u_pred);
-  if (p.time.scheme == Scheme::dynamic) {
+  if (p.time.scheme == Scheme::dynamic &&
+      p.physics.thermoelastic_rate == ThermoelasticRate::newmark) {
+    s.velocity.copy_from(s.u_new);
+    s.velocity.axpy(-1.0, s.u_pred);
     s.velocity.scale(2.0 / tau);
     s.velocity.axpy(1.0, st.v);
     step_mean_rate(sys.massless_dofs(), s.u_new, st.u, tau, s.velocity);
   } else {
+    s.velocity.copy_from(s.u_new);
+    s.velocity.axpy(-1.0, st.u);
     s.velocity.scale(1.0 / tau);
   }
 }
