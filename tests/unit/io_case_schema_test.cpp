@@ -186,8 +186,9 @@ std::string settings_text(const Problem& p) {
       fmt::format("title {} | dimension {} | scheme {} {} | ", p.title, p.dimension,
                   static_cast<int>(p.time.scheme), static_cast<int>(p.time.contact_scheme));
   const auto& ph = p.physics;
-  s += fmt::format("physics {} {} {} {} | ", ph.reference_temperature, ph.thermal_expansion,
-                   ph.thermoelastic_heating, ph.lumped_heat_capacity);
+  s += fmt::format("physics {} {} {} {} {} | ", ph.reference_temperature, ph.thermal_expansion,
+                   ph.thermoelastic_heating, static_cast<int>(ph.thermoelastic_rate),
+                   ph.lumped_heat_capacity);
   for (const auto& b : p.bodies) {
     s += fmt::format("body {} {} {} {} {} ", b.name, b.initial_temperature, b.initial_velocity,
                      b.start_in_equilibrium, b.subdomains);
@@ -250,9 +251,9 @@ TEST(CaseSchema, DefaultsAreWhatTheReaderGivesAnAbsentKey) {
       EXPECT_EQ(settings_text(tc::io::read_case(file, overrides)), without) << "--set " << set;
       ++compared;
     }
-  // Every optional key with a value of its own: 1 root, 2 time, 4 physics, 5 bodies,
+  // Every optional key with a value of its own: 1 root, 2 time, 5 physics, 5 bodies,
   // 4 contact, 21 solver, 4 output.
-  EXPECT_EQ(compared, 41);
+  EXPECT_EQ(compared, 42);
   fs::remove_all(dir);
 }
 
@@ -270,6 +271,7 @@ TEST(CaseSchema, SettingsTextSeesEveryDefaultedKey) {
                                                  {"physics.reference_temperature", "300.0"},
                                                  {"physics.thermal_expansion", "false"},
                                                  {"physics.thermoelastic_heating", "false"},
+                                                 {"physics.thermoelastic_rate", "\"newmark\""},
                                                  {"physics.heat_capacity", "\"lumped\""},
                                                  {"bodies[0].initial_velocity", "[1.0, 0.0, 0.0]"},
                                                  {"bodies[0].initial_state", "\"equilibrium\""},
@@ -319,7 +321,7 @@ TEST(CaseSchema, SettingsTextSeesEveryDefaultedKey) {
       EXPECT_NE(settings_text(tc::io::read_case(file, overrides)), without) << key;
       ++changed;
     }
-  EXPECT_EQ(changed, 41);
+  EXPECT_EQ(changed, 42);
   fs::remove_all(dir);
 }
 

@@ -137,14 +137,16 @@ TEST_P(PressedBlock, ContactNormalForceEqualsTheLoadAtEveryStep) {
     const double tilt = 1e-3;
     const double bound = s == 0 || friction == 0 ? 1e-6 : friction * tilt;
     EXPECT_NEAR(sim.history("contact_normal_force"), load, bound * load) << "step " << s;
-    // The face moves as one: every node at the column's w.
+    // The face moves as one: every node at the column's w, to the ulp of the lifting's update
+    // (RigidCoupling::shift_to_w adds w − w_written along Φ: written + (w − written) may round
+    // one ulp off w; seen on this AMD VM, not on the CI machine).
     const auto u = sim.state(0).u.to_std();
     const double w = sim.history("displacement_block_zmax_z");
     if (!thermal) {
       EXPECT_LT(w, 0.0);  // pressed down (the hot base lifts it otherwise)
     }
     for (const int a : p.bodies[0].mesh.boundary_nodes("zmax"))
-      EXPECT_EQ(u[static_cast<size_t>(3 * a + 2)], w);
+      EXPECT_DOUBLE_EQ(u[static_cast<size_t>(3 * a + 2)], w);
   }
 }
 

@@ -161,6 +161,9 @@ void CaseReader::read_physics(const TableReader& root) {
   if (const auto v = t->number("reference_temperature")) p_.physics.reference_temperature = *v;
   if (const auto v = t->boolean("thermal_expansion")) p_.physics.thermal_expansion = *v;
   if (const auto v = t->boolean("thermoelastic_heating")) p_.physics.thermoelastic_heating = *v;
+  if (const auto s = t->choice("thermoelastic_rate"))
+    p_.physics.thermoelastic_rate = *s == "newmark" ? physics::ThermoelasticRate::newmark
+                                                    : physics::ThermoelasticRate::step_mean;
 }
 
 void CaseReader::read_materials(const TableReader& root) {

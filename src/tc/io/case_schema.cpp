@@ -88,6 +88,7 @@ constexpr Key kTime[] = {
 };
 
 constexpr std::string_view kHeatCapacities[] = {"consistent", "lumped"};
+constexpr std::string_view kThermoelasticRates[] = {"step_mean", "newmark"};
 
 constexpr Key kPhysics[] = {
     {.name = "reference_temperature",
@@ -104,6 +105,11 @@ constexpr Key kPhysics[] = {
      .type = T::boolean,
      .default_value = "true",
      .doc = "the K_θu term of (2.8)"},
+    {.name = "thermoelastic_rate",
+     .type = T::choice,
+     .choices = kThermoelasticRates,
+     .default_value = "\"step_mean\"",
+     .doc = "u̇ in the K_θu term of dynamic runs: (u^{k+1} − u^k)/τ, or Newmark's u̇^{k+1} as (5.6)"},
     {.name = "heat_capacity",
      .type = T::choice,
      .choices = kHeatCapacities,

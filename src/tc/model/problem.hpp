@@ -35,10 +35,20 @@ struct TimeSettings {
   [[nodiscard]] int n_steps() const;  // round(end / step)
 };
 
+/// The displacement rate of the thermoelastic term θ₀K_uθᵀu̇ of (5.6) in dynamic runs.
+enum class ThermoelasticRate {
+  step_mean,  ///< (u^{k+1} − u^k)/τ: backward Euler's rate, as θ̇ has in (5.5)
+  newmark,    ///< Newmark's u̇^{k+1} = 2/τ(u^{k+1} − u^k) − u̇^k, as (5.6) writes it
+};
+
 struct PhysicsSettings {
   double reference_temperature = 293.15;  // θ₀ [K], > 0
   bool thermal_expansion = true;          // K_uθ of (2.5)
   bool thermoelastic_heating = true;      // K_θu of (2.8)
+  /// The mean rate by default: Newmark's u̇^{k+1} rings ±Δv from step to step after a jump of
+  /// velocity (an impact, a sudden start), and the ringing enters the heat as a source that
+  /// alternates in sign (docs/choices.md, "The thermoelastic term at the step's mean rate").
+  ThermoelasticRate thermoelastic_rate = ThermoelasticRate::step_mean;
   /// M_θ lumped to its row sums: backward Euler then keeps temperatures between their bounds
   /// (discrete maximum principle on meshes whose K_θ has no positive off-diagonal entries),
   /// where the consistent M_θ overshoots at sharp fronts for τ ≪ ρc_p h²/κ.

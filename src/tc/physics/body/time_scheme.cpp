@@ -75,13 +75,26 @@ void NewmarkScheme::predict(const Problem& p, const BodySystem& sys, const BodyS
 
 void NewmarkScheme::iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& st,
                                      BodyField& s) const {
-  // (5.2) with γ = 1/2: u̇ = u̇^k + 2/τ(u − u_pred) (u_pred projected when contact-stabilised).
+  // The rate of the current iterate in the thermoelastic term θ₀K_uθᵀu̇ of (5.6): backward
+  // Euler's (u − u^k)/τ by default, the discrete d/dt of the strain as (5.5) has θ̇, so the
+  // term's heat sums over the steps to θ₀K_uθᵀ(u^n − u⁰), whatever the velocities did, and
+  // cancels Newmark's coupling work in the energy. Newmark's u̇ = u̇^k + 2/τ(u − u_pred) (u_pred
+  // projected when contact-stabilised), as (5.6) writes it, on request: after a jump of
+  // velocity it alternates ±Δv from step to step (no numerical damping), and where
+  // neighbouring nodes ring differently (the massless contact faces of the modified mass take
+  // the mean rate) the ringing is a strain rate of Δv/h that heats and cools the first layer of
+  // cells by turns (docs/choices.md, "The thermoelastic term at the step's mean rate").
   const double tau = p.time.step;
   s.velocity.copy_from(s.u_new);
-  s.velocity.axpy(-1.0, s.u_pred);
-  s.velocity.scale(2.0 / tau);
-  s.velocity.axpy(1.0, st.v);
-  step_mean_rate(sys.massless_dofs(), s.u_new, st.u, tau, s.velocity);
+  if (p.physics.thermoelastic_rate == ThermoelasticRate::newmark) {
+    s.velocity.axpy(-1.0, s.u_pred);
+    s.velocity.scale(2.0 / tau);
+    s.velocity.axpy(1.0, st.v);
+    step_mean_rate(sys.massless_dofs(), s.u_new, st.u, tau, s.velocity);
+  } else {
+    s.velocity.axpy(-1.0, st.u);
+    s.velocity.scale(1.0 / tau);
+  }
 }
 
 void NewmarkScheme::update_rates(const Problem& p, const BodySystem& sys, BodyState& st,

@@ -30,7 +30,9 @@ class BodyTimeScheme {
   /// step to t, and the predictor (u = u^k + τu̇^k + τ²/2 ü^k dynamic, θ = θ^k).
   void begin_step(const Problem& p, const BodySystem& sys, const BodyState& st, BodyField& s,
                   double t) const;
-  /// u̇ of the current displacement iterate u_new into s.velocity (5.2).
+  /// The rate of the current displacement iterate u_new for the thermoelastic term of (5.6)
+  /// into s.velocity: (u_new − u^k)/τ, or Newmark's (5.2) with [physics] thermoelastic_rate =
+  /// "newmark".
   virtual void iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& st,
                                 BodyField& s) const = 0;
   /// The state moves to t^{k+1}: the scheme's updates of u̇ and ü, u and θ from the iterate,
