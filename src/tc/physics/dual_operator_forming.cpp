@@ -263,7 +263,15 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
     w_bands_[k].resize(static_cast<size_t>(n_bands * width[k] * kBand));
     tile_of[k + 1] = tile_of[k] + (width[k] + kTile - 1) / kTile;
   }
-  const auto deal = [&](PetscInt n_items, double flops, auto&& item) {
+  // 2·nnz(B_i)·(|U| + m) flops: by the policy's kernel threads (core/threads.hpp) when large,
+  // one decision for both passes.
+  double flops = 0;
+  for (int i = 0; i < nb; ++i)
+    flops += 2.0 * static_cast<double>(bt[static_cast<size_t>(i)].value.size()) *
+             static_cast<double>(width[static_cast<size_t>(i)] + m);
+  const core::KernelThreads kernel(flops);
+  const int threads = settings_.form_threads > 0 ? settings_.form_threads : kernel.threads();
+  const auto deal = [&](PetscInt n_items, auto&& item) {
     // A buffer may fail to allocate: the first failure stops the dealing and is rethrown here
     // once every thread has stopped (an exception must not leave a thread). A helper the system
     // cannot start leaves its items to the others.
@@ -280,8 +288,6 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
         next = n_items;
       }
     };
-    const core::KernelThreads kernel(flops);
-    const int threads = settings_.form_threads > 0 ? settings_.form_threads : kernel.threads();
     const PetscInt n_threads = std::clamp<PetscInt>(threads, 1, std::max<PetscInt>(n_items, 1));
     {
       std::vector<std::jthread> helpers;
@@ -293,15 +299,7 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
     }  // the helpers joined
     if (failure) std::rethrow_exception(failure);
   };
-  // 2·nnz(B_i)·|U| and 2·nnz(B_i)·m flops: by the policy's kernel threads (core/threads.hpp)
-  // when large.
-  double w_flops = 0, f_flops = 0;
-  for (int i = 0; i < nb; ++i) {
-    const auto nnz = static_cast<double>(bt[static_cast<size_t>(i)].value.size());
-    w_flops += 2.0 * nnz * static_cast<double>(width[static_cast<size_t>(i)]);
-    f_flops += 2.0 * nnz * static_cast<double>(m);
-  }
-  deal(tile_of.back(), w_flops, [&](PetscInt j, std::vector<double>& tile) {
+  deal(tile_of.back(), [&](PetscInt j, std::vector<double>& tile) {
     const auto i = static_cast<size_t>(std::upper_bound(tile_of.begin(), tile_of.end(), j) -
                                        tile_of.begin() - 1);
     const auto& comp = compliance_[i];
@@ -343,7 +341,7 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
       for (PetscInt a = 0; a < valid; ++a) w[static_cast<size_t>(a0 + a) * kBand] = acc[a];
     }
   });
-  deal(n_bands, f_flops, [&](PetscInt b, std::vector<double>&) {
+  deal(n_bands, [&](PetscInt b, std::vector<double>&) {
     const PetscInt r0 = b * kBand, nr = std::min(kBand, m - r0);
     for (PetscInt c = 0; c < m; ++c) {
       double sum[kBand] = {};  // Σ_i F_i(r, c), summed body by body
