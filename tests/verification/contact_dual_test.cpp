@@ -278,6 +278,52 @@ TEST(ExplicitF, FormedByThreadsIsTheSerialFToTheBit) {
   }
 }
 
+TEST(ExplicitF, FormedAgainOnRowsSeenBeforeIsTheFirstFToTheBit) {
+  // F is formed every step into the last step's storage, from S read tile by tile on the
+  // T-positions U the rows reach. Rows R1, R2 (as many rows, partly on other dofs: F's storage
+  // kept, S grown, U ⊊ T and not its first positions), R1 again, R2 again: each F entry is the
+  // same sum of the same entries of S (S's old block does not move when it grows) in the same
+  // order, so a repeat must be the first F to the bit, and every F must be F's definition
+  // (apply_f, two solves, to 1e-12 of F's largest entry, the round-off of a few hundred
+  // operations). A stale entry, a tile read from the wrong rows or columns of S, or a W
+  // buffer of the last step's size would show. 1 and 3 threads.
+  auto slave = make_block(3, {0, 0, 1}, {1, 1, 1.5}, {3, 3, 2}, "zmax", 0.0, "");
+  auto master = make_block(3, {0, 0, 0}, {1, 1, 1}, {3, 3, 3}, "", 0.0, "zmin");
+  const PetscInt n_s = slave.u_prescribed.size(), n_m = master.u_prescribed.size();
+  for (const int threads : {1, 3}) {
+    physics::DualContactSettings plain;
+    plain.scale = false;  // explicit_matrix() is then F itself
+    plain.form_threads = threads;
+    physics::DualContactSolver a(*slave.solver, *master.solver, n_s, n_m, plain);
+    const auto entries = [&] {
+      const PetscScalar* v = nullptr;
+      TC_PETSC(MatDenseGetArrayRead(a.explicit_matrix(), &v));
+      std::vector<double> f(v, v + a.n_rows() * a.n_rows());
+      TC_PETSC(MatDenseRestoreArrayRead(a.explicit_matrix(), &v));
+      return f;
+    };
+    const std::pair<PetscInt, PetscInt> sets[] = {{2, 3}, {5, 7}, {2, 3}, {5, 7}};
+    std::map<PetscInt, std::vector<double>> first;  // by the set's first node
+    ::Mat storage = nullptr;
+    for (const auto& [start, stride] : sets) {
+      a.set_rows(node_structured_rows(3, n_s / 3, n_m / 3, 40, start, stride));
+      ASSERT_NE(a.explicit_matrix(), nullptr);
+      if (storage) {
+        EXPECT_EQ(a.explicit_matrix(), storage);  // the same m: kept
+      }
+      storage = a.explicit_matrix();
+      const auto d = explicit_differences(a, a);
+      ASSERT_GT(d.scale, 0.0);
+      EXPECT_LE(d.to_apply, 1e-12 * d.scale) << threads << " thread(s), rows from " << start;
+      const auto f = entries();
+      const auto [at, fresh] = first.try_emplace(start, f);
+      EXPECT_EQ(a.setup_solves() > 0, fresh);  // only new rows reach new dofs
+      for (size_t k = 0; k < f.size(); ++k)
+        ASSERT_EQ(f[k], at->second[k]) << threads << " thread(s), rows from " << start;
+    }
+  }
+}
+
 // ------------------------------------------------------------------- Coulomb friction, 3D
 
 /// The slave's top face is moved by (s, 0, −δ) (fully prescribed), the master's bottom is

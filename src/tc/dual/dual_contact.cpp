@@ -28,9 +28,10 @@ DualContactSolver::DualContactSolver(std::vector<const ConstrainedSolver*> bodie
   }
   half_z_.resize(bodies_.size());
   half_done_.assign(bodies_.size(), 0);
-  s_used_.resize(bodies_.size());
-  s_used_rows_.assign(bodies_.size(), 0);
+  used_.resize(bodies_.size());
+  kept_.resize(bodies_.size());
   used_row_.resize(bodies_.size());
+  w_bands_.resize(bodies_.size());
 }
 
 DualContactSolver::DualContactSolver(const ConstrainedSolver& slave,

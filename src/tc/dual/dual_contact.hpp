@@ -192,8 +192,9 @@ class DualContactSolver {
   void form_scaled();           // Σ, and Σ F Σ in f_dense_'s place
   void form_by_solves();        // F column blocks by multi-right-hand-side solves
   bool form_from_compliance();  // F = Σ B_i,T S_i B_i,Tᵀ; false if T would pass the limit
-  /// S_i on U, the T-positions in `pos` (into s_used_[i]), and `pos` renumbered into U; where
-  /// U = T, nothing is copied (s_used_[i] empty).
+  /// U_i, the T-positions in `pos`, with this rank's rows of S_i among them (used_, kept_,
+  /// used_row_), and `pos` renumbered into U. S_UU itself is never copied: form_bands reads it
+  /// from S tile by tile.
   void restrict_compliance(int i, std::vector<PetscInt>& pos);
   /// B_i's rows on the positions of U_i, each row's in ascending order (CSR).
   struct RowsT {
@@ -202,7 +203,10 @@ class DualContactSolver {
   };
   /// F = Σ_i B_i,U S_i,UU B_i,Uᵀ into F's storage (column-major, leading dimension ldf), before
   /// its symmetrisation; B_i given by rows on U (RowsT).
-  void form_bands(const std::vector<RowsT>& bt, double* fv, PetscInt ldf) const;
+  void form_bands(const std::vector<RowsT>& bt, double* fv, PetscInt ldf);
+  /// form_bands' rows of F per band, and columns of W_i per tile: a tile of S_UU is
+  /// |U| × kTile doubles (250 KB at |U| = 3 948, within a core's L2), its row sums in registers.
+  static constexpr PetscInt kBand = 32, kTile = 8;
 
   std::vector<const ConstrainedSolver*> bodies_;
   DualContactSettings settings_;
@@ -224,12 +228,12 @@ class DualContactSolver {
   std::vector<double> last_sigma_;  // … and its Σ (empty: unscaled)
   PetscInt lambda_max_rows_ = -1;
   std::vector<DofCompliance> compliance_;  // per body
-  // form_from_compliance: S_i on the T-positions U the rows reach, when they are fewer than T
-  // (else empty), this rank's rows of it (all unless S's rows are spread), their number, and
-  // each U-position's row (−1: another rank's)
-  std::vector<std::vector<double>> s_used_;
-  std::vector<PetscInt> s_used_rows_;
-  std::vector<std::vector<PetscInt>> used_row_;
+  // form_from_compliance, per body: the T-position of each U-position (U: the T-positions the
+  // rows reach), the rows of this rank's S that W_i = B_i,U S_i,UU has (its U-positions' rows,
+  // all unless S's rows are spread), each U-position's row of W_i (−1: another rank's), and
+  // W_i by bands of F's rows, kept between steps so that its pages are not faulted in again.
+  std::vector<std::vector<PetscInt>> used_, kept_, used_row_;
+  std::vector<std::vector<double>> w_bands_;
   mutable std::vector<core::Vector> w_in_, y_;  // per body: B_iᵀx and A_i⁻¹B_iᵀx
   // Per body: z = L⁻¹P b of a solve_free left for recover() to finish, and whether it is.
   std::vector<std::vector<double>> half_z_;

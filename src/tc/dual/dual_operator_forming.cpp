@@ -201,7 +201,12 @@ bool DualContactSolver::form_from_compliance() {
     }
     restrict_compliance(i, r.pos);
   }
-  TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_dense_.out()));
+  // Every entry of F is written below: the last step's storage serves when it has m rows
+  // (24 MB at 1 743 rows, whose pages would be faulted in and zeroed again).
+  PetscInt rows = -1, cols_f = -1;
+  if (f_dense_.get()) TC_PETSC(MatGetSize(f_dense_.get(), &rows, &cols_f));
+  if (rows != m || cols_f != m)
+    TC_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, m, nullptr, f_dense_.out()));
   PetscScalar* fv = nullptr;
   TC_PETSC(MatDenseGetArray(f_dense_.get(), &fv));
   PetscInt ldf = m;
@@ -232,134 +237,159 @@ bool DualContactSolver::form_from_compliance() {
   return true;
 }
 
-void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, PetscInt ldf) const {
-  // By bands of `band` rows r: the band of W_i = B_i,U S_i,UU, row r = Σ_q b(r, q) S(q, :) over
-  // the few entries of row r (S's columns, contiguous: S is symmetric to the bit), stored q by
-  // q; then G = F_s + F_m on the band, F_i(r, c) = Σ_q b_i(c, q) W_i(r, q), the band of W_i in
-  // cache while every column c passes, straight into F's storage. The bands write disjoint
-  // rows of F and are dealt to settings_.form_threads threads (by default the rank's BLAS
-  // threads, its CPUs): every entry is the same sum in the same order whatever the threads.
-  // With S's rows dealt over the ranks, q runs over this rank's rows of S only in W_i and in
-  // F_i: each rank forms its part of G, which the caller sums.
+void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, PetscInt ldf) {
+  // G = Σ_i B_i,U S_i,UU B_i,Uᵀ in two passes, each entry the same sum in the same order as
+  // row by row (so the same F to the bit, whatever the tiles and threads):
+  // 1. W_i = B_i,U S_i,UU by tiles of columns of W_i (rows of S_UU): a tile of S_UU, every
+  //    U-column on the tile's rows (S's columns, contiguous: S is symmetric to the bit), is
+  //    gathered from S once and stays in cache while every row of B_i passes over it; row r of
+  //    the tile is Σ_q b(r, q) S(tile, q) over the row's few entries, in registers. Read row by
+  //    row, S_UU would stream from memory once per entry of B_i (32 190 × 3 948 doubles a step
+  //    on the refined pin-on-plate), and copied out of S first. W_i is stored by bands of 32
+  //    rows, q by q.
+  // 2. By bands: F_i(r, c) = Σ_q b_i(c, q) W_i(r, q) with the band of W_i in cache while every
+  //    column c passes, G = F_s + F_m straight into F's storage; the bands write disjoint rows.
+  // Tiles and bands are dealt to settings_.form_threads threads (by default the policy's kernel
+  // threads). With S's rows dealt over the ranks, W_i has this rank's rows of S_UU only (q runs
+  // over them in F_i too): each rank forms its part of G, which the caller sums.
   const PetscInt m = n_rows();
   const int nb = n_bodies();
-  constexpr PetscInt band = 32;
-  const PetscInt n_bands = (m + band - 1) / band;
-  std::atomic<PetscInt> next{0};
-  const auto work = [&] {
-    std::vector<double> row_major;
-    std::vector<std::vector<double>> w(static_cast<size_t>(nb));  // the band of W_i, q by q
-    for (PetscInt b = next++; b < n_bands; b = next++) {
-      const PetscInt r0 = b * band, nr = std::min(band, m - r0);
-      for (int i = 0; i < nb; ++i) {
-        // S_UU, or S itself where the rows reach all of T (no copy)
-        const double* sm = s_used_[i].empty() ? compliance_[i].matrix().data() : s_used_[i].data();
-        const auto t = static_cast<size_t>(s_used_rows_[i]);  // this rank's rows of S_UU
-        const auto& r = bt[i];
-        row_major.assign(static_cast<size_t>(nr) * t, 0.0);
-        for (PetscInt k = 0; k < nr; ++k) {
-          double* wr = row_major.data() + static_cast<size_t>(k) * t;
-          for (PetscInt e = r.start[r0 + k]; e < r.start[r0 + k + 1]; ++e) {
-            const double v = r.value[static_cast<size_t>(e)];
-            const double* sp = sm + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * t;
-            for (size_t q = 0; q < t; ++q) wr[q] += v * sp[q];
-          }
-        }
-        auto& wi = w[static_cast<size_t>(i)];
-        wi.resize(t * band);
-        for (size_t q = 0; q < t; ++q)
-          for (PetscInt k = 0; k < nr; ++k)
-            wi[q * band + static_cast<size_t>(k)] = row_major[static_cast<size_t>(k) * t + q];
-      }
-      for (PetscInt c = 0; c < m; ++c) {
-        double sum[band] = {};  // Σ_i F_i(r, c), summed body by body
-        for (int i = 0; i < nb; ++i) {
-          const auto& r = bt[i];
-          const auto& row_of = used_row_[static_cast<size_t>(i)];
-          double acc[band] = {};
-          for (PetscInt e = r.start[c]; e < r.start[c + 1]; ++e) {
-            const PetscInt q = row_of[static_cast<size_t>(r.pos[static_cast<size_t>(e)])];
-            if (q < 0) continue;  // another rank's row of S
-            const double v = r.value[static_cast<size_t>(e)];
-            const double* wq = w[static_cast<size_t>(i)].data() + static_cast<size_t>(q) * band;
-            for (PetscInt k = 0; k < nr; ++k) acc[k] += v * wq[k];
-          }
-          for (PetscInt k = 0; k < nr; ++k) sum[k] = i == 0 ? acc[k] : sum[k] + acc[k];
-        }
-        for (PetscInt k = 0; k < nr; ++k) fv[c * ldf + r0 + k] = sum[k];
-      }
-    }
-  };
-  // A band's buffers may fail to allocate: the first failure stops the dealing and is
-  // rethrown here once every thread has stopped (an exception must not leave a thread). A
-  // helper the system cannot start leaves its bands to the others.
-  std::mutex failed;
-  std::exception_ptr failure;
-  const auto guarded = [&] {
-    try {
-      work();
-    } catch (...) {
-      const std::lock_guard lock(failed);
-      if (!failure) failure = std::current_exception();
-      next = n_bands;
-    }
-  };
-  // 2·nnz(B_i)·(|U| + m) flops: by the policy's kernel threads (core/threads.hpp) when large.
+  const PetscInt n_bands = (m + kBand - 1) / kBand;
+  std::vector<PetscInt> width(static_cast<size_t>(nb));  // W_i's columns: this rank's rows of S_UU
+  std::vector<PetscInt> tile_of(static_cast<size_t>(nb) + 1, 0);  // body i's first tile
+  for (int i = 0; i < nb; ++i) {
+    const auto k = static_cast<size_t>(i);
+    width[k] = static_cast<PetscInt>(kept_[k].size());
+    w_bands_[k].resize(static_cast<size_t>(n_bands * width[k] * kBand));
+    tile_of[k + 1] = tile_of[k] + (width[k] + kTile - 1) / kTile;
+  }
+  // 2·nnz(B_i)·(|U| + m) flops: by the policy's kernel threads (core/threads.hpp) when large,
+  // one decision for both passes.
   double flops = 0;
   for (int i = 0; i < nb; ++i)
-    flops +=
-        2.0 * static_cast<double>(bt[i].value.size()) * static_cast<double>(s_used_rows_[i] + m);
+    flops += 2.0 * static_cast<double>(bt[static_cast<size_t>(i)].value.size()) *
+             static_cast<double>(width[static_cast<size_t>(i)] + m);
   const core::KernelThreads kernel(flops);
   const int threads = settings_.form_threads > 0 ? settings_.form_threads : kernel.threads();
-  const PetscInt n_threads = std::clamp<PetscInt>(threads, 1, n_bands);
-  {
-    std::vector<std::jthread> helpers;
-    try {
-      for (PetscInt h = 1; h < n_threads; ++h) helpers.emplace_back(guarded);
-    } catch (const std::system_error&) {
+  const auto deal = [&](PetscInt n_items, auto&& item) {
+    // A buffer may fail to allocate: the first failure stops the dealing and is rethrown here
+    // once every thread has stopped (an exception must not leave a thread). A helper the system
+    // cannot start leaves its items to the others.
+    std::atomic<PetscInt> next{0};
+    std::mutex failed;
+    std::exception_ptr failure;
+    const auto guarded = [&] {
+      try {
+        std::vector<double> buffer;
+        for (PetscInt j = next++; j < n_items; j = next++) item(j, buffer);
+      } catch (...) {
+        const std::lock_guard lock(failed);
+        if (!failure) failure = std::current_exception();
+        next = n_items;
+      }
+    };
+    const PetscInt n_threads = std::clamp<PetscInt>(threads, 1, std::max<PetscInt>(n_items, 1));
+    {
+      std::vector<std::jthread> helpers;
+      try {
+        for (PetscInt h = 1; h < n_threads; ++h) helpers.emplace_back(guarded);
+      } catch (const std::system_error&) {
+      }
+      guarded();
+    }  // the helpers joined
+    if (failure) std::rethrow_exception(failure);
+  };
+  deal(tile_of.back(), [&](PetscInt j, std::vector<double>& tile) {
+    const auto i = static_cast<size_t>(std::upper_bound(tile_of.begin(), tile_of.end(), j) -
+                                       tile_of.begin() - 1);
+    const auto& comp = compliance_[i];
+    const double* s = comp.matrix().data();  // this rank's rows of S, column-major
+    const auto ld = static_cast<size_t>(comp.matrix().rows());
+    const auto& used = used_[i];
+    const auto& kept = kept_[i];
+    const PetscInt a0 = (j - tile_of[i]) * kTile;
+    const PetscInt valid = std::min(kTile, width[i] - a0);
+    // the tile: S_UU(a0 + a, p) = S(kept[a0 + a], used[p]) at tile[p·kTile + a], zero past
+    // W_i. S whole here is symmetric to the bit: read down its columns kept[a0 + a] (a stream
+    // each, where reading along its rows would miss the cache at every U-column); S's rows
+    // dealt over the ranks, along the rows this rank has.
+    tile.assign(used.size() * static_cast<size_t>(kTile), 0.0);
+    if (!comp.rows_spread()) {
+      for (PetscInt a = 0; a < valid; ++a) {
+        const double* col = s + static_cast<size_t>(kept[static_cast<size_t>(a0 + a)]) * ld;
+        for (size_t p = 0; p < used.size(); ++p)
+          tile[p * kTile + static_cast<size_t>(a)] = col[used[p]];
+      }
+    } else {
+      for (size_t p = 0; p < used.size(); ++p) {
+        const double* col = s + static_cast<size_t>(used[p]) * ld;
+        for (PetscInt a = 0; a < valid; ++a)
+          tile[p * kTile + static_cast<size_t>(a)] = col[kept[static_cast<size_t>(a0 + a)]];
+      }
     }
-    guarded();
-  }  // the helpers joined
-  if (failure) std::rethrow_exception(failure);
+    const auto& r = bt[i];
+    const auto w_width = static_cast<size_t>(width[i]);
+    for (PetscInt row = 0; row < m; ++row) {
+      double acc[kTile] = {};
+      for (PetscInt e = r.start[row]; e < r.start[row + 1]; ++e) {
+        const double v = r.value[static_cast<size_t>(e)];
+        const double* sp = tile.data() + static_cast<size_t>(r.pos[static_cast<size_t>(e)]) * kTile;
+        for (PetscInt a = 0; a < kTile; ++a) acc[a] += v * sp[a];
+      }
+      double* w = w_bands_[i].data() + static_cast<size_t>(row / kBand) * w_width * kBand +
+                  static_cast<size_t>(row % kBand);
+      for (PetscInt a = 0; a < valid; ++a) w[static_cast<size_t>(a0 + a) * kBand] = acc[a];
+    }
+  });
+  deal(n_bands, [&](PetscInt b, std::vector<double>&) {
+    const PetscInt r0 = b * kBand, nr = std::min(kBand, m - r0);
+    for (PetscInt c = 0; c < m; ++c) {
+      double sum[kBand] = {};  // Σ_i F_i(r, c), summed body by body
+      for (int i = 0; i < nb; ++i) {
+        const auto k = static_cast<size_t>(i);
+        const auto& r = bt[k];
+        const auto& row_of = used_row_[k];
+        const double* wb = w_bands_[k].data() + static_cast<size_t>(b * width[k] * kBand);
+        double acc[kBand] = {};
+        for (PetscInt e = r.start[c]; e < r.start[c + 1]; ++e) {
+          const PetscInt q = row_of[static_cast<size_t>(r.pos[static_cast<size_t>(e)])];
+          if (q < 0) continue;  // another rank's row of S
+          const double v = r.value[static_cast<size_t>(e)];
+          const double* wq = wb + static_cast<size_t>(q) * kBand;
+          for (PetscInt l = 0; l < nr; ++l) acc[l] += v * wq[l];
+        }
+        for (PetscInt l = 0; l < nr; ++l) sum[l] = i == 0 ? acc[l] : sum[l] + acc[l];
+      }
+      for (PetscInt l = 0; l < nr; ++l) fv[c * ldf + r0 + l] = sum[l];
+    }
+  });
 }
 
 void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {
-  const auto& comp = compliance_[i];
-  const auto& full = comp.matrix();  // this rank's rows of S (all of them unless spread)
+  const auto k = static_cast<size_t>(i);
+  const auto& comp = compliance_[k];
   const auto t = static_cast<size_t>(comp.size());
   std::vector<PetscInt> at(t, -1);  // T-position → U-position
   for (const PetscInt q : pos) at[static_cast<size_t>(q)] = 0;
-  std::vector<PetscInt> used;
+  auto& used = used_[k];
+  used.clear();
   for (size_t q = 0; q < t; ++q)
     if (at[q] == 0) {
       at[q] = static_cast<PetscInt>(used.size());
       used.push_back(static_cast<PetscInt>(q));
     }
-  const size_t u = used.size();
-  // This rank's rows of S_UU: U-position → its row, or −1; the rows of S they are.
-  auto& row_of = used_row_[static_cast<size_t>(i)];
-  row_of.assign(u, -1);
-  std::vector<PetscInt> kept;
-  for (size_t b = 0; b < u; ++b)
+  // This rank's rows of S_UU: U-position → its row of W_i, or −1; the rows of S they are.
+  auto& row_of = used_row_[k];
+  auto& kept = kept_[k];
+  row_of.assign(used.size(), -1);
+  kept.clear();
+  for (size_t b = 0; b < used.size(); ++b)
     if (const PetscInt r = comp.row_of(used[b]); r >= 0) {
       row_of[b] = static_cast<PetscInt>(kept.size());
       kept.push_back(r);
     }
-  s_used_rows_[i] = static_cast<PetscInt>(kept.size());
-  auto& su = s_used_[i];
-  if (u == t) {  // U = T: the positions stay, S is used as it is
-    su.clear();
-    su.shrink_to_fit();
-    return;
-  }
-  for (auto& q : pos) q = at[static_cast<size_t>(q)];
-  const size_t rows = kept.size();
-  const auto ld = static_cast<size_t>(full.rows());
-  su.resize(rows * u);
-  for (size_t b = 0; b < u; ++b) {
-    const double* col = full.data() + static_cast<size_t>(used[b]) * ld;
-    for (size_t a = 0; a < rows; ++a) su[b * rows + a] = col[kept[a]];
-  }
+  if (used.size() < t)
+    for (auto& q : pos) q = at[static_cast<size_t>(q)];
 }
 
 void DualContactSolver::form_by_solves() {
