@@ -7,13 +7,23 @@
 # Cases: the 2D ch. 7 section (tests/cases/verification/section-2d.toml, 798 dofs, 100 dynamic
 # steps) and example 06 (examples/06-thesis-frictional-heating, 100 steps); with `large` also
 # example 06 refined ×3 (200 336 dofs, its first 10 steps, as bench/million). Fields written
-# every 1000 steps (the history only: the solver is what is timed). REPEAT=n takes the
-# fastest of n runs per cell (default 1). BASELINE=<binary> adds a column: that binary with
-# its own default (e.g. a build before the policy). CASES="section-2d example-06" and
-# LOADS="idle busy" choose the rows. Runs in a temporary directory.
+# every 1000 steps (the history only: the solver is what is timed).
+# REPEAT=n (default 5) runs each cell n times per mode, the modes alternating and the one that
+# goes first rotating from round to round, so that a drift of the load reaches every mode alike;
+# each cell prints the median wall time and its spread (min–max), the median CPU time
+# (user + sys: a spinning thread shows there even when the wall hides it), and default / best
+# is the ratio of the medians; default/1 by round the median [min–max] of the rounds' ratios. A single sample per cell on a shared machine says little: the
+# load moves by more than the effect being measured.
+# BASELINE=<binary> adds a column: that binary with its own default (e.g. a build before the
+# policy); BIN=<binary> replaces build/bin/thermocontact. CASES="section-2d example-06" and
+# LOADS="idle busy" choose the rows, MODES="default 1 2" the columns (default/best is then
+# over the modes run). Runs in a temporary directory; RAW=<file> keeps every
+# sample (case load mode wall cpu). CAP=s stops a run after s seconds (timeout) and counts it
+# as s, a lower bound, printed with "≥": two spinning BLAS threads beside busy processes can
+# take ten times the others, and one such run would otherwise hold up the whole table.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$root/build/bin/thermocontact
+bin=${BIN:-$root/build/bin/thermocontact}
 work=$(mktemp -d)
 busy=()
 cleanup() {
@@ -21,7 +31,9 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
-repeat=${REPEAT:-1}
+repeat=${REPEAT:-5}
+raw=${RAW:-$work/raw.txt}
+: >"$raw"
 
 sed -e 's/every = 25/every = 1000/' "$root/tests/cases/verification/section-2d.toml" >"$work/section-2d.toml"
 grep -q '^\[output\]' "$work/section-2d.toml" || printf '\n[output]\nevery = 1000\n' >>"$work/section-2d.toml"
@@ -34,33 +46,64 @@ if [[ ${1:-} == large ]]; then
 fi
 [[ -z ${CASES:-} ]] || read -r -a cases <<<"$CASES"
 modes=(default 1 2)
+[[ -z ${MODES:-} ]] || read -r -a modes <<<"$MODES"
 [[ -z ${BASELINE:-} ]] || modes+=(baseline)
 
-# One run: its wall time in seconds (the fastest of REPEAT).
+# One run of a case in a mode: appends "case load mode wall cpu" to the raw file.
 run() {
-  local case=$1 mode=$2 best=
+  local case=$1 load=$2 mode=$3
   local exe=$bin env=(env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS)
   case $mode in
     1 | 2) env+=("OPENBLAS_NUM_THREADS=$mode") ;;
     baseline) exe=$BASELINE ;;
   esac
-  for ((i = 0; i < repeat; i++)); do
-    local t0 t1
-    t0=$(date +%s.%N)
-    "${env[@]}" "$exe" run "$work/$case.toml" --output "$work/out-$case-$mode" --force >/dev/null 2>"$work/err"
-    t1=$(date +%s.%N)
-    local t
-    t=$(python3 -c "print(f'{$t1 - $t0:.2f}')")
-    if [[ -z $best ]] || python3 -c "import sys; sys.exit(0 if $t < $best else 1)"; then best=$t; fi
-  done
-  echo "$best"
+  local cap=() status=0
+  [[ -z ${CAP:-} ]] || cap=(timeout "$CAP")
+  /usr/bin/time -f '%e %U %S' -o "$work/time" "${cap[@]}" "${env[@]}" "$exe" run \
+    "$work/$case.toml" --output "$work/out-$case-$mode" --force >/dev/null 2>"$work/err" ||
+    status=$?
+  if [[ $status -eq 124 && -n ${CAP:-} ]]; then
+    echo "$case $load $mode $CAP - capped" >>"$raw"
+    return
+  fi
+  [[ $status -eq 0 ]] || { cat "$work/err" >&2; exit 1; }
+  read -r wall user sys < <(tail -1 "$work/time")
+  echo "$case $load $mode $wall $(python3 -c "print(f'{$user + $sys:.2f}')")" >>"$raw"
+}
+
+# The row of a cell from the raw samples: per mode median wall [min–max] and median CPU.
+row() {
+  python3 - "$raw" "$1" "$2" "${modes[@]}" <<'EOF'
+import statistics, sys
+raw, case, load, modes = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
+wall, cpu, capped = {m: [] for m in modes}, {m: [] for m in modes}, set()
+for line in open(raw):
+    c, l, m, w, u, *flag = line.split()
+    if c == case and l == load and m in wall:
+        wall[m].append(float(w))
+        if flag: capped.add(m)
+        else: cpu[m].append(float(u))
+med = {m: statistics.median(wall[m]) for m in modes}
+def cell(m):
+    bound = "≥" if m in capped else ""
+    used = f"{statistics.median(cpu[m]):.2f}" if cpu[m] else "-"
+    return f"{bound}{med[m]:.2f} [{min(wall[m]):.2f}–{bound}{max(wall[m]):.2f}] cpu {used}"
+cells = [cell(m) for m in modes]
+best = min(med[m] for m in ("default", "1", "2") if m in med)
+# Within a round the modes ran minutes apart at most: the ratio of each round's pair is less
+# exposed to the load's drift than the ratio of the medians.
+pairs = ""
+if "1" in wall and "default" not in capped and "1" not in capped:
+    r = sorted(d / o for d, o in zip(wall["default"], wall["1"]))
+    pairs = f"  |  default/1 by round {statistics.median(r):.2f} [{r[0]:.2f}–{r[-1]:.2f}]"
+print(f"{case:14s} {load:5s} n={len(wall['default'])}  " + "  |  ".join(cells) +
+      f"  |  default/best {med['default'] / best:.2f}" + pairs)
+EOF
 }
 
 echo "machine: $(nproc) CPUs, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(date -u +%FT%TZ)"
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-15s %-6s' case load
-for m in "${modes[@]}"; do printf ' %9s' "$m"; done
-printf ' %14s\n' "default/best"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); $repeat alternating rounds per cell"
+echo "columns: ${modes[*]} — each median wall s [min–max] and median CPU s"
 loads=(idle busy)
 [[ -z ${LOADS:-} ]] || read -r -a loads <<<"$LOADS"
 for load in "${loads[@]}"; do
@@ -72,12 +115,11 @@ for load in "${loads[@]}"; do
     sleep 1
   fi
   for c in "${cases[@]}"; do
-    declare -A t=()
-    for m in "${modes[@]}"; do t[$m]=$(run "$c" "$m"); done
-    printf '%-15s %-6s' "$c" "$load"
-    for m in "${modes[@]}"; do printf ' %9s' "${t[$m]}"; done
-    python3 -c "d, a, b = ${t[default]}, ${t[1]}, ${t[2]}; print(f' {d / min(d, a, b):14.2f}')"
-    unset t
+    for ((i = 0; i < repeat; i++)); do
+      n=${#modes[@]}
+      for ((j = 0; j < n; j++)); do run "$c" "$load" "${modes[$(((i + j) % n))]}"; done
+    done
+    row "$c" "$load"
   done
 done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
