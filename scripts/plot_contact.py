@@ -11,21 +11,18 @@ import argparse
 import csv
 import math
 import os
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from plot_field import arrays  # noqa: E402  (the .vtu DataArray reader)
+from plot_field import read_vtu  # noqa: E402  (the .vtu reader, every encoding)
 
 
 def point_arrays(path):
-    root = ET.parse(path).getroot()
-    pts = root.find(".//Points/DataArray")
-    xyz = np.array(pts.text.split(), dtype=float).reshape(-1, 3)
-    return xyz, arrays(root, "PointData")
+    vtu = read_vtu(path)
+    return vtu["Points"], vtu["PointData"]
 
 
 def last_row(path):

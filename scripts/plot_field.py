@@ -17,15 +17,52 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
 
-def arrays(root, section):
-    out = {}
-    node = root.find(f".//{section}")
-    if node is None:
-        return out
-    for da in node.findall("DataArray"):
-        n = int(da.get("NumberOfComponents", "1"))
-        v = np.array(da.text.split(), dtype=float)
-        out[da.get("Name")] = v.reshape(-1, n) if n > 1 else v
+_TYPES = {"Float64": "<f8", "Int64": "<i8", "UInt8": "u1", "Int32": "<i4"}
+
+
+def read_vtu(path):
+    """The arrays of a .vtu of any of thermocontact's encodings ([output] format, compression):
+    {"Points": (n, 3), "Cells": {name: array}, "PointData": {...}, "CellData": {...}}.
+
+    ASCII arrays are parsed from the text; appended ones (raw, or zlib blocks after VTK's
+    header [blocks, block size, last partial size, compressed sizes], UInt64) from the bytes
+    after the '_' of <AppendedData>, as ParaView reads them.
+    """
+    import struct
+    import zlib
+
+    with open(path, "rb") as f:
+        data = f.read()
+    at = data.find(b"<AppendedData")
+    xml = data if at < 0 else data[:at] + b"</VTKFile>\n"
+    base = -1 if at < 0 else data.index(b"_", at) + 1
+    root = ET.fromstring(xml)
+    compressed = root.get("compressor") == "vtkZLibDataCompressor"
+
+    def values(da):
+        dtype = np.dtype(_TYPES[da.get("type")])
+        if da.get("format") != "appended":
+            return np.array(da.text.split(), dtype=float).astype(dtype)
+        pos = base + int(da.get("offset"))
+        if not compressed:
+            (n,) = struct.unpack_from("<Q", data, pos)
+            return np.frombuffer(data, dtype, n // dtype.itemsize, pos + 8)
+        blocks, _, _ = struct.unpack_from("<3Q", data, pos)
+        sizes = struct.unpack_from(f"<{blocks}Q", data, pos + 24)
+        start, raw = pos + 24 + 8 * blocks, b""
+        for size in sizes:
+            raw += zlib.decompress(data[start:start + size])
+            start += size
+        return np.frombuffer(raw, dtype)
+
+    out = {"Cells": {}, "PointData": {}, "CellData": {}}
+    out["Points"] = values(root.find(".//Points/DataArray")).reshape(-1, 3)
+    for section in ("Cells", "PointData", "CellData"):
+        node = root.find(f".//{section}")
+        for da in [] if node is None else node.findall("DataArray"):
+            n = int(da.get("NumberOfComponents", "1"))
+            v = values(da)
+            out[section][da.get("Name")] = v.reshape(-1, n) if n > 1 else v
     return out
 
 
@@ -37,17 +74,10 @@ def main():
     ap.add_argument("--title", default=None)
     ap.add_argument("-o", "--output", default=None)
     args = ap.parse_args()
-    root = ET.parse(args.vtu).getroot()
-    pts = np.array(root.find(".//Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
-    cells = root.find(".//Cells")
-    conn = offs = None
-    for da in cells.findall("DataArray"):
-        v = np.array(da.text.split(), dtype=int)
-        if da.get("Name") == "connectivity":
-            conn = v
-        elif da.get("Name") == "offsets":
-            offs = v
-    point, cell = arrays(root, "PointData"), arrays(root, "CellData")
+    vtu = read_vtu(args.vtu)
+    pts = vtu["Points"]
+    conn, offs = vtu["Cells"]["connectivity"], vtu["Cells"]["offsets"]
+    point, cell = vtu["PointData"], vtu["CellData"]
     u = point.get("displacement", np.zeros_like(pts))
     size = np.ptp(pts[:, :2], axis=0).max()
     umax = np.abs(u[:, :2]).max()

@@ -11,20 +11,18 @@ OUT_DIR holds <body>_<step:06d>.vtu. The section takes the mesh nodes with |x - 
 """
 import argparse
 import os
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from plot_field import arrays  # noqa: E402  (the .vtu DataArray reader)
+from plot_field import read_vtu  # noqa: E402  (the .vtu reader, every encoding)
 
 
 def read(path):
-    root = ET.parse(path).getroot()
-    pts = np.array(root.find(".//Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
-    return pts, arrays(root, "PointData")
+    vtu = read_vtu(path)
+    return vtu["Points"], vtu["PointData"]
 
 
 def section(path, x0, field, scale):

@@ -18,7 +18,6 @@ x + scale·u (default scale 1: true size, so a slid body is drawn where it is). 
 """
 import argparse
 import os
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
@@ -27,22 +26,19 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.tri as mtri  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
-from plot_field import arrays  # noqa: E402  (the .vtu DataArray reader)
+from plot_field import read_vtu  # noqa: E402  (the .vtu reader, every encoding)
 
 AXES = {"x": 0, "y": 1, "z": 2}
 TET_FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
 
 
 def read_tets(path, field):
-    root = ET.parse(path).getroot()
-    pts = np.array(root.find(".//Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
-    cells = {}
-    for da in root.find(".//Cells").findall("DataArray"):
-        cells[da.get("Name")] = np.array(da.text.split(), dtype=int)
+    vtu = read_vtu(path)
+    pts, cells = vtu["Points"], vtu["Cells"]
     if np.any(cells["types"] != 10):
         raise SystemExit(f"{path}: cells other than Tet4 (VTK 10): not supported")
     tets = cells["connectivity"].reshape(-1, 4)
-    point = arrays(root, "PointData")
+    point = vtu["PointData"]
     values = point[field]
     values = np.linalg.norm(values, axis=1) if values.ndim > 1 else values
     return pts, point.get("displacement", np.zeros_like(pts)), tets, values

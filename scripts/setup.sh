@@ -12,6 +12,7 @@ packages=(
   libopenblas0-pthread                    # optimised BLAS: CHOLMOD factorises 5x faster than with reference BLAS
   libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libmetis-dev
   libgmsh-dev gmsh
+  zlib1g-dev                              # zlib-compressed binary .vtu ([output] compression)
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy  # plots of history.csv and of fields
 )

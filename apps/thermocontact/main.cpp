@@ -355,7 +355,8 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     const double hashing = tc::core::seconds_since_process_start();
     const auto case_hash = tc::io::input_hash(problem);  // the case and mesh files read again
     reading += tc::core::seconds_since_process_start() - hashing;
-    tc::io::OutputWriter writer(problem.output.directory, problem.output.every);
+    tc::io::OutputWriter writer(problem.output.directory, problem.output.every,
+                                tc::io::OutputWriter::encoding_of(problem.output));
     if (tc::core::PetscSession::rank() == 0)  // held open until the process ends
       g_output_directory.store(
           ::open(problem.output.directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));

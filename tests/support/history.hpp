@@ -176,15 +176,19 @@ inline Collection read_collection(const std::filesystem::path& file) {
   return c;
 }
 
-/// A .vtu that an XML reader would accept: it ends with the closing tag of the document.
+/// A .vtu that an XML reader would accept: it ends with the closing tag of the document,
+/// after the grid (ASCII) or after the appended data (binary).
 inline bool whole_vtu(const std::filesystem::path& file) {
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   std::stringstream ss;
   ss << in.rdbuf();
   const auto text = ss.str();
-  const std::string tail = "</UnstructuredGrid>\n</VTKFile>\n";
-  return text.rfind("<?xml", 0) == 0 && text.size() > tail.size() &&
-         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+  const auto ends_with = [&](const std::string& tail) {
+    return text.size() > tail.size() &&
+           text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  return text.rfind("<?xml", 0) == 0 && (ends_with("</UnstructuredGrid>\n</VTKFile>\n") ||
+                                         ends_with("</AppendedData>\n</VTKFile>\n"));
 }
 
 }  // namespace tc::test

@@ -108,7 +108,7 @@ TEST(AbuseCli, TheLockOfAKilledRunDoesNotBlockItsRestart) {
 
 // ---- #2: a full disk ------------------------------------------------------------------------
 
-/// A plate of 20 × 20 cells: its .vtu files (27 kB at t = 0, 70 kB after) are larger than
+/// A plate of 20 × 20 cells: its .vtu files (67 kB at t = 0, 171 kB after) are larger than
 /// fmt's 32 kB output buffer, which made the old writer throw out of a destructor (SIGABRT).
 const char* const plate = R"(
 dimension = 2
@@ -143,10 +143,10 @@ traction = [0.0, -1.0e6]
 /// batch system would, so the write fails instead of the signal killing the run. PMIx keeps
 /// its data in memory (gds=hash) instead of files that the limit would forbid in MPI_Init.
 tc::test::CommandResult run_with_file_limit(const fs::path& case_file, const fs::path& out,
-                                            int kilobytes) {
+                                            int kilobytes, const std::string& options = "") {
   return tc::test::run_command("PMIX_MCA_gds=hash bash -c \"trap '' XFSZ; ulimit -f " +
                                std::to_string(kilobytes) + "; exec " + TC_BINARY + " run " +
-                               case_file.string() + " --output " + out.string() + "\"");
+                               case_file.string() + " --output " + out.string() + options + "\"");
 }
 
 /// What a run stopped by a failed write must leave: exit 1 and the reason, summary.json
@@ -179,13 +179,13 @@ void expect_stopped_by_the_limit(const tc::test::CommandResult& r, const fs::pat
 }
 
 TEST(AbuseCli, AFullDiskWhileWritingFieldsStopsTheRunWithExitOne) {
-  // 50 kB: the history, the summary, the checkpoint (39 kB) and the fields at t = 0 (27 kB)
-  // fit, the fields of step 1 (70 kB) do not. The old writer aborted (exit 134), summary.json
+  // 100 kB: the history, the summary, the checkpoint (39 kB) and the fields at t = 0 (67 kB)
+  // fit, the fields of step 1 (171 kB) do not. The old writer aborted (exit 134), summary.json
   // "running".
   const auto dir = tc::test::fresh_dir("abuse-full-fields");
   std::ofstream(dir / "plate.toml") << plate;
   const auto out = dir / "out";
-  const auto r = run_with_file_limit(dir / "plate.toml", out, 50);
+  const auto r = run_with_file_limit(dir / "plate.toml", out, 100);
   expect_stopped_by_the_limit(r, out, "plate_000001.vtu");
   EXPECT_FALSE(fs::exists(out / "plate_000001.vtu")) << "the partial file was left";
   EXPECT_EQ(tc::test::read_history(out / "history.csv").rows.size(), 2u);
@@ -197,11 +197,12 @@ TEST(AbuseCli, AFullDiskWhileWritingFieldsStopsTheRunWithExitOne) {
 }
 
 TEST(AbuseCli, AFullDiskWhileAppendingToTheHistoryLeavesNoPartialRow) {
-  // 12 kB: every .vtu (≤ 10.5 kB) and the checkpoint fit; history.csv (16.7 kB whole)
-  // reaches the limit in the middle of a row, which must be cut off again.
+  // 12 kB: every .vtu (≤ 9 kB zlib-compressed; 20.5 kB in ASCII since the stress and strain
+  // tensors) and the checkpoint (9.5 kB) fit; history.csv (16.7 kB whole) reaches the limit
+  // in the middle of a row, which must be cut off again.
   const auto dir = tc::test::fresh_dir("abuse-full-history");
   const auto out = dir / "out";
-  const auto r = run_with_file_limit(sliding, out, 12);
+  const auto r = run_with_file_limit(sliding, out, 12, " --set output.compression='\\\"zlib\\\"'");
   expect_stopped_by_the_limit(r, out, "history.csv");
   EXPECT_LT(tc::test::read_history(out / "history.csv").rows.size(), sliding_rows);
 }

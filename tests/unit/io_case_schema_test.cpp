@@ -214,8 +214,8 @@ std::string settings_text(const Problem& p) {
       static_cast<int>(v.feti_preconditioner), v.newton_tolerance, v.max_newton_iterations,
       v.max_cutbacks);
   const auto& o = p.output;
-  s += fmt::format("output {} {} {} {}", o.directory.string(), o.every, o.checkpoint_every,
-                   o.checkpoint_seconds);
+  s += fmt::format("output {} {} {} {} {} {}", o.directory.string(), o.every, o.checkpoint_every,
+                   o.checkpoint_seconds, static_cast<int>(o.encoding), o.contact_csv);
   return s;
 }
 
@@ -252,8 +252,8 @@ TEST(CaseSchema, DefaultsAreWhatTheReaderGivesAnAbsentKey) {
       ++compared;
     }
   // Every optional key with a value of its own: 1 root, 2 time, 5 physics, 5 bodies,
-  // 4 contact, 21 solver, 4 output.
-  EXPECT_EQ(compared, 42);
+  // 4 contact, 21 solver, 7 output.
+  EXPECT_EQ(compared, 45);
   fs::remove_all(dir);
 }
 
@@ -305,6 +305,9 @@ TEST(CaseSchema, SettingsTextSeesEveryDefaultedKey) {
                                                  {"solver.max_cutbacks", "5"},
                                                  {"output.directory", "\"elsewhere\""},
                                                  {"output.every", "2"},
+                                                 {"output.format", "\"binary\""},
+                                                 {"output.compression", "\"zlib\""},
+                                                 {"output.contact_csv", "true"},
                                                  {"output.checkpoint_every", "1"},
                                                  {"output.checkpoint_seconds", "11.0"}};
   int changed = 0;
@@ -321,7 +324,7 @@ TEST(CaseSchema, SettingsTextSeesEveryDefaultedKey) {
       EXPECT_NE(settings_text(tc::io::read_case(file, overrides)), without) << key;
       ++changed;
     }
-  EXPECT_EQ(changed, 42);
+  EXPECT_EQ(changed, 45);
   fs::remove_all(dir);
 }
 

@@ -18,6 +18,7 @@
 #include <set>
 
 #include "tc/core/error.hpp"
+#include "tc/mesh/box.hpp"
 #include "tc/mesh/gmsh_reader.hpp"
 #include "tc/mesh/mesh.hpp"
 
@@ -341,6 +342,42 @@ TEST(GmshReader, MixedTrianglesAndQuads) {
   // The interface nodes are shared, not duplicated: Euler's formula V − E + F = 1 would also
   // do, but the duplicate finder is the direct check.
   EXPECT_TRUE(find_duplicate_nodes(m).empty());
+}
+
+TEST(GmshReader, CellsKeepTheirPhysicalGroup) {
+  // Two surfaces, each its own physical group (tags given by gmsh), one cell group unnamed:
+  // every cell carries its group's tag (the .vtu's physical_group), −1 for a box mesh.
+  int quads = -1, triangles = -1;
+  const auto file = generate("rect_groups", 2, [&] {
+    namespace geo = gmsh::model::geo;
+    const int p[6] = {geo::addPoint(0, 0, 0), geo::addPoint(1, 0, 0), geo::addPoint(2, 0, 0),
+                      geo::addPoint(2, 1, 0), geo::addPoint(1, 1, 0), geo::addPoint(0, 1, 0)};
+    const int b1 = geo::addLine(p[0], p[1]), b2 = geo::addLine(p[1], p[2]);
+    const int r = geo::addLine(p[2], p[3]), t2 = geo::addLine(p[3], p[4]);
+    const int t1 = geo::addLine(p[4], p[5]), l = geo::addLine(p[5], p[0]);
+    const int mid = geo::addLine(p[1], p[4]);
+    const int s1 = geo::addPlaneSurface({geo::addCurveLoop({b1, mid, t1, l})});
+    const int s2 = geo::addPlaneSurface({geo::addCurveLoop({b2, r, t2, -mid})});
+    geo::synchronize();
+    for (const int c : {b1, b2, r, t2, t1, l, mid}) gmsh::model::mesh::setTransfiniteCurve(c, 5);
+    gmsh::model::mesh::setTransfiniteSurface(s1);
+    gmsh::model::mesh::setRecombine(2, s1);
+    named_group(1, {b1, b2, r, t1, t2, l}, "outline");
+    quads = named_group(2, {s1}, "left_part");
+    triangles = gmsh::model::addPhysicalGroup(2, {s2}, 7);  // unnamed, tag 7
+  });
+  const Mesh m = read_gmsh(file, 2);
+  ASSERT_EQ(triangles, 7);
+  int seen_quads = 0, seen_triangles = 0;
+  for (int c = 0; c < m.n_cells(); ++c) {
+    const bool quad = m.cell_type(c) == CellType::Quad4;
+    EXPECT_EQ(m.cell_group(c), quad ? quads : triangles) << "cell " << c;
+    (quad ? seen_quads : seen_triangles) += 1;
+  }
+  EXPECT_EQ(seen_quads, 16);
+  EXPECT_GT(seen_triangles, 0);
+  const auto box = tc::mesh::make_box(2, {0, 0, 0}, {1, 1, 0}, {2, 2, 1});
+  for (int c = 0; c < box.n_cells(); ++c) EXPECT_EQ(box.cell_group(c), -1);
 }
 
 TEST(GmshReader, QuarterDiscOfMostlyQuads) {

@@ -395,11 +395,8 @@ Eigen::MatrixXd facet_mass(FacetType t, const Coords& x) {
 
 // ---- Post-processing ----------------------------------------------------------------------
 
-Eigen::Matrix3d cell_stress(CellType t, const Coords& x, const Eigen::VectorXd& u_e,
-                            const Eigen::VectorXd& dtheta_e, double lambda, double mu,
-                            double beta) {
-  // σ = λ tr ε I + 2με − β(θ − θ₀)I (2.5, docs/choices.md); in 2D ε_zz = 0 (plane strain)
-  // but σ_zz = λ tr ε − βΔθ is not.
+Eigen::Matrix3d cell_strain(CellType t, const Coords& x, const Eigen::VectorXd& u_e) {
+  // ε = ½(∇u + ∇uᵀ) (2.2); in 2D the plane-strain ε_zz = ε_xz = ε_yz = 0.
   NodeVector n;
   NodeGrad dn;
   shape_any(t, centre(t), n, dn);
@@ -410,7 +407,18 @@ Eigen::Matrix3d cell_stress(CellType t, const Coords& x, const Eigen::VectorXd& 
   for (Eigen::Index a = 0; a < x.rows(); ++a)
     for (Eigen::Index i = 0; i < d; ++i)
       for (Eigen::Index j = 0; j < d; ++j) grad_u(i, j) += u_e[d * a + i] * p.grad(a, j);
-  const Eigen::Matrix3d eps = 0.5 * (grad_u + grad_u.transpose());
+  return 0.5 * (grad_u + grad_u.transpose());
+}
+
+Eigen::Matrix3d cell_stress(CellType t, const Coords& x, const Eigen::VectorXd& u_e,
+                            const Eigen::VectorXd& dtheta_e, double lambda, double mu,
+                            double beta) {
+  // σ = λ tr ε I + 2με − β(θ − θ₀)I (2.5, docs/choices.md); in 2D ε_zz = 0 (plane strain)
+  // but σ_zz = λ tr ε − βΔθ is not.
+  NodeVector n;
+  NodeGrad dn;
+  shape_any(t, centre(t), n, dn);
+  const Eigen::Matrix3d eps = cell_strain(t, x, u_e);
   const double dtheta = n.dot(dtheta_e);
   return (lambda * eps.trace() - beta * dtheta) * Eigen::Matrix3d::Identity() + 2 * mu * eps;
 }

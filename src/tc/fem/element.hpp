@@ -55,6 +55,8 @@ using Func = std::function<double(const mesh::Point&)>;
 
 // ---- Post-processing at the cell centre. --------------------------------------------------
 
+/// Small-strain tensor ε(u) at the cell centre (3×3; zero third row and column in 2D).
+[[nodiscard]] Eigen::Matrix3d cell_strain(CellType t, const Coords& x, const Eigen::VectorXd& u_e);
 /// Cauchy stress σ(u) − β(θ − θ₀)I at the cell centre (3×3; plane strain gives σ_zz ≠ 0).
 /// u_e: interleaved nodal displacements, dtheta_e: nodal θ − θ₀.
 [[nodiscard]] Eigen::Matrix3d cell_stress(CellType t, const Coords& x, const Eigen::VectorXd& u_e,

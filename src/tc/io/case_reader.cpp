@@ -1,16 +1,19 @@
 #include "tc/io/case_reader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include "tc/io/case_checks.hpp"
 #include "tc/io/case_overrides.hpp"
 #include "tc/io/case_reader_detail.hpp"
 #include "tc/io/files.hpp"
+#include "tc/io/probes.hpp"
 #include "tc/model/checks.hpp"
 
 namespace tc::io::detail {
@@ -49,6 +52,7 @@ Problem CaseReader::read() {
   read_contacts(root);
   read_solver(root);
   read_output(root);
+  read_probes(root);
   check_across_sections(p_, root_, issues_);
   if (!issues_.empty()) issues_.raise();
   warn_unit_habits();
@@ -284,8 +288,61 @@ void CaseReader::read_output(const TableReader& root) {
       p_.output.directory = resolve(*d);
   }
   if (const auto e = o->integer("every")) p_.output.every = *e;
+  using Encoding = physics::OutputSettings::Encoding;
+  const auto format = o->choice("format");
+  const auto compression = o->choice("compression");
+  if (format == "binary") p_.output.encoding = Encoding::binary;
+  if (compression == "zlib") {  // binary implied when format is not given
+    if (format != "ascii")
+      p_.output.encoding = Encoding::zlib;
+    else  // VTK compresses the bytes of binary arrays only
+      o->issue("compression",
+               "found \"zlib\" with format = \"ascii\", expected \"none\" or format = "
+               "\"binary\" (or no format: zlib implies binary)");
+  }
   if (const auto e = o->integer("checkpoint_every")) p_.output.checkpoint_every = *e;
   if (const auto t = o->number("checkpoint_seconds")) p_.output.checkpoint_seconds = *t;
+  if (const auto c = o->boolean("contact_csv")) p_.output.contact_csv = *c;
+}
+
+void CaseReader::read_probes(const TableReader& root) {
+  const auto* a = root.has("probe") ? tables(root, "probe") : nullptr;
+  if (!a) return;
+  for (size_t i = 0; i < a->size(); ++i) {
+    const TableReader t(*a->get(i)->as_table(), at("probe", i), issues_, schema::section("probe"));
+    physics::Probe probe;
+    if (const auto name = t.string("name")) {
+      check_pair_name(t, *name);  // the same rule: it prefixes columns
+      for (const auto& other : p_.output.probes)
+        if (other.name == *name)
+          t.issue("name", fmt::format("found \"{}\" again, expected a name of its own (it "
+                                      "prefixes probes.csv's columns)",
+                                      printable(*name)));
+      probe.name = *name;
+    }
+    const auto body = body_index(t, "body", p_.bodies);
+    probe.body = body.value_or(0);
+    const bool point = t.has("point"), where = t.has("where");
+    if (point == where)
+      issues_.add(t.line(), t.path(),
+                  point ? "found both point and where, expected one of them"
+                        : "locates nothing; expected point = [x, y(, z)] or where = a boundary");
+    if (const auto w = t.string("where")) {
+      probe.where = *w;
+      if (body) check_boundary_name(t, "where", p_.bodies[*body], mesh_built_[*body], *w);
+    }
+    if (const auto* n = t.get("point"))
+      if (const auto x = read_vector(*n, t.key("point"), issues_, dim_)) {
+        probe.point = *x;
+        if (body && mesh_built_[*body] && !locate_point(p_.bodies[*body].mesh, *x))
+          t.issue("point",
+                  fmt::format("found [{}], expected a point of body \"{}\" (no cell of "
+                              "its mesh holds it)",
+                              fmt::join(std::span(x->data(), static_cast<size_t>(dim_)), ", "),
+                              printable(p_.bodies[*body].name)));
+      }
+    p_.output.probes.push_back(std::move(probe));
+  }
 }
 
 }  // namespace tc::io::detail

@@ -55,6 +55,8 @@ class CaseReader {
   void read_conductance(const TableReader& contact, physics::ContactSettings& c);
   void read_solver(const TableReader& root);
   void read_output(const TableReader& root);
+  /// [[probe]] tables (after the bodies: a point is located in its body's mesh).
+  void read_probes(const TableReader& root);
   /// Warnings for values that are valid but implausible in SI (unit habits: MPa, °C, g/cm³).
   void warn_unit_habits();
   /// A warning `FILE:LINE: KEY: message` (the line of `key`, a dotted path, if known).

@@ -57,6 +57,7 @@ constexpr Key kRoot[] = {
      .doc = "[contact] (one pair) or [[contact]] tables"},
     {.name = "solver", .type = T::table, .doc = "tolerances, limits and methods"},
     {.name = "output", .type = T::table, .doc = "where and how often results are written"},
+    {.name = "probe", .type = T::tables, .doc = "[[probe]], points recorded every step"},
 };
 
 constexpr std::string_view kSchemes[] = {"dynamic", "quasistatic"};
@@ -356,6 +357,8 @@ constexpr std::string_view kFactorizations[] = {"auto", "mumps", "cholmod", "pet
 constexpr std::string_view kPreconditioners[] = {"dirichlet", "lumped", "none"};
 constexpr std::string_view kContactDuals[] = {"auto", "nested", "combined"};
 constexpr std::string_view kConductanceTreatments[] = {"implicit", "lagged"};
+constexpr std::string_view kOutputFormats[] = {"ascii", "binary"};
+constexpr std::string_view kCompressions[] = {"none", "zlib"};
 
 constexpr Key kSolver[] = {
     {.name = "coupling_tolerance",
@@ -469,6 +472,20 @@ constexpr Key kOutput[] = {
      .type = T::integer,
      .default_value = "1",
      .doc = "fields every n steps (history.csv gets every step)"},
+    {.name = "format",
+     .type = T::choice,
+     .choices = kOutputFormats,
+     .default_value = "\"ascii\"",
+     .doc = ".vtu arrays as text, or appended raw binary"},
+    {.name = "compression",
+     .type = T::choice,
+     .choices = kCompressions,
+     .default_value = "\"none\"",
+     .doc = "zlib-compressed binary arrays (implies format = \"binary\")"},
+    {.name = "contact_csv",
+     .type = T::boolean,
+     .default_value = "false",
+     .doc = "contact_<step>.csv of the contact nodes at each written step"},
     {.name = "checkpoint_every",
      .type = T::integer,
      .min = 0,
@@ -480,6 +497,19 @@ constexpr Key kOutput[] = {
      .default_value = "10.0",
      .unit = "s",
      .doc = "checkpoint.bin every s of wall time (0: not by time)"},
+};
+
+constexpr Key kProbe[] = {
+    {.name = "name",
+     .type = T::string,
+     .default_value = "required",
+     .doc = "prefix of its probes.csv columns: letters, digits, '_'"},
+    {.name = "body", .type = T::name, .default_value = "required", .doc = "the body it is in"},
+    {.name = "point",
+     .type = T::vector,
+     .unit = "m",
+     .doc = "where, in the reference configuration (or where)"},
+    {.name = "where", .type = T::name, .doc = "a boundary of the body: the mean over its nodes"},
 };
 
 constexpr Section kSections[] = {
@@ -499,6 +529,7 @@ constexpr Section kSections[] = {
     {"contact.conductance", kConductance},
     {"solver", kSolver},
     {"output", kOutput},
+    {"probe", kProbe},
 };
 
 }  // namespace

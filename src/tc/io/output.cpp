@@ -132,11 +132,28 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-OutputWriter::OutputWriter(std::filesystem::path directory, int every)
-    : dir_(std::move(directory)), every_(every), root_(core::PetscSession::rank() == 0) {}
+OutputWriter::OutputWriter(std::filesystem::path directory, int every, VtuEncoding encoding)
+    : dir_(std::move(directory)),
+      every_(every),
+      encoding_(encoding),
+      root_(core::PetscSession::rank() == 0) {}
+
+VtuEncoding OutputWriter::encoding_of(const physics::OutputSettings& output) {
+  using E = physics::OutputSettings::Encoding;
+  switch (output.encoding) {
+    case E::binary:
+      return VtuEncoding::binary;
+    case E::zlib:
+      return VtuEncoding::zlib;
+    case E::ascii:
+      break;
+  }
+  return VtuEncoding::ascii;
+}
 
 OutputWriter::~OutputWriter() {
   if (history_fd_ >= 0) ::close(history_fd_);
+  if (probes_fd_ >= 0) ::close(probes_fd_);
   if (stopped_fd_ >= 0) ::close(stopped_fd_);
 }
 
@@ -178,14 +195,25 @@ void OutputWriter::start(const physics::Simulation& sim) {
 }
 
 void OutputWriter::open_history(const physics::Simulation& sim) {
-  const auto file = dir_ / "history.csv";
+  history_fd_ = open_csv("history.csv", sim.history_columns());
+  if (!sim.problem().output.probes.empty()) {
+    stencils_ = probe_stencils(sim.problem());
+    probes_fd_ = open_csv("probes.csv", probe_columns(sim.problem()));
+  }
+}
+
+int OutputWriter::open_csv(const std::string& name, const std::vector<std::string>& columns) {
+  const auto file = dir_ / name;
   std::string header;
-  for (const auto& c : sim.history_columns()) header += (header.empty() ? "" : ",") + c;
+  for (const auto& c : columns) header += (header.empty() ? "" : ",") + c;
   header += '\n';
   std::string kept = header;
   if (resume_) {  // the header must match; rows of steps before the restored one stay
     std::ifstream in(file);
     std::string line;
+    if (!in)  // history.csv is checked before (check_restart_outputs); probes.csv is not
+      throw Error(
+          fmt::format("cannot continue {}: it is missing or cannot be read", printable(file)));
     if (!std::getline(in, line) || line + '\n' != header)  // checked before: a race
       throw Error(
           fmt::format("cannot continue {}: its header is not this case's", printable(file)));
@@ -197,7 +225,7 @@ void OutputWriter::open_history(const physics::Simulation& sim) {
     }
   }
   // Kept open as written: the rows go to this file whatever its name points to later.
-  history_fd_ = replace_file_for_append(file, kept);
+  return replace_file_for_append(file, kept);
 }
 
 void OutputWriter::resume_collection(const physics::Simulation& sim) {
@@ -265,6 +293,12 @@ void OutputWriter::step(const physics::Simulation& sim) {
       for (const double v : sim.history_row())
         line += fmt::format("{}{:.17g}", line.empty() ? "" : ",", v);
       append_history(line + '\n');  // a run killed later still leaves every completed row
+      if (probes_fd_ >= 0) {        // after the history row: a restart cuts both at its step
+        std::string probes;
+        for (const double v : probe_row(sim, stencils_))
+          probes += fmt::format("{}{:.17g}", probes.empty() ? "" : ",", v);
+        append_record(probes_fd_, dir_ / "probes.csv", probes + '\n');
+      }
       steps_written_ = sim.step();
       write_stopped_summary(sim, stopped_message(sim));
       if (stop_ && stop_->load() != 0)  // a kill may follow before finish(): see watch_stop
@@ -281,6 +315,11 @@ void OutputWriter::step(const physics::Simulation& sim) {
 void OutputWriter::write_fields(const physics::Simulation& sim) {
   auto scope = phases_.scope("output");
   const int size = core::PetscSession::size(), rank = core::PetscSession::rank();
+  if (sim.problem().output.contact_csv && sim.contact().n_pairs() > 0)
+    core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+      if (root_)  // before the fields: a .vtu listed in result.pvd has its CSV beside it
+        write_file(dir_ / fmt::format("contact_{:06d}.csv", sim.step()), contact_csv(sim));
+    });
   for (int b = 0; b < sim.n_bodies(); ++b) {
     const auto& sys = sim.system(b);
     const auto& mesh = sys.body().mesh;
@@ -289,7 +328,7 @@ void OutputWriter::write_fields(const physics::Simulation& sim) {
     if (size == 1) {
       core::collective_check(PETSC_COMM_WORLD, "output", [&] {
         body_fields(sim, b, point_data, cell_data);
-        write_vtu(dir_ / (stem + ".vtu"), mesh, point_data, cell_data);
+        write_vtu(dir_ / (stem + ".vtu"), mesh, point_data, cell_data, encoding_);
         pvd_->add(sim.time(), b, stem + ".vtu");
       });
       continue;
@@ -317,7 +356,7 @@ void OutputWriter::write_fields(const physics::Simulation& sim) {
       body_fields(sim, b, point_data, cell_data);
       if (!cells[static_cast<size_t>(rank)].empty())  // a rank without cells writes no piece
         write_vtu_piece(dir_ / piece(rank), mesh, cells[static_cast<size_t>(rank)], point_data,
-                        cell_data);
+                        cell_data, encoding_);
     });
     core::collective_check(PETSC_COMM_WORLD, "output", [&] {
       if (!root_) return;

@@ -11,9 +11,12 @@
 #include <atomic>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "tc/io/files.hpp"
+#include "tc/io/probes.hpp"
 #include "tc/io/vtu.hpp"
 #include "tc/run/simulation.hpp"
 
@@ -21,7 +24,10 @@ namespace tc::io {
 
 class OutputWriter : public physics::Observer {
  public:
-  explicit OutputWriter(std::filesystem::path directory, int every = 1);
+  explicit OutputWriter(std::filesystem::path directory, int every = 1,
+                        VtuEncoding encoding = VtuEncoding::ascii);
+  /// The encoding `[output]` format and compression name.
+  [[nodiscard]] static VtuEncoding encoding_of(const physics::OutputSettings& output);
   /// Continue the output of a run restarted from a checkpoint (io/checkpoint.hpp) instead of
   /// starting afresh: at start(), history.csv keeps its rows before the restored step and
   /// result.pvd its data sets up to it; the restored step's row is written again (the same
@@ -76,13 +82,19 @@ class OutputWriter : public physics::Observer {
 
   std::filesystem::path dir_;
   int every_;
+  VtuEncoding encoding_;
   bool root_;
   std::unique_ptr<PinnedDirectory> pin_;  // every write into dir_ goes through it
   std::unique_ptr<PvdCollection> pvd_;
   void open_history(const physics::Simulation& sim);
+  /// `name` in dir_ with the header of `columns`, kept open for appending; on a resume its rows
+  /// before the restored step stay (the header must match).
+  [[nodiscard]] int open_csv(const std::string& name, const std::vector<std::string>& columns);
   void append_history(const std::string& line);
 
   int history_fd_ = -1;
+  int probes_fd_ = -1;                  // probes.csv, with [[probe]] tables
+  std::vector<ProbeStencil> stencils_;  // of the probes
   struct Identity {
     unsigned long long device = 0, inode = 0;
   };
@@ -112,9 +124,23 @@ class OutputWriter : public physics::Observer {
 void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data,
                  std::vector<Field>& cell_data);
 
-/// The contact fields of the slave body (contact_pressure, tangential_traction, slip_velocity),
-/// appended to its point data; nothing for other bodies or without a mortar pair.
+/// The contact fields (contact_pressure, tangential_traction, slip_velocity,
+/// contact_heat_flux) of a body that is the slave or the master of a mortar pair, appended to
+/// its point data: the slave's at its contact nodes, the master's carried through the mortar
+/// (output_fields.cpp, MasterSide); nothing for other bodies.
 void contact_fields(const physics::Simulation& sim, int body, std::vector<Field>& point_data);
+
+/// The contact state of pair q per contact node k (its slave node nodes[k], weight ∫ψ_k):
+/// pressure and conducted heat flux, tangential traction and slip velocity (3 per node).
+/// nullopt without a mortar pair or multipliers for it.
+struct PairNodeFields {
+  std::vector<int> nodes;
+  std::vector<double> weights, pressure, heat_flux, traction, slip_velocity;
+};
+[[nodiscard]] std::optional<PairNodeFields> pair_node_fields(const physics::Simulation& sim, int q);
+
+/// contact_<step>.csv's text: one row per contact node of every pair (output.contact_csv).
+[[nodiscard]] std::string contact_csv(const physics::Simulation& sim);
 
 /// A progress line: rewritten in place on a terminal, plain lines (about 20 per run) otherwise.
 class ProgressLine : public physics::Observer {

@@ -142,16 +142,17 @@ std::pair<int, int> take_lock(const std::filesystem::path& directory, bool creat
 }
 
 /// The files of a run in an output directory: what OutputWriter and CheckpointWriter write
-/// (the pieces are <body>_<step>.vtu, <body>_<step>.pvtu and <body>_<step>_<rank>.vtu).
+/// (the pieces are <body>_<step>.vtu, <body>_<step>.pvtu and <body>_<step>_<rank>.vtu; the
+/// contact nodes' contact_<step>.csv).
 std::vector<std::filesystem::path> run_files(const std::filesystem::path& directory) {
-  static const std::regex piece(R"(.+_[0-9]{6}(_[0-9]+)?\.p?vtu)");
+  static const std::regex piece(R"((.+_[0-9]{6}(_[0-9]+)?\.p?vtu)|(contact_[0-9]{6}\.csv))");
   std::vector<std::filesystem::path> out;
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(directory, ec)) {
     const auto name = e.path().filename().string();
-    if (name == "history.csv" || name == "summary.json" || name == "summary.stopped.json" ||
-        name == "result.pvd" || name == "checkpoint.bin" || name == "checkpoint.bin.tmp" ||
-        std::regex_match(name, piece))
+    if (name == "history.csv" || name == "probes.csv" || name == "summary.json" ||
+        name == "summary.stopped.json" || name == "result.pvd" || name == "checkpoint.bin" ||
+        name == "checkpoint.bin.tmp" || std::regex_match(name, piece))
       out.push_back(e.path());
   }
   std::sort(out.begin(), out.end());

@@ -1,6 +1,7 @@
 #pragma once
-// VTK XML unstructured grids (.vtu, ASCII), their parallel form (.pvtu listing one .vtu piece
-// per rank) and ParaView collections (.pvd).
+// VTK XML unstructured grids (.vtu), their parallel form (.pvtu listing one .vtu piece per
+// rank) and ParaView collections (.pvd). A .vtu's arrays are ASCII text, or raw binary in the
+// file's appended section, optionally zlib-compressed, laid out as VTK's own writer does.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,16 +17,25 @@ struct Field {
   std::vector<double> values;
 };
 
+/// How a .vtu holds its arrays (`[output]` format and compression): ASCII numbers printed to
+/// round trip (shortest form that reads back to the same double); or every array appended
+/// after the XML as raw little- or big-endian bytes (the host's order, named in byte_order),
+/// each preceded by its UInt64 byte count; or those bytes cut into 32 KiB blocks, each
+/// compressed by zlib, after VTK's compression header (vtkZLibDataCompressor).
+enum class VtuEncoding { ascii, binary, zlib };
+
 /// Writes one mesh with point and cell data. Points are written in 3D (z = 0 in 2D).
 void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
-               const std::vector<Field>& point_data, const std::vector<Field>& cell_data);
+               const std::vector<Field>& point_data, const std::vector<Field>& cell_data,
+               VtuEncoding encoding = VtuEncoding::ascii);
 
 /// Writes the cells `cells` of m as one piece of a parallel data set: the points they use
 /// (renumbered in ascending order) and the fields restricted to those points and cells; the
 /// fields are given on the whole mesh.
 void write_vtu_piece(const std::filesystem::path& file, const mesh::Mesh& m,
                      const std::vector<int>& cells, const std::vector<Field>& point_data,
-                     const std::vector<Field>& cell_data);
+                     const std::vector<Field>& cell_data,
+                     VtuEncoding encoding = VtuEncoding::ascii);
 
 /// Writes a .pvtu listing `pieces` (file names relative to it) with the fields' names and
 /// components.

@@ -219,6 +219,23 @@ RawMesh read_raw(const std::filesystem::path& file, int dim) {
     }
     raw.groups.push_back(std::move(group));
   }
+  // The physical groups of the cells (Mesh::cell_group, the .vtu's physical_group).
+  g.call(g.get_physical_groups, "gmshModelGetPhysicalGroups", &dim_tags, &n_dim_tags, dim);
+  const auto cell_groups = g.take(dim_tags, n_dim_tags);
+  for (std::size_t i = 0; i + 1 < cell_groups.size(); i += 2) {
+    RawGroup group;
+    group.tag = cell_groups[i + 1];
+    int* entities = nullptr;
+    std::size_t n_entities = 0;
+    g.call(g.get_entities_for_physical_group, "gmshModelGetEntitiesForPhysicalGroup",
+           cell_groups[i], group.tag, &entities, &n_entities);
+    for (const int e : g.take(entities, n_entities)) {
+      get_elements(dim, e, types, nodes);
+      for (std::size_t b = 0; b < types.size(); ++b)
+        group.blocks.push_back(to_block(types[b], std::move(nodes[b]), raw));
+    }
+    raw.cell_groups.push_back(std::move(group));
+  }
   return raw;
 }
 
@@ -284,6 +301,12 @@ std::string encode(const RawMesh& raw) {
     b.put(static_cast<std::uint64_t>(g.blocks.size()));
     for (const auto& c : g.blocks) put_block(b, c);
   }
+  b.put(static_cast<std::uint64_t>(raw.cell_groups.size()));
+  for (const auto& g : raw.cell_groups) {
+    b.put(static_cast<std::int32_t>(g.tag));
+    b.put(static_cast<std::uint64_t>(g.blocks.size()));
+    for (const auto& c : g.blocks) put_block(b, c);
+  }
   b.put(static_cast<std::uint64_t>(raw.type_names.size()));
   for (const auto& [type, name] : raw.type_names) {
     b.put(static_cast<std::int32_t>(type));
@@ -303,6 +326,12 @@ RawMesh decode(const std::string& bytes) {
     g.name = r.get_string();
     for (auto m = r.get<std::uint64_t>(); m > 0; --m) g.blocks.push_back(get_block(r));
     raw.groups.push_back(std::move(g));
+  }
+  for (auto n = r.get<std::uint64_t>(); n > 0; --n) {
+    RawGroup g;
+    g.tag = r.get<std::int32_t>();
+    for (auto m = r.get<std::uint64_t>(); m > 0; --m) g.blocks.push_back(get_block(r));
+    raw.cell_groups.push_back(std::move(g));
   }
   for (auto n = r.get<std::uint64_t>(); n > 0; --n) {
     const int type = r.get<std::int32_t>();

@@ -157,8 +157,37 @@ double twice_area(const Mesh& m, std::span<const int> v) {
   return a;
 }
 
+/// A cell's gmsh node tags, sorted and padded with 0 (gmsh's tags start at 1).
+using CellKey = std::array<std::size_t, 8>;
+struct CellKeyHash {
+  std::size_t operator()(const CellKey& k) const {
+    std::size_t h = 0;
+    for (const auto i : k) h = h * 1000003u ^ std::hash<std::size_t>{}(i);
+    return h;
+  }
+};
+CellKey cell_key(const std::size_t* tags, std::size_t n) {
+  CellKey k{};
+  std::copy(tags, tags + std::min<std::size_t>(n, 8), k.begin());
+  std::sort(k.begin(), k.begin() + static_cast<long>(std::min<std::size_t>(n, 8)));
+  return k;
+}
+
 void add_cells(const RawMesh& raw, const TagMap& ids, Mesh& m, const std::string& where) {
   const int dim = m.dim();
+  // The physical group of each cell of a cell group (the lowest tag when it is in several):
+  // the groups list the same elements as the whole model, found again by their nodes.
+  std::unordered_map<CellKey, int, CellKeyHash> group_of;
+  for (const auto& g : raw.cell_groups)
+    for (const auto& b : g.blocks) {
+      CellType t{};
+      if (!to_cell_type(b.type, dim, t)) continue;
+      const std::size_t n = static_cast<std::size_t>(n_nodes(t));
+      for (std::size_t e = 0; e + n <= b.nodes.size(); e += n) {
+        const auto [it, added] = group_of.emplace(cell_key(&b.nodes[e], n), g.tag);
+        if (!added) it->second = std::min(it->second, g.tag);
+      }
+    }
   for (const auto& b : raw.cells) {
     CellType t{};
     if (!to_cell_type(b.type, dim, t))
@@ -174,7 +203,8 @@ void add_cells(const RawMesh& raw, const TagMap& ids, Mesh& m, const std::string
       // Clockwise 2D cells come from surfaces with normal −z (see the top of this file):
       // reversing keeps node 0 and turns the cell counter-clockwise.
       if (dim == 2 && twice_area(m, nodes) < 0) std::reverse(nodes.begin() + 1, nodes.end());
-      m.add_cell(t, nodes);
+      const auto group = group_of.find(cell_key(&b.nodes[e], n));
+      m.add_cell(t, nodes, group == group_of.end() ? -1 : group->second);
     }
   }
 }

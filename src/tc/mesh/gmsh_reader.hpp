@@ -26,6 +26,7 @@ struct RawBlock {
 struct RawGroup {
   std::string name;
   std::vector<RawBlock> blocks;
+  int tag = -1;  // gmsh's physical tag (kept for the cell groups)
 };
 
 struct RawMesh {
@@ -33,6 +34,7 @@ struct RawMesh {
   std::vector<double> coords;  // 3 per node tag
   std::vector<RawBlock> cells;
   std::vector<RawGroup> groups;                     // named groups of dimension dim − 1
+  std::vector<RawGroup> cell_groups;                // groups of dimension dim, named or not
   std::unordered_map<int, std::string> type_names;  // gmsh's name of every type seen
 };
 

@@ -68,13 +68,14 @@ int Mesh::add_point(const Point& p) {
   return n_nodes() - 1;
 }
 
-int Mesh::add_cell(CellType t, std::span<const int> nodes) {
+int Mesh::add_cell(CellType t, std::span<const int> nodes, int group) {
   TC_VERIFY(static_cast<int>(nodes.size()) == mesh::n_nodes(t),
             "a cell lists as many nodes as its type has");
   TC_VERIFY(dimension(t) == dim_, "a cell has the mesh's dimension");
   types_.push_back(t);
   cell_nodes_.insert(cell_nodes_.end(), nodes.begin(), nodes.end());
   offsets_.push_back(static_cast<int>(cell_nodes_.size()));
+  groups_.push_back(group);
   return n_cells() - 1;
 }
 

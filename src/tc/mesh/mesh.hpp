@@ -49,8 +49,11 @@ class Mesh {
     return {cell_nodes_.data() + offsets_[c], static_cast<size_t>(offsets_[c + 1] - offsets_[c])};
   }
 
+  /// The Gmsh physical group of cell c (its tag), −1 when it has none (a box mesh).
+  [[nodiscard]] int cell_group(int c) const { return groups_[c]; }
+
   int add_point(const Point& p);
-  int add_cell(CellType t, std::span<const int> nodes);
+  int add_cell(CellType t, std::span<const int> nodes, int group = -1);
   void add_facet(const std::string& boundary, const Facet& f);
 
   [[nodiscard]] bool has_boundary(const std::string& name) const {
@@ -69,6 +72,7 @@ class Mesh {
   std::vector<CellType> types_;
   std::vector<int> offsets_{0};
   std::vector<int> cell_nodes_;
+  std::vector<int> groups_;  // per cell
   std::map<std::string, std::vector<Facet>> boundaries_;
 };
 

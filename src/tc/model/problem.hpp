@@ -197,9 +197,27 @@ struct SolverSettings {
   int max_cutbacks = 4;
 };
 
+/// A `[[probe]]` of the case: point fields recorded after every step in probes.csv
+/// (io/probes.hpp), at a point of a body's reference configuration (interpolated by the shape
+/// functions of the cell holding it) or, when `where` names a boundary, averaged over its nodes.
+struct Probe {
+  std::string name;
+  int body = 0;
+  std::array<double, 3> point{0.0, 0.0, 0.0};
+  std::string where;                               // a boundary of the body, or "" (point)
+  std::vector<std::string> fields{"temperature"};  // of io::probe_fields()
+};
+
 struct OutputSettings {
   std::filesystem::path directory = "out";
   int every = 1;
+  /// How the .vtu files hold their arrays (io::VtuEncoding): `format` "ascii" or "binary"
+  /// (appended raw), `compression` "zlib" for compressed binary.
+  enum class Encoding { ascii, binary, zlib };
+  Encoding encoding = Encoding::ascii;
+  /// contact_<step>.csv with every contact node's state at each written step (io/contact_csv).
+  bool contact_csv = false;
+  std::vector<Probe> probes;
   /// The checkpoint's policy (io::CheckpointPolicy): after a step once this many steps have
   /// passed since the last one (0: never by count), or this many seconds of wall time (0:
   /// never by time); always at step 0, at a stop and at the end.
