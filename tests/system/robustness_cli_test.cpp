@@ -12,6 +12,7 @@
 
 #include "support/cli.hpp"
 #include "tc/io/auto_subdomains.hpp"
+#include "tc/mesh/box.hpp"
 
 namespace fs = std::filesystem;
 using tc::test::replace_all;
@@ -484,7 +485,7 @@ TEST(Issue39, SummaryPhasesAddUpToTheWallTimeOfTheRun) {
 
 TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {
   // subdomains = "auto" (the default): a 3D box of 2.17 M dofs would need ~86 GiB solved
-  // directly (io::direct_memory), so it is cut into FETI subdomains of about 40 k dofs, and
+  // directly (io::body_costs), so it is cut into FETI subdomains of about 40 k dofs, and
   // `check` says so before anything runs. The count follows this machine's memory
   // (io::kMemoryShare of it for the bodies): the expected line is computed from the same rule.
   const auto file = write_case(
@@ -495,9 +496,11 @@ TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {
   const auto r = limited("check " + file.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  const double dofs = 101.0 * 101.0 * 71.0 * 3.0;
-  const int n = tc::io::auto_subdomains(
-      3, {dofs}, tc::io::kMemoryShare * static_cast<double>(pages) * page)[0];
+  const auto box = tc::mesh::make_box(3, {0, 0, 0}, {0.01, 0.01, 0.007}, {100, 100, 70});
+  const int n =
+      tc::io::choose_subdomains({tc::io::body_costs(box, 3, 1, 0)},
+                                tc::io::kMemoryShare * static_cast<double>(pages) * page, 2)
+          .subdomains[0];
   if (n > 1)
     EXPECT_NE(r.output.find("body \"b\": " + std::to_string(n) + " FETI subdomains"),
               std::string::npos)
@@ -517,9 +520,12 @@ TEST(Issue22, RanksOnOneNodeShareItsMemoryWhenSubdomainsAreChosen) {
   const double budget = tc::io::kMemoryShare * static_cast<double>(pages) * page;
   int n = 8;
   const auto dofs = [](int c) { return 3.0 * (c + 1.0) * (c + 1.0) * (c + 1.0); };
+  // Over ranks the estimate is the fit (io::direct_memory); on one rank the analysis.
   while (tc::io::direct_memory(3, dofs(n), 2) <= budget / 2) ++n;
-  if (tc::io::direct_memory(3, dofs(n)) > budget || dofs(n) > 2.5e6)
-    GTEST_SKIP() << "no cube between the two budgets below 2.5 M dofs on this machine";
+  const auto cube = tc::mesh::make_box(3, {0, 0, 0}, {0.01, 0.01, 0.01}, {n, n, n});
+  if (dofs(n) > 1.5e6 ||
+      tc::io::choose_subdomains({tc::io::body_costs(cube, 3, 1, 0)}, budget, 2).subdomains[0] > 1)
+    GTEST_SKIP() << "no cube solved directly on one rank and cut on two below 1.5 M dofs here";
   const auto cells = std::to_string(n);
   const auto file =
       write_case("auto-subdomains-ranks",
@@ -536,7 +542,8 @@ TEST(Issue22, RanksOnOneNodeShareItsMemoryWhenSubdomainsAreChosen) {
       std::string(TC_MPIEXEC) + " -n 2 " + TC_BINARY;
   const auto two = tc::test::run_command(kTimeLimit + launcher + " check " + file.string());
   ASSERT_EQ(two.exit_code, 0) << two.output;
-  const int k = tc::io::auto_subdomains(3, {dofs(n)}, budget / 2, 2)[0];
+  const int k =
+      tc::io::choose_subdomains({tc::io::body_costs(cube, 3, 2, 0)}, budget / 2, 2).subdomains[0];
   ASSERT_GT(k, 1);
   EXPECT_NE(two.output.find("body \"b\": " + std::to_string(k) + " FETI subdomains"),
             std::string::npos)
