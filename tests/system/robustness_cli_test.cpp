@@ -512,20 +512,18 @@ TEST(Issue22, CheckSaysWhenABodyIsTooLargeToSolveDirectlyAndCutsIt) {
 
 TEST(Issue22, RanksOnOneNodeShareItsMemoryWhenSubdomainsAreChosen) {
   // Every rank holds every body's matrices and its share of the direct factors (docs/choices.md,
-  // "Replicated state"), so "auto" gives each rank its share of the node's memory, and a
-  // direct body's estimate on 2 ranks halves its factor only. A cube whose direct solve fits
-  // the budget of one rank but not half of it with half its factor: direct on one rank, cut
-  // on two, with the count of the same rule on half the budget.
+  // "Replicated state"), so "auto" gives each rank its share of the node's memory: a cube whose
+  // direct solve over 2 ranks (the fit, io::direct_memory: MUMPS spreads the factor) does not
+  // fit half the budget is cut on two ranks, with the count of the same rule on half the
+  // budget. (On one rank the same cube is estimated by CHOLMOD's analysis, tens of seconds for
+  // such a cube: its one-rank choice is AutoSubdomains' in io_case_reader_test.)
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   const double budget = tc::io::kMemoryShare * static_cast<double>(pages) * page;
   int n = 8;
   const auto dofs = [](int c) { return 3.0 * (c + 1.0) * (c + 1.0) * (c + 1.0); };
-  // Over ranks the estimate is the fit (io::direct_memory); on one rank the analysis.
   while (tc::io::direct_memory(3, dofs(n), 2) <= budget / 2) ++n;
+  if (dofs(n) > 2.5e6) GTEST_SKIP() << "no cube below 2.5 M dofs cut on two ranks here";
   const auto cube = tc::mesh::make_box(3, {0, 0, 0}, {0.01, 0.01, 0.01}, {n, n, n});
-  if (dofs(n) > 1.5e6 ||
-      tc::io::choose_subdomains({tc::io::body_costs(cube, 3, 1, 0)}, budget, 2).subdomains[0] > 1)
-    GTEST_SKIP() << "no cube solved directly on one rank and cut on two below 1.5 M dofs here";
   const auto cells = std::to_string(n);
   const auto file =
       write_case("auto-subdomains-ranks",
@@ -533,9 +531,6 @@ TEST(Issue22, RanksOnOneNodeShareItsMemoryWhenSubdomainsAreChosen) {
                              "min = [0.0, 0.0], max = [0.01, 0.01], cells = [2, 2]",
                              "min = [0.0, 0.0, 0.0], max = [0.01, 0.01, 0.01], cells = [" + cells +
                                  ", " + cells + ", " + cells + "]"));
-  const auto one = limited("check " + file.string());
-  ASSERT_EQ(one.exit_code, 0) << one.output;
-  EXPECT_EQ(one.output.find("FETI subdomains"), std::string::npos) << one.output;
   const std::string launcher =
       "env -i PATH=/usr/bin:/bin HOME=/tmp OMPI_ALLOW_RUN_AS_ROOT=1 "
       "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
@@ -551,5 +546,5 @@ TEST(Issue22, RanksOnOneNodeShareItsMemoryWhenSubdomainsAreChosen) {
   EXPECT_NE(two.output.find("on each of the 2 ranks of this node"), std::string::npos)
       << two.output;
   EXPECT_EQ(occurrences(two.output, ": valid ("), 1u) << two.output;  // said once, by rank 0
-  std::printf("%d³ cells: one rank\n%stwo ranks\n%s", n, one.output.c_str(), two.output.c_str());
+  std::printf("%d³ cells, two ranks\n%s", n, two.output.c_str());
 }
