@@ -27,7 +27,6 @@
 #include "tc/core/petsc.hpp"
 #include "tc/core/stop.hpp"
 #include "tc/core/threads.hpp"
-#include "tc/io/auto_subdomains.hpp"
 #include "tc/io/case_reader.hpp"
 #include "tc/io/checkpoint.hpp"
 #include "tc/io/data_checks.hpp"
@@ -440,19 +439,16 @@ int check(const std::string& case_file, const std::vector<std::string>& override
                nodes, cells, problem.time.n_steps());
     const int node = tc::core::PetscSession::node_size();
     const auto each = node > 1 ? fmt::format(" on each of the {} ranks of this node", node) : "";
-    // Every body's count, 1 included (case-format.md: `check` prints what "auto" chose).
+    // Every body's count, 1 included, and what "auto" weighed (case-format.md: `check` prints
+    // what "auto" chose and why).
     for (const auto& b : problem.bodies) {
-      const double gib =
-          tc::io::direct_memory(problem.dimension,
-                                static_cast<double>(b.mesh.n_nodes()) * problem.dimension) /
-          (1024.0 * 1024.0 * 1024.0);
+      const auto why = b.subdomains_reason.empty()
+                           ? std::string()
+                           : fmt::format(" ({}{})", b.subdomains_reason, each);
       if (b.subdomains > 1)
-        fmt::print(
-            "  body \"{}\": {} FETI subdomains (solved directly it would need about {:.1f} "
-            "GiB{})\n",
-            b.name, b.subdomains, gib, each);
+        fmt::print("  body \"{}\": {} FETI subdomains{}\n", b.name, b.subdomains, why);
       else
-        fmt::print("  body \"{}\": 1 subdomain, solved directly\n", b.name);
+        fmt::print("  body \"{}\": 1 subdomain, solved directly{}\n", b.name, why);
     }
     return 0;
   } catch (const tc::InputError& e) {

@@ -15,7 +15,10 @@
 # BASELINE_RANKS for the baseline (default 1: no launcher; N > 1 runs `mpirun -n N
 # --oversubscribe`, and the peak RSS is then that of the largest rank). SUBDOMAINS=<n> sets
 # `subdomains = n` on both bodies (1: solved directly whatever "auto" would choose for the
-# ranks). Needs ~14.5 GiB at K = 5.3 on one rank, ~5.0 GiB per rank on 4 with SUBDOMAINS=1.
+# ranks). STEP=<τ> sets the time step (default 0.01; the run ends at STEPS·τ): issue 39's case
+# is `STEP=0.03 million.sh 10 5.5`, 1 173 136 dofs, 10 steps through the onset of sliding at
+# t = 0.2 s (step 7). Needs ~14.5 GiB at K = 5.3 on one rank, ~5.0 GiB per rank on 4 with
+# SUBDOMAINS=1.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 steps=${1:-10}
@@ -25,7 +28,8 @@ ks=("$@")
 work=${TC_BENCH_WORK:-$(mktemp -d)}
 [[ -n ${TC_BENCH_WORK:-} ]] || trap 'rm -rf "$work"' EXIT
 ex=$root/examples/06-thesis-frictional-heating/case.toml
-end=$(python3 -c "print(round(0.01 * $steps, 6))")
+step=${STEP:-0.01}
+end=$(python3 -c "print(round($step * $steps, 6))")
 whos=(current)
 [[ -z ${BASELINE:-} ]] || whos=(baseline current)
 for k in "${ks[@]}"; do
@@ -33,7 +37,7 @@ for k in "${ks[@]}"; do
 k = $k
 print(','.join(str(round(c * k)) for c in (8, 30, 6)), round(6 * k))")
   sed -e "s/cells = \[8, 30, 6\]/cells = [$master]/" -e "s/cells = \[6, 6, 6\]/cells = [$slave, $slave, $slave]/" \
-    -e "s/^end = 1.0/end = $end/" "$ex" >"$work/k$k.toml"
+    -e "s/^step = 0.01/step = $step/" -e "s/^end = 1.0/end = $end/" "$ex" >"$work/k$k.toml"
   [[ -z ${SUBDOMAINS:-} ]] || sed -i "s/^\(name = \"\(master\|slave\)\"\)$/\1\nsubdomains = $SUBDOMAINS/" "$work/k$k.toml"
   for who in "${whos[@]}"; do
     bin=$root/build/bin/thermocontact threads=${THREADS:-1} ranks=${RANKS:-1}

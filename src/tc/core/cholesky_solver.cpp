@@ -120,6 +120,21 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> 
   *this = CholeskySolver(reduced, package_, FactorRanks::this_rank);
 }
 
+CholeskySolver::CholeskySolver(SparseMatrix&& a, std::span<const PetscInt> eliminated, double diag,
+                               const std::string& package, FactorRanks ranks) {
+  package_ = package;
+  if (spread_over_ranks(ranks, a.distributed())) {
+    factor_over_ranks(a, eliminated, diag);
+    return;
+  }
+  a.zero_rows_columns(eliminated, diag);
+  if (package_ == MATSOLVERCHOLMOD) {
+    cholmod_ = std::make_shared<const CholmodFactor>(a.get(), [&a] { a = SparseMatrix{}; });
+    return;
+  }
+  *this = CholeskySolver(a, package_, FactorRanks::this_rank);
+}
+
 // MatSolve and MatMatSolve on the factor are what KSPPREONLY with PCCHOLESKY calls: the same
 // bits as solving through the KSP.
 void CholeskySolver::solve(const Vector& b, Vector& x) const {

@@ -103,9 +103,13 @@ double factorisation_flops(int n) {
 
 }  // namespace
 
-CholmodFactor::CholmodFactor(::Mat a) : state_(std::make_unique<State>()) {
+CholmodFactor::CholmodFactor(::Mat a) : CholmodFactor(a, {}) {}
+
+CholmodFactor::CholmodFactor(::Mat a, const std::function<void()>& release)
+    : state_(std::make_unique<State>()) {
   auto& c = state_->common;
   LowerColumns lower(a);
+  if (release) release();  // `a` is not read again
   state_->n = static_cast<int>(lower.view.nrow);
   const KernelThreads threads(factorisation_flops(state_->n));
   state_->factor = cholmod_analyze(&lower.view, &c);

@@ -7,6 +7,7 @@
 // (docs/choices.md, "CHOLMOD through its own API").
 #include <petscmat.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -21,6 +22,9 @@ namespace tc::core {
 class CholmodFactor {
  public:
   explicit CholmodFactor(::Mat a);
+  /// The same, calling `release` once CHOLMOD's copy of a's triangle is made: the caller may
+  /// free `a` there, before the factor is allocated.
+  CholmodFactor(::Mat a, const std::function<void()>& release);
   ~CholmodFactor();
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;

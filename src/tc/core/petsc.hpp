@@ -240,6 +240,11 @@ class CholeskySolver {
   /// factor is spread over the ranks (each rank takes its rows, eliminated on the way).
   CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> eliminated, double diag,
                  const std::string& package, FactorRanks ranks);
+  /// The same consuming `a`: eliminated in place (no copy), and with CHOLMOD freed as soon as
+  /// CHOLMOD holds its triangle, before the numeric factorisation, so that the factor's peak
+  /// holds no whole copy of the operator (the same factor, the same bits).
+  CholeskySolver(SparseMatrix&& a, std::span<const PetscInt> eliminated, double diag,
+                 const std::string& package, FactorRanks ranks);
   void solve(const Vector& b, Vector& x) const;
   void solve_raw(::Vec b, ::Vec x) const;  // the same on bare PETSc vectors
   /// X = A⁻¹B for dense B and X (n × k, column-major, PETSc MATSEQDENSE): one multi-right-hand

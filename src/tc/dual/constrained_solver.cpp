@@ -21,6 +21,23 @@ std::vector<PetscInt> free_or_none(std::span<const PetscInt> dofs,
 ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
                                      const std::string& package, core::FactorRanks ranks)
     : dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)) {
+  keep_lifting(a);
+  factor_ = core::CholeskySolver(a, dofs_, diag_, package, ranks);
+  lift_ = core::Vector(a.rows());
+  rhs_ = core::Vector(a.rows());
+}
+
+ConstrainedSolver::ConstrainedSolver(core::SparseMatrix&& a, std::vector<PetscInt> dofs,
+                                     const std::string& package, core::FactorRanks ranks)
+    : dofs_(std::move(dofs)), diag_(core::mean_diagonal(a)) {
+  keep_lifting(a);
+  const PetscInt n = a.rows();
+  factor_ = core::CholeskySolver(std::move(a), dofs_, diag_, package, ranks);
+  lift_ = core::Vector(n);
+  rhs_ = core::Vector(n);
+}
+
+void ConstrainedSolver::keep_lifting(const core::SparseMatrix& a) {
   std::sort(dofs_.begin(), dofs_.end());  // the lifting sums in column order, as MatMult
   dofs_.erase(std::unique(dofs_.begin(), dofs_.end()), dofs_.end());
   std::vector<PetscInt> position(static_cast<size_t>(a.rows()), -1);
@@ -47,9 +64,6 @@ ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<Pe
     }
     lift_start_.push_back(static_cast<PetscInt>(lift_row_.size()));
   }
-  factor_ = core::CholeskySolver(a, dofs_, diag_, package, ranks);
-  lift_ = core::Vector(a.rows());
-  rhs_ = core::Vector(a.rows());
 }
 
 ConstrainedSolver::ConstrainedSolver(std::unique_ptr<feti::Feti> feti) : feti_(std::move(feti)) {}

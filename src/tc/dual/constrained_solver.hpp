@@ -21,6 +21,10 @@ class ConstrainedSolver {
   ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
                     const std::string& package,
                     core::FactorRanks ranks = core::FactorRanks::this_rank);
+  /// The same consuming `a` (core::CholeskySolver's consuming constructor): the factor's peak
+  /// holds no copy of the operator.
+  ConstrainedSolver(core::SparseMatrix&& a, std::vector<PetscInt> dofs, const std::string& package,
+                    core::FactorRanks ranks = core::FactorRanks::this_rank);
   /// The same system solved by FETI over subdomains (the FETI object owns the Dirichlet dofs).
   explicit ConstrainedSolver(std::unique_ptr<feti::Feti> feti);
   ~ConstrainedSolver();
@@ -74,6 +78,8 @@ class ConstrainedSolver {
   [[nodiscard]] const feti::Feti* feti() const { return feti_.get(); }
 
  private:
+  // Sorts dofs_ and keeps A(:, D) on the free rows (the lifting).
+  void keep_lifting(const core::SparseMatrix& a);
   // The right-hand side with the prescribed values x_D lifted (symmetric elimination).
   const core::Vector& lifted(const core::Vector& b, const core::Vector& x) const;
 

@@ -33,7 +33,6 @@ void CaseReader::read_bodies(const TableReader& root) {
       issues_.add(line_of(*a->get(i)->as_table()->get("name")), join(at("bodies", i), "name"),
                   fmt::format("found \"{}\" again, expected a unique body name", printable(name)));
   }
-  resolve_auto_subdomains(root, *a);
 }
 
 int CaseReader::factor_ranks(const TableReader& root) const {
@@ -44,34 +43,57 @@ int CaseReader::factor_ranks(const TableReader& root) const {
   return core::ranks_sharing_a_factor(package == "auto" ? std::string() : package);
 }
 
-void CaseReader::resolve_auto_subdomains(const TableReader& root, const toml::array& bodies) {
-  // One budget for all bodies: they are in memory together. Measured peaks and the rule:
-  // docs/choices.md.
-  std::vector<double> dofs(p_.bodies.size(), 0.0);
-  for (size_t i = 0; i < p_.bodies.size(); ++i)
-    if (p_.bodies[i].subdomains == 0 && mesh_built_[i])
-      dofs[i] = static_cast<double>(p_.bodies[i].mesh.n_nodes()) * dim_;
-  // Bodies with a number set take their share first (approximately: as if direct).
+void CaseReader::resolve_auto_subdomains(const TableReader& root) {
+  const auto* node = root.get("bodies");  // read_bodies said what is wrong with it, if anything
+  const auto* bodies = node ? node->as_array() : nullptr;
+  if (!bodies || bodies->size() != p_.bodies.size()) return;
+  // One budget for all bodies: they are in memory together. The cost model and its
+  // measurements: docs/choices.md.
   const int ranks = factor_ranks(root);
-  std::vector<double> direct;
-  for (const auto& body : p_.bodies)
-    if (body.subdomains == 1) direct.push_back(body.mesh.n_nodes() * double(dim_));
-  const auto chosen = auto_subdomains(dim_, dofs, auto_budget(dim_, direct, ranks), ranks);
+  // A contact body's compliance has a right-hand side per multiplier of its pairs: the slave
+  // surface's nodes, dim each (what FETI pays block solves for at each sliding step).
+  std::vector<double> columns(p_.bodies.size(), 0.0);
+  for (const auto& c : p_.contacts) {
+    const auto s = static_cast<size_t>(c.slave_body), m = static_cast<size_t>(c.master_body);
+    if (s >= p_.bodies.size() || m >= p_.bodies.size() || !mesh_built_[s] ||
+        !p_.bodies[s].mesh.has_boundary(c.slave_where))
+      continue;
+    const double rows =
+        dim_ * static_cast<double>(p_.bodies[s].mesh.boundary_nodes(c.slave_where).size());
+    columns[s] += rows;
+    if (m != s) columns[m] += rows;
+  }
+  if (std::none_of(p_.bodies.begin(), p_.bodies.end(),
+                   [](const physics::Body& b) { return b.subdomains == 0; }))
+    return;  // every count set by the case: nothing to estimate
+  std::vector<size_t> automatic;
+  std::vector<BodyCosts> costs;
+  double fixed = 0;  // the bodies with one subdomain set take their share first
   for (size_t i = 0; i < p_.bodies.size(); ++i) {
+    const auto& body = p_.bodies[i];
+    if (!mesh_built_[i] || (body.subdomains != 0 && body.subdomains != 1)) continue;
+    auto c = body_costs(body.mesh, dim_, ranks, columns[i]);
+    if (body.subdomains == 1)
+      fixed += c.direct_bytes;
+    else
+      automatic.push_back(i), costs.push_back(std::move(c));
+  }
+  const auto chosen = choose_subdomains(costs, auto_budget(fixed), p_.time.n_steps());
+  for (auto& body : p_.bodies)
+    if (body.subdomains == 0) body.subdomains = 1;  // a body whose mesh failed: left as 1
+  for (size_t k = 0; k < automatic.size(); ++k) {
+    const size_t i = automatic[k];
     auto& body = p_.bodies[i];
-    if (body.subdomains != 0) continue;
-    body.subdomains = 1;
-    if (!mesh_built_[i] || chosen[i] == 1) continue;
-    body.subdomains = std::min(chosen[i], body.mesh.n_cells());
+    body.subdomains_reason = chosen.reasons[k];
+    if (chosen.subdomains[k] == 1) continue;
+    body.subdomains = std::min(chosen.subdomains[k], body.mesh.n_cells());
     try {
       (void)mesh::partition_cells(body.mesh, body.subdomains);
     } catch (const MeshError& e) {
-      issues_.add(
-          line_of(*bodies.get(i)->as_table()), join(at("bodies", i), "subdomains"),
-          fmt::format("\"auto\" chose {} subdomains (the direct factorisation would "
-                      "need about {:.1f} GiB), which the body's mesh cannot be cut "
-                      "into: {}; expected a number that it can",
-                      body.subdomains, direct_memory(dim_, dofs[i], ranks) / kGiB, e.what()));
+      issues_.add(line_of(*bodies->get(i)->as_table()), join(at("bodies", i), "subdomains"),
+                  fmt::format("\"auto\" chose {} subdomains ({}), which the body's mesh cannot "
+                              "be cut into: {}; expected a number that it can",
+                              body.subdomains, chosen.reasons[k], e.what()));
     }
   }
 }

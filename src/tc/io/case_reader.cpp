@@ -50,6 +50,7 @@ Problem CaseReader::read() {
   read_bodies(root);
   read_boundaries(root);
   read_contacts(root);
+  resolve_auto_subdomains(root);
   read_solver(root);
   read_output(root);
   read_probes(root);

@@ -34,9 +34,10 @@ class CaseReader {
   void read_bodies(const TableReader& root);
   void read_body(const toml::table& t, size_t index);
   void read_body_loads(const TableReader& b, physics::Body& body);
-  /// `subdomains = "auto"` (or absent) → 1, or FETI subdomains where the direct factorisation
-  /// would not fit comfortably (auto_subdomains).
-  void resolve_auto_subdomains(const TableReader& root, const toml::array& bodies);
+  /// `subdomains = "auto"` (or absent) → 1, or FETI subdomains where the direct path would not
+  /// fit or would be slower (choose_subdomains); read after the contact pairs, whose
+  /// multipliers the estimate counts.
+  void resolve_auto_subdomains(const TableReader& root);
   /// The ranks a direct body's factor is spread over (1: each rank factorises it).
   [[nodiscard]] int factor_ranks(const TableReader& root) const;
   void read_mesh(const TableReader& b, physics::Body& body);

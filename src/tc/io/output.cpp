@@ -502,6 +502,12 @@ std::string OutputWriter::summary_text(const physics::Simulation& sim, const std
   out.print("  \"ranks\": {},\n", core::PetscSession::size());
   out.print("  \"blas_threads\": {},\n", blas_threads_json());
   out.print("  \"subdomains\": {},\n", subdomains);
+  // What subdomains = "auto" chose per body and the estimates it weighed (io::choose_subdomains).
+  std::string chosen;
+  for (const auto& b : p.bodies)
+    chosen += fmt::format("{}{}: {{\"subdomains\": {}, \"auto\": {}}}", chosen.empty() ? "" : ", ",
+                          json_string(b.name), b.subdomains, json_string(b.subdomains_reason));
+  out.print("  \"subdomain_choice\": {{{}}},\n", chosen);
   const auto feti = sim.feti_statistics();
   out.print(
       "  \"feti\": {{\"solves\": {}, \"right_hand_sides\": {}, \"iterations\": {}, "

@@ -70,6 +70,9 @@ struct Body {
   std::array<TimeTable, 3> body_force{};  // f of (2.1) [N/m³]
   TimeTable heat_source{0.0};             // r of (2.8) [W/m³]
   int subdomains = 1;
+  /// Why `subdomains = "auto"` chose the count: the estimates it weighed (io::SubdomainChoice's
+  /// text, printed by `check` and recorded in summary.json); empty when the case set a number.
+  std::string subdomains_reason;
 };
 
 /// Stefan–Boltzmann constant σ [W/(m²K⁴)] (CODATA 2018, exact in SI since 2019).

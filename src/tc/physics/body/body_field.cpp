@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <utility>
 
 #include "tc/core/error.hpp"
+#include "tc/core/verify.hpp"
 #include "tc/physics/body/time_scheme.hpp"
 
 namespace tc::physics {
@@ -115,6 +117,16 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
   return std::make_unique<ConstrainedSolver>(std::make_unique<feti::Feti>(
       sys.subdomains(), sys.body().mesh.n_nodes(), mech ? sys.dim() : 1, dirichlet, kernel,
       singular, local, options));
+}
+
+std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySystem& sys,
+                                               core::SparseMatrix&& a, BodyOperator op) {
+  if (!sys.subdomains().empty()) return body_solver(p, sys, std::as_const(a), op);
+  std::vector<PetscInt> dirichlet =
+      op != BodyOperator::heat ? sys.u_dirichlet_dofs() : sys.theta_dirichlet_dofs();
+  TC_VERIFY(op != BodyOperator::mass, "body_solver: M_u is kept, not consumed");
+  return std::make_unique<ConstrainedSolver>(std::move(a), std::move(dirichlet),
+                                             p.solver.factorization, core::FactorRanks::all_ranks);
 }
 
 BodyField::BodyField(const Problem& p, const BodySystem& sys) {

@@ -25,6 +25,12 @@ enum class BodyOperator { mechanics, heat, mass, statics };
                                                              const BodySystem& sys,
                                                              const core::SparseMatrix& a,
                                                              BodyOperator op);
+/// The same consuming `a` when the body is solved directly (ConstrainedSolver's consuming
+/// constructor): for an operator formed only to be factorised.
+[[nodiscard]] std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p,
+                                                             const BodySystem& sys,
+                                                             core::SparseMatrix&& a,
+                                                             BodyOperator op);
 
 /// Displacement, velocity, acceleration and temperature of one body at the current time.
 struct BodyState {
