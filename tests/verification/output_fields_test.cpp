@@ -10,7 +10,7 @@
 
 #include "support/problems.hpp"
 #include "tc/io/output.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 using namespace tc;
 using namespace tc::test;

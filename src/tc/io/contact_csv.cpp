@@ -6,7 +6,7 @@
 
 #include "tc/io/files.hpp"
 #include "tc/io/output.hpp"
-#include "tc/physics/contact_heat.hpp"
+#include "tc/physics/interface_heat/contact_heat.hpp"
 
 namespace tc::io {
 

@@ -5,7 +5,7 @@
 
 #include "tc/core/verify.hpp"
 #include "tc/fem/element.hpp"
-#include "tc/physics/simulation.hpp"
+#include "tc/run/simulation.hpp"
 
 namespace tc::io {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "tc/mesh/mesh.hpp"
-#include "tc/physics/problem.hpp"
+#include "tc/model/problem.hpp"
 
 namespace tc::physics {
 class Simulation;
