@@ -311,22 +311,32 @@ TEST(GmshReader, ClockwiseCellsAreReversed) {
   }
 }
 
+/// [0,1]×[0,1] of 4×4 quads glued to [1,2]×[0,1] of triangles along x = 1, in the gmsh model
+/// being built: the tags of its curves and surfaces.
+struct TwoSquares {
+  int b1, b2, r, t2, t1, l, mid, s1, s2;
+};
+TwoSquares two_squares() {
+  namespace geo = gmsh::model::geo;
+  const int p[6] = {geo::addPoint(0, 0, 0), geo::addPoint(1, 0, 0), geo::addPoint(2, 0, 0),
+                    geo::addPoint(2, 1, 0), geo::addPoint(1, 1, 0), geo::addPoint(0, 1, 0)};
+  const int b1 = geo::addLine(p[0], p[1]), b2 = geo::addLine(p[1], p[2]);
+  const int r = geo::addLine(p[2], p[3]), t2 = geo::addLine(p[3], p[4]);
+  const int t1 = geo::addLine(p[4], p[5]), l = geo::addLine(p[5], p[0]);
+  const int mid = geo::addLine(p[1], p[4]);
+  const int s1 = geo::addPlaneSurface({geo::addCurveLoop({b1, mid, t1, l})});
+  const int s2 = geo::addPlaneSurface({geo::addCurveLoop({b2, r, t2, -mid})});
+  geo::synchronize();
+  for (const int c : {b1, b2, r, t2, t1, l, mid}) gmsh::model::mesh::setTransfiniteCurve(c, 5);
+  gmsh::model::mesh::setTransfiniteSurface(s1);
+  gmsh::model::mesh::setRecombine(2, s1);
+  return {b1, b2, r, t2, t1, l, mid, s1, s2};
+}
+
 TEST(GmshReader, MixedTrianglesAndQuads) {
   // [0,1]×[0,1] of quads glued to [1,2]×[0,1] of triangles along x = 1.
   const auto file = generate("rect_mixed", 2, [] {
-    namespace geo = gmsh::model::geo;
-    const int p[6] = {geo::addPoint(0, 0, 0), geo::addPoint(1, 0, 0), geo::addPoint(2, 0, 0),
-                      geo::addPoint(2, 1, 0), geo::addPoint(1, 1, 0), geo::addPoint(0, 1, 0)};
-    const int b1 = geo::addLine(p[0], p[1]), b2 = geo::addLine(p[1], p[2]);
-    const int r = geo::addLine(p[2], p[3]), t2 = geo::addLine(p[3], p[4]);
-    const int t1 = geo::addLine(p[4], p[5]), l = geo::addLine(p[5], p[0]);
-    const int mid = geo::addLine(p[1], p[4]);
-    const int s1 = geo::addPlaneSurface({geo::addCurveLoop({b1, mid, t1, l})});
-    const int s2 = geo::addPlaneSurface({geo::addCurveLoop({b2, r, t2, -mid})});
-    geo::synchronize();
-    for (const int c : {b1, b2, r, t2, t1, l, mid}) gmsh::model::mesh::setTransfiniteCurve(c, 5);
-    gmsh::model::mesh::setTransfiniteSurface(s1);
-    gmsh::model::mesh::setRecombine(2, s1);
+    const auto [b1, b2, r, t2, t1, l, mid, s1, s2] = two_squares();
     named_group(1, {b1, b2}, "bottom");
     named_group(1, {r}, "right");
     named_group(1, {t1, t2}, "top");
@@ -349,19 +359,7 @@ TEST(GmshReader, CellsKeepTheirPhysicalGroup) {
   // every cell carries its group's tag (the .vtu's physical_group), −1 for a box mesh.
   int quads = -1, triangles = -1;
   const auto file = generate("rect_groups", 2, [&] {
-    namespace geo = gmsh::model::geo;
-    const int p[6] = {geo::addPoint(0, 0, 0), geo::addPoint(1, 0, 0), geo::addPoint(2, 0, 0),
-                      geo::addPoint(2, 1, 0), geo::addPoint(1, 1, 0), geo::addPoint(0, 1, 0)};
-    const int b1 = geo::addLine(p[0], p[1]), b2 = geo::addLine(p[1], p[2]);
-    const int r = geo::addLine(p[2], p[3]), t2 = geo::addLine(p[3], p[4]);
-    const int t1 = geo::addLine(p[4], p[5]), l = geo::addLine(p[5], p[0]);
-    const int mid = geo::addLine(p[1], p[4]);
-    const int s1 = geo::addPlaneSurface({geo::addCurveLoop({b1, mid, t1, l})});
-    const int s2 = geo::addPlaneSurface({geo::addCurveLoop({b2, r, t2, -mid})});
-    geo::synchronize();
-    for (const int c : {b1, b2, r, t2, t1, l, mid}) gmsh::model::mesh::setTransfiniteCurve(c, 5);
-    gmsh::model::mesh::setTransfiniteSurface(s1);
-    gmsh::model::mesh::setRecombine(2, s1);
+    const auto [b1, b2, r, t2, t1, l, mid, s1, s2] = two_squares();
     named_group(1, {b1, b2, r, t1, t2, l}, "outline");
     quads = named_group(2, {s1}, "left_part");
     triangles = gmsh::model::addPhysicalGroup(2, {s2}, 7);  // unnamed, tag 7

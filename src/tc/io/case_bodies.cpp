@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "tc/core/petsc.hpp"
@@ -78,7 +79,12 @@ void CaseReader::resolve_auto_subdomains(const TableReader& root) {
     else
       automatic.push_back(i), costs.push_back(std::move(c));
   }
-  const auto chosen = choose_subdomains(costs, auto_budget(fixed), p_.time.n_steps());
+  // The steps weigh the factorisations against the steps' costs; [time] may be invalid here
+  // (reported with the other issues at the end of the reading): one step then.
+  const double steps = p_.time.step > 0 && p_.time.end > 0 ? p_.time.end / p_.time.step : 1.0;
+  const int n_steps =
+      std::isfinite(steps) ? static_cast<int>(std::clamp(std::round(steps), 1.0, 1e8)) : 1;
+  const auto chosen = choose_subdomains(costs, auto_budget(fixed), n_steps);
   for (auto& body : p_.bodies)
     if (body.subdomains == 0) body.subdomains = 1;  // a body whose mesh failed: left as 1
   for (size_t k = 0; k < automatic.size(); ++k) {
