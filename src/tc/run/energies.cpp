@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tc/physics/contact/contact_coupling.hpp"
+#include "tc/physics/contact/step/contact_coupling.hpp"
 
 namespace tc::physics {
 
