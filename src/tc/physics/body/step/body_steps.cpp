@@ -74,8 +74,6 @@ void BodySteps::mech_step(int b, int step, int iteration) {
 int BodySteps::couple(int b, int step) {
   const auto& sys = *bodies_.systems[b];
   auto& s = *bodies_.fields[b];
-  body_time_scheme(problem_).begin_step(problem_, sys, bodies_.states[b], s,
-                                        step * problem_.time.step);
   const double tol = problem_.solver.coupling_tolerance;
   const bool two_way = s.expansion && s.heating;
   // One-way coupling: one pass in the order of the dependence is the exact solution of the
@@ -111,7 +109,6 @@ int BodySteps::couple(int b, int step) {
         fmt::format("the staggered fixed point (6.3) of body '{}' did not converge to {:.1e}",
                     sys.body().name, tol),
         step, result.iterations, result.change);
-  body_time_scheme(problem_).end_step(problem_, sys, bodies_.states[b], s);
   return result.iterations;
 }
 

@@ -23,8 +23,9 @@ class BodySteps {
   void mech_load(int b, int step);
   /// (6.3) with θ^{k+1,p+1}, without contact forces: u_new = A_u⁻¹ rhs_u.
   void mech_step(int b, int step, int iteration);
-  /// The step k → `step` of body b without contact: the staggered loop of 6.3 (one pass when
-  /// the coupling is one-way) between begin_step and end_step; returns its iterations.
+  /// The fixed point of the step k → `step` of body b without contact, from the scheme's
+  /// predictor (inside BodyTimeScheme::step): the staggered loop of 6.3, one pass when the
+  /// coupling is one-way; returns its iterations.
   int couple(int b, int step);
 
   /// Newton corrections and their CG iterations so far (radiation, h(t) films).

@@ -7,7 +7,6 @@
 #include <limits>
 
 #include "tc/core/error.hpp"
-#include "tc/physics/body/time_scheme.hpp"
 #include "tc/physics/contact/step/contact_loop.hpp"
 #include "tc/physics/interface_heat/contact_heat.hpp"
 
@@ -383,9 +382,6 @@ int ContactCoupling::couple(int step) {
   step_of_last_couple_ = step;
   auto g = group();
   auto& enforcement = *method_.enforcement;
-  for (int i = 0; i < g.size(); ++i)
-    body_time_scheme(problem_).begin_step(problem_, *g.systems[i], bodies_.states[g.index[i]],
-                                          *g.fields[i], step * problem_.time.step);
   stats_.qp_iterations = 0;
   stats_.operator_applications = 0;
   stats_.friction_iterations = 0;
@@ -411,6 +407,7 @@ int ContactCoupling::couple(int step) {
   const auto targets = dual.targets(g.state(&BodyState::u), g.field_in(&BodyField::work_u));
 
   ContactLoopPhysics physics{.qp_gives_displacements = enforcement.qp_gives_displacements(),
+                             .frictional = any_pair(&InterfaceLaws::frictional),
                              .friction_varies = any_pair(&InterfaceLaws::friction_varies),
                              // θ iterates itself when the conductance is lagged or depends on θ
                              // (then the heat step with the final λ is not the last one needed).
@@ -423,7 +420,7 @@ int ContactCoupling::couple(int step) {
   const auto policy = choose_contact_loop(problem_.solver, physics);
   const bool nested = policy.friction == FrictionPlacement::nested;
   TrescaIteration tresca;
-  tresca.relax = problem_.solver.friction.acceleration && any_pair(&InterfaceLaws::frictional);
+  tresca.relaxation = policy.relaxation;
   tresca.defer = policy.feedback == DisplacementFeedback::deferred;
   tresca.cut_short = policy.cut_short;
   iterate_slip_.clear();
@@ -521,9 +518,6 @@ int ContactCoupling::couple(int step) {
   // Heat through the interface in this step, with the L and d of the last heat step (those
   // that produced θ^{k+1}): then the thermal energy balance of the bodies closes to round-off.
   heat_.account_step(g, problem_.time.step);
-  for (int i = 0; i < g.size(); ++i)
-    body_time_scheme(problem_).end_step(problem_, *g.systems[i], bodies_.states[g.index[i]],
-                                        *g.fields[i]);
   return iteration;
 }
 

@@ -62,7 +62,9 @@ class ContactCoupling {
   void enable_mortar(DualContactSettings settings, contact::MortarOptions options, const int& step);
   [[nodiscard]] bool enabled() const { return method_.enforcement != nullptr; }
 
-  /// The step k → `step` of the contact bodies; returns its heat–mechanics iterations.
+  /// The step k → `step` of the contact bodies from the scheme's predictor (inside
+  /// BodyTimeScheme::step, which moves their states on after it); returns its heat–mechanics
+  /// iterations.
   int couple(int step);
   /// The step's contact statistics and heat flux, from the state after couple().
   void bookkeeping();

@@ -20,6 +20,9 @@ ContactLoopPolicy choose_contact_loop(const SolverSettings& s, const ContactLoop
                                                                : SweepOrder::mechanics_first;
   c.friction = s.friction_loop == FrictionLoop::nested ? FrictionPlacement::nested
                                                        : FrictionPlacement::staggered;
+  // Aitken only where γ matters: without friction the QP is taken once (coulomb_fixed_point).
+  c.relaxation = s.friction.acceleration && p.frictional ? FrictionRelaxation::aitken
+                                                         : FrictionRelaxation::plain;
   // u = u_free − A⁻¹Bᵀλ costs a solve per body; inside the fixed point only B u is needed
   // unless the thermoelastic term wants u̇ of the whole body. Combined, u comes with every QP.
   c.feedback = p.qp_gives_displacements ? DisplacementFeedback::from_qp

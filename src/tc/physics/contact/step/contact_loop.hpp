@@ -1,10 +1,11 @@
 #pragma once
 // The variants of the contact bodies' staggered loop (6.3, ContactCoupling::couple), each a
 // named policy chosen once per step from the settings and the physics: the order of the
-// halves, where the Tresca → Coulomb updates sit, how the mechanical half's displacements are
-// fed back, and the rules the loop stops by (staggered_loop.hpp).
+// halves, where the Tresca → Coulomb updates sit and how they are relaxed, how the mechanical
+// half's displacements are fed back, and the rules the loop stops by (staggered_loop.hpp).
 #include "tc/model/problem.hpp"
 #include "tc/physics/body/step/staggered_loop.hpp"
+#include "tc/physics/contact/friction_fixed_point.hpp"
 
 namespace tc::physics {
 
@@ -27,6 +28,7 @@ struct ContactLoopPhysics {
   bool qp_gives_displacements = false;  // the enforcement's QP returns u (combined TFETI)
   bool heating = false;          // a contact body has the thermoelastic term θ₀K_uθᵀu̇
   bool expansion = false;        // a contact body has thermal expansion (θ → u_free)
+  bool frictional = false;       // 𝔉 > 0 somewhere (else γ plays no part)
   bool friction_varies = false;  // 𝔉 depends on θ somewhere
   bool theta_iterates = false;   // lagged conductance, or γ_C(θ): θ iterates itself
 };
@@ -34,6 +36,7 @@ struct ContactLoopPhysics {
 struct ContactLoopPolicy {
   SweepOrder order = SweepOrder::heat_first;
   FrictionPlacement friction = FrictionPlacement::staggered;
+  FrictionRelaxation relaxation = FrictionRelaxation::plain;  // of the Tresca → Coulomb updates
   DisplacementFeedback feedback = DisplacementFeedback::per_iterate;
   // Nested, with thermal expansion: each inner loop stops after a 1/loop_forcing-fold fall
   // (θ and u_free move in the next sweep anyway).
