@@ -88,9 +88,9 @@ void Simulation::initialise() {
     st.theta.fill(sys.body().initial_temperature);
     sys.prescribe_theta(0.0, st.theta);
 
-    if (problem_.time.scheme == Scheme::dynamic && sys.body().start_in_equilibrium)
-      static_initial_state(b, st);
-    if (problem_.time.scheme == Scheme::dynamic) {
+    const bool inertia = body_time_scheme(problem_).inertia();
+    if (inertia && sys.body().start_in_equilibrium) static_initial_state(b, st);
+    if (inertia) {
       // Consistent initial acceleration (2.1 at t = 0): M ü⁰ = f(0) − K u⁰ − K_uθ(θ⁰ − θ₀),
       // with ü = 0 on the supports.
       auto t = timers_.scope("factorization");

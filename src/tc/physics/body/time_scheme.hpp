@@ -31,6 +31,8 @@ class BodyTimeScheme {
   virtual ~BodyTimeScheme() = default;
   /// M_u's coefficient in A_u = c M_u + K_u: 4/τ² (Newmark) or 0 (quasistatic, A_u = K_u).
   [[nodiscard]] virtual double mass_factor(double tau) const = 0;
+  /// Whether the bodies have inertia: a kinetic energy, M_u ü in their balance, ü⁰ to start.
+  [[nodiscard]] virtual bool inertia() const = 0;
   /// Whether the contact faces carry no inertia (the modified mass, Hager, Hüeber & Wohlmuth:
   /// M_u without their dofs, BodySystem::massless_dofs).
   [[nodiscard]] virtual bool massless_contact_faces(const Problem& p) const = 0;
@@ -67,6 +69,7 @@ class BodyTimeScheme {
 class NewmarkScheme final : public BodyTimeScheme {
  public:
   [[nodiscard]] double mass_factor(double tau) const override { return newmark_mass_factor(tau); }
+  [[nodiscard]] bool inertia() const override { return true; }
   [[nodiscard]] bool massless_contact_faces(const Problem& p) const override {
     return p.time.contact_scheme == ContactScheme::modified_mass;
   }
@@ -84,6 +87,7 @@ class NewmarkScheme final : public BodyTimeScheme {
 class QuasistaticScheme final : public BodyTimeScheme {
  public:
   [[nodiscard]] double mass_factor(double) const override { return 0.0; }
+  [[nodiscard]] bool inertia() const override { return false; }
   [[nodiscard]] bool massless_contact_faces(const Problem&) const override { return false; }
   void iterate_velocity(const Problem& p, const BodySystem& sys, const BodyState& st,
                         BodyField& s) const override;
