@@ -14,7 +14,7 @@
 #include <regex>
 #include <sstream>
 
-#include "tc/io/vtu.hpp"
+#include "tc/io/output/vtu.hpp"
 
 namespace {
 

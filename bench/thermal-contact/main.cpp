@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "tc/core/petsc.hpp"
-#include "tc/io/case_reader.hpp"
+#include "tc/io/case/case_reader.hpp"
 #include "tc/run/simulation.hpp"
 
 namespace {

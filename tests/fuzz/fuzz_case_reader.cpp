@@ -10,7 +10,7 @@
 #include <string>
 
 #include "tc/core/error.hpp"
-#include "tc/io/case_reader.hpp"
+#include "tc/io/case/case_reader.hpp"
 
 namespace fs = std::filesystem;
 

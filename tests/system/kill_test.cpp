@@ -161,7 +161,7 @@ TEST(Kill, SigkillAtARandomStepLeavesWholeFilesAndRestarts) {
   kill_trials(SIGKILL, 3);
 }
 
-/// The step of a checkpoint file (src/tc/io/checkpoint.cpp, encode_checkpoint, format 7:
+/// The step of a checkpoint file (src/tc/io/restart/checkpoint.cpp, encode_checkpoint, format 7:
 /// magic, version, hash, the case's content as a length and its bytes, τ, dimension, number
 /// of bodies, n_u and n_θ of each body, then the step).
 int checkpoint_step(const fs::path& file) {

@@ -8,8 +8,8 @@
 #include <regex>
 
 #include "support/cli.hpp"
-#include "tc/io/case_reader.hpp"
-#include "tc/io/geometry_checks.hpp"
+#include "tc/io/case/case_reader.hpp"
+#include "tc/io/checks/geometry_checks.hpp"
 
 namespace fs = std::filesystem;
 using tc::test::thermocontact;

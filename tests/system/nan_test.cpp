@@ -10,7 +10,7 @@
 
 #include "support/cli.hpp"
 #include "tc/core/error.hpp"
-#include "tc/io/case_reader.hpp"
+#include "tc/io/case/case_reader.hpp"
 #include "tc/run/simulation.hpp"
 
 namespace fs = std::filesystem;

@@ -155,7 +155,7 @@ TEST(CaseWarnings, UnitHabitsAreWarnedAboutButRun) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("did you give MPa?"), std::string::npos) << run.output;
   // SI values: no warning of a unit habit (the file as it is; its instant start of sliding is
-  // warned about by the dynamic scheme's check, io/data_checks.hpp).
+  // warned about by the dynamic scheme's check, io/checks/data_checks.hpp).
   const auto clean = thermocontact("check " + sliding.string());
   const auto count = [&](const std::string& what) {
     size_t n = 0;

@@ -11,7 +11,7 @@
 #include <regex>
 
 #include "support/cli.hpp"
-#include "tc/io/auto_subdomains.hpp"
+#include "tc/io/case/auto_subdomains.hpp"
 #include "tc/mesh/box.hpp"
 
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "tc/core/error.hpp"
-#include "tc/io/case_reader.hpp"
+#include "tc/io/case/case_reader.hpp"
 #include "tc/mesh/gmsh_reader.hpp"
 
 namespace fs = std::filesystem;

@@ -7,8 +7,8 @@
 #include <fstream>
 
 #include "tc/core/error.hpp"
-#include "tc/io/auto_subdomains.hpp"
-#include "tc/io/case_reader.hpp"
+#include "tc/io/case/auto_subdomains.hpp"
+#include "tc/io/case/case_reader.hpp"
 #include "tc/mesh/box.hpp"
 
 namespace {

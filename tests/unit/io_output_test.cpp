@@ -6,7 +6,7 @@
 
 #include "support/cli.hpp"
 #include "support/problems.hpp"
-#include "tc/io/output.hpp"
+#include "tc/io/output/output.hpp"
 #include "tc/model/checks.hpp"
 
 using namespace tc;

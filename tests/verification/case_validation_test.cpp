@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "tc/core/error.hpp"
-#include "tc/io/case_reader.hpp"
+#include "tc/io/case/case_reader.hpp"
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "support/history.hpp"
-#include "tc/io/case_reader.hpp"
+#include "tc/io/case/case_reader.hpp"
 #include "tc/run/simulation.hpp"
 
 namespace tc::test {

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "tc/io/case_reader.hpp"
+#include "tc/io/case/case_reader.hpp"
 #include "tc/run/simulation.hpp"
 
 namespace tc::test {

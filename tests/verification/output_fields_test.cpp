@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "support/problems.hpp"
-#include "tc/io/output.hpp"
+#include "tc/io/output/output.hpp"
 #include "tc/run/simulation.hpp"
 
 using namespace tc;

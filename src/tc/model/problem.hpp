@@ -201,8 +201,9 @@ struct SolverSettings {
 };
 
 /// A `[[probe]]` of the case: point fields recorded after every step in probes.csv
-/// (io/probes.hpp), at a point of a body's reference configuration (interpolated by the shape
-/// functions of the cell holding it) or, when `where` names a boundary, averaged over its nodes.
+/// (io/output/probes.hpp), at a point of a body's reference configuration (interpolated by the
+/// shape functions of the cell holding it) or, when `where` names a boundary, averaged over its
+/// nodes.
 struct Probe {
   std::string name;
   int body = 0;
@@ -218,7 +219,8 @@ struct OutputSettings {
   /// (appended raw), `compression` "zlib" for compressed binary.
   enum class Encoding { ascii, binary, zlib };
   Encoding encoding = Encoding::ascii;
-  /// contact_<step>.csv with every contact node's state at each written step (io/contact_csv).
+  /// contact_<step>.csv with every contact node's state at each written step
+  /// (io/output/contact_csv).
   bool contact_csv = false;
   std::vector<Probe> probes;
   /// The checkpoint's policy (io::CheckpointPolicy): after a step once this many steps have

@@ -1,5 +1,5 @@
 #pragma once
-// What a restart needs (io/checkpoint.hpp writes and reads it; Simulation::checkpoint and
+// What a restart needs (io/restart/checkpoint.hpp writes and reads it; Simulation::checkpoint and
 // restore in checkpoint.cpp fill and replay it, each component its own part).
 #include <vector>
 
@@ -7,8 +7,8 @@
 
 namespace tc::physics {
 
-/// Everything the steps after `step` depend on, for a restart (io/checkpoint.hpp writes it):
-/// the state of every body, the multipliers and their slave nodes (the next step's warm
+/// Everything the steps after `step` depend on, for a restart (io/restart/checkpoint.hpp writes
+/// it): the state of every body, the multipliers and their slave nodes (the next step's warm
 /// start), and the cumulative ledger behind the history.csv columns.
 struct Checkpoint {
   struct Body {

@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tc/physics/contact/contact_coupling.hpp"
+#include "tc/physics/body/time_scheme.hpp"
+#include "tc/physics/contact/step/contact_coupling.hpp"
 
 namespace tc::physics {
 
 double kinetic_energy(const Problem& p, const Bodies& bodies) {
-  if (p.time.scheme != Scheme::dynamic) return 0.0;
+  if (!body_time_scheme(p).inertia()) return 0.0;
   double e = 0;
   for (int b = 0; b < bodies.size(); ++b)
     e += 0.5 * bodies.systems[b]->matrices().mass_u.quadratic_form(bodies.states[b].v,
@@ -73,7 +74,7 @@ void support_forces(const Problem& p, const Bodies& bodies, int b, double t, cor
   core::Vector& f = s.f_u;
   sys.mechanical_load(t, f);
   m.stiffness_u.mult(st.u, r);
-  if (p.time.scheme == Scheme::dynamic) m.mass_u.mult_add(st.a, r);
+  if (body_time_scheme(p).inertia()) m.mass_u.mult_add(st.a, r);
   if (p.physics.thermal_expansion) {
     s.dtheta.copy_from(st.theta);
     s.dtheta.shift(-p.physics.reference_temperature);

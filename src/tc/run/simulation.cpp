@@ -88,9 +88,9 @@ void Simulation::initialise() {
     st.theta.fill(sys.body().initial_temperature);
     sys.prescribe_theta(0.0, st.theta);
 
-    if (problem_.time.scheme == Scheme::dynamic && sys.body().start_in_equilibrium)
-      static_initial_state(b, st);
-    if (problem_.time.scheme == Scheme::dynamic) {
+    const bool inertia = body_time_scheme(problem_).inertia();
+    if (inertia && sys.body().start_in_equilibrium) static_initial_state(b, st);
+    if (inertia) {
       // Consistent initial acceleration (2.1 at t = 0): M ü⁰ = f(0) − K u⁰ − K_uθ(θ⁰ − θ₀),
       // with ü = 0 on the supports.
       auto t = timers_.scope("factorization");
@@ -215,18 +215,25 @@ void Simulation::advance_once() {
   auto scope = timers_.scope("step_other");
   std::vector<core::Vector> old_u;
   for (const auto& st : bodies_.states) old_u.push_back(st.u.clone());
+  // Each group of bodies enters the time scheme once: its beginning, the group's fixed point
+  // (the contact pairs' bodies together, every other body alone), its end.
+  const auto& scheme = body_time_scheme(problem_);
+  const int next = step_ + 1;
+  const double t = next * problem_.time.step;
   int coupling = 0;
   if (!problem_.contacts.empty()) {
     if (!contact_.enabled())
       throw Error("the problem has contact but no contact rows (enable_contact)");
-    coupling = contact_.couple(step_ + 1);
     const auto& members = contact_.members();
+    coupling = scheme.step(problem_, bodies_, members, t, [&] { return contact_.couple(next); });
     for (int b = 0; b < n_bodies(); ++b)  // the bodies in no pair
       if (std::find(members.begin(), members.end(), b) == members.end())
-        steps_.couple(b, step_ + 1);
+        scheme.step(problem_, bodies_, {b}, t, [&] { return steps_.couple(b, next); });
     contact_.bookkeeping();
   } else {
-    for (int b = 0; b < n_bodies(); ++b) coupling = std::max(coupling, steps_.couple(b, step_ + 1));
+    for (int b = 0; b < n_bodies(); ++b)
+      coupling = std::max(
+          coupling, scheme.step(problem_, bodies_, {b}, t, [&] { return steps_.couple(b, next); }));
   }
   check_temperature_range(step_ + 1, coupling);
   ++step_;

@@ -20,11 +20,11 @@
 #include "tc/core/error.hpp"
 #include "tc/core/timer.hpp"
 #include "tc/physics/body/bodies.hpp"
-#include "tc/physics/body/body_steps.hpp"
-#include "tc/physics/body/finite_checks.hpp"
-#include "tc/physics/contact/contact_coupling.hpp"
+#include "tc/physics/body/step/body_steps.hpp"
+#include "tc/physics/body/step/finite_checks.hpp"
 #include "tc/physics/contact/contact_enforcement.hpp"
 #include "tc/physics/contact/contact_rows_builder.hpp"
+#include "tc/physics/contact/step/contact_coupling.hpp"
 #include "tc/record/checkpoint.hpp"
 #include "tc/record/history.hpp"
 #include "tc/record/ledger.hpp"
@@ -122,7 +122,7 @@ class Simulation {
     return contact_.heat().interface_heat_solver();
   }
 
-  /// The state after the current step (restart: io/checkpoint.hpp).
+  /// The state after the current step (restart: io/restart/checkpoint.hpp).
   [[nodiscard]] Checkpoint checkpoint() const;
   /// Continues from a checkpoint of the same problem (sizes checked: throws Error).
   void restore(const Checkpoint& c);

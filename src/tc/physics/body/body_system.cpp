@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "tc/physics/body/time_scheme.hpp"
+
 namespace tc::physics {
 
 namespace {
@@ -59,8 +61,7 @@ BodySystem::BodySystem(const Problem& problem, int index)
   th_dofs_ = keys(th_prescribed_);
   lumped_ = problem.physics.lumped_heat_capacity;
   if (lumped_) fem::lump_rows(m_.mass_theta);
-  if (problem.time.scheme == Scheme::dynamic &&
-      problem.time.contact_scheme == ContactScheme::modified_mass)
+  if (body_time_scheme(problem).massless_contact_faces(problem))
     for (const auto& c : problem.contacts)  // every contact surface of the body, of any pair
       for (const auto& [b, where] :
            {std::pair{c.slave_body, &c.slave_where}, {c.master_body, &c.master_where}}) {

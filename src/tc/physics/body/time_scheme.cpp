@@ -27,6 +27,15 @@ void massless_rates(const Problem& p, const BodySystem& sys, BodyState& st, cons
 
 }  // namespace
 
+int BodyTimeScheme::step(const Problem& p, Bodies& bodies, const std::vector<int>& members,
+                         double t, const std::function<int()>& iterate) const {
+  for (const int b : members)
+    begin_step(p, *bodies.systems[b], bodies.states[b], *bodies.fields[b], t);
+  const int iterations = iterate();
+  for (const int b : members) end_step(p, *bodies.systems[b], bodies.states[b], *bodies.fields[b]);
+  return iterations;
+}
+
 void BodyTimeScheme::begin_step(const Problem& p, const BodySystem& sys, const BodyState& st,
                                 BodyField& s, double t) const {
   const double tau = p.time.step;

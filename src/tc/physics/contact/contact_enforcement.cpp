@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "tc/core/error.hpp"
-#include "tc/physics/body/finite_checks.hpp"
+#include "tc/physics/body/step/finite_checks.hpp"
 
 namespace tc::physics {
 

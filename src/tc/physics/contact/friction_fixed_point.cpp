@@ -32,7 +32,8 @@ double TrescaIteration::update(const core::Vector& lambda, int dim,
   const size_t nc = gamma.size();
   for (size_t k = 0; k < nc; ++k)
     residual[k] = std::max(lv[dim * static_cast<PetscInt>(k)], 0.0) - gamma[k];
-  if (relax && !residual_prev.empty()) {
+  const bool aitken = relaxation == FrictionRelaxation::aitken;
+  if (aitken && !residual_prev.empty()) {
     double num = 0, den = 0;
     for (size_t k = 0; k < nc; ++k) {
       const double dr = residual[k] - residual_prev[k];
@@ -43,7 +44,7 @@ double TrescaIteration::update(const core::Vector& lambda, int dim,
     // so would be ω
     if (den > 0) omega = std::clamp(-omega * num / den, 0.5, 1.5);
   }
-  const double w = relax ? omega : 1.0;
+  const double w = aitken ? omega : 1.0;
   double norm = 0;
   if (was_open.size() != nc) was_open.assign(nc, 0);
   if (reclosed.size() != nc) reclosed.assign(nc, 0);

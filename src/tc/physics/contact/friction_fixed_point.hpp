@@ -14,6 +14,14 @@
 
 namespace tc::physics {
 
+/// How the updates γ ← max(γ + ω r, 0), r = λ_n(γ) − γ, of the fixed point are relaxed: a
+/// policy of the contact loop (choose_contact_loop), from [solver] coupling_acceleration and
+/// whether any pair has friction.
+enum class FrictionRelaxation {
+  plain,   // ω = 1: the update of 6.3
+  aitken,  // Aitken's Δ², ω from the last two residuals (ω = 1 at the first update)
+};
+
 // The Tresca → Coulomb fixed point γ = λ_n(γ) of (6.3) with Aitken's Δ² (Irons–Tuck, vector
 // form as in Küttler & Wall 2008): γ ← max(γ + ω r, 0), r = λ_n(γ) − γ, ω from the last two
 // residuals (ω = 1 at the first update: the plain update of 6.3).
@@ -22,12 +30,13 @@ struct TrescaIteration {
   std::vector<double> qp_bound;  // the bound of the last QP (bound moves on with each update)
   std::vector<char> was_open;    // per node: λ_n ≤ 0 at the last update
   std::vector<char> reclosed;    // per node: closed again after an open update, in this loop
+  // Aitken's ω or the plain update: the contact loop's policy (choose_contact_loop).
+  FrictionRelaxation relaxation = FrictionRelaxation::plain;
   double omega = 1.0;
   double last = 1.0;  // ‖λ_n(γ) − γ‖/‖λ‖ of the last update (1 before the first of a step)
   bool converged = false;      // the last update met the tolerance, its QP solved to qp_tolerance
   bool exact_qps = false;      // the QPs of the rest of the step to qp_tolerance
   bool cut_short = false;      // stop after a 1/loop_forcing-fold fall (θ, u_free move next)
-  bool relax = false;          // Aitken on (friction > 0 and acceleration on)
   bool defer = false;          // u formed after convergence (only B u inside: ContactCoupling)
   std::vector<double> bu_old;  // B u^k, when deferred
 

@@ -1,0 +1,322 @@
+#include "tc/io/output/vtu.hpp"
+
+#include <fmt/format.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "tc/core/error.hpp"
+#include "tc/io/files/files.hpp"
+
+namespace tc::io {
+
+namespace {
+
+int vtk_type(mesh::CellType t) {
+  switch (t) {
+    case mesh::CellType::Tri3:
+      return 5;
+    case mesh::CellType::Quad4:
+      return 9;
+    case mesh::CellType::Tet4:
+      return 10;
+    case mesh::CellType::Hex8:
+      return 12;
+  }
+  return 0;
+}
+
+/// The arrays of one piece in the file's order, whatever the encoding.
+struct Grid {
+  std::vector<double> points;  // 3 per point
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::uint8_t> types;
+  std::vector<Field> point_data, cell_data;
+};
+
+// ---- ASCII ---------------------------------------------------------------------------------
+
+/// `values`, `per_line` to a line, each in the shortest form that reads back to the same
+/// double ({} of fmt), so that an ASCII file holds the values a binary one does, bit for bit.
+template <class T>
+void ascii_values(TextBuffer& out, const std::vector<T>& values, size_t per_line) {
+  for (size_t i = 0; i < values.size(); ++i)
+    out.print("{}{}", values[i], (i + 1) % per_line == 0 || i + 1 == values.size() ? "\n" : " ");
+}
+
+void write_ascii(TextBuffer& out, const Grid& g) {
+  out.print(R"(        <DataArray type="Float64" NumberOfComponents="3" format="ascii">)"
+            "\n");
+  ascii_values(out, g.points, 3);
+  out.print("        </DataArray>\n      </Points>\n      <Cells>\n");
+  out.print(R"(        <DataArray type="Int64" Name="connectivity" format="ascii">)"
+            "\n");
+  for (size_t c = 0; c < g.offsets.size(); ++c) {  // one cell a line
+    for (auto i = c ? g.offsets[c - 1] : 0; i < g.offsets[c]; ++i)
+      out.print("{} ", g.connectivity[static_cast<size_t>(i)]);
+    out.print("\n");
+  }
+  out.print("        </DataArray>\n");
+  out.print(R"(        <DataArray type="Int64" Name="offsets" format="ascii">)"
+            "\n");
+  ascii_values(out, g.offsets, 1);
+  out.print("        </DataArray>\n");
+  out.print(R"(        <DataArray type="UInt8" Name="types" format="ascii">)"
+            "\n");
+  for (const auto t : g.types) out.print("{}\n", static_cast<int>(t));
+  out.print("        </DataArray>\n      </Cells>\n");
+  const auto fields = [&](const std::vector<Field>& list) {
+    for (const auto& f : list) {
+      out.print(
+          R"(        <DataArray type="Float64" Name="{}" NumberOfComponents="{}" format="ascii">)"
+          "\n",
+          f.name, f.components);
+      ascii_values(out, f.values, static_cast<size_t>(f.components));
+      out.print("        </DataArray>\n");
+    }
+  };
+  out.print("      <PointData>\n");
+  fields(g.point_data);
+  out.print("      </PointData>\n      <CellData>\n");
+  fields(g.cell_data);
+  out.print("      </CellData>\n");
+}
+
+// ---- Appended binary -----------------------------------------------------------------------
+
+/// VTK's block size for compressed data (vtkXMLWriter's default): each block is compressed on
+/// its own, so a reader can seek to one.
+constexpr size_t kBlock = 32768;
+
+/// The bytes of one array as VTK reads them with header_type="UInt64": its byte count, then
+/// the bytes (raw); or the compression header [number of blocks, block size, size of the
+/// last block when partial (0 when whole), compressed size of each block], then the
+/// compressed blocks (zlib).
+void append_array(std::string& data, const void* bytes, size_t n, VtuEncoding encoding) {
+  const auto put = [&](std::uint64_t v) {
+    data.append(reinterpret_cast<const char*>(&v), sizeof v);
+  };
+  const auto* in = static_cast<const unsigned char*>(bytes);
+  if (encoding == VtuEncoding::binary) {
+    put(n);
+    data.append(reinterpret_cast<const char*>(in), n);
+    return;
+  }
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  const size_t header = data.size();
+  put(blocks);
+  put(kBlock);
+  put(n % kBlock);
+  for (size_t b = 0; b < blocks; ++b) put(0);  // the sizes, filled in below
+  std::vector<unsigned char> out(compressBound(kBlock));
+  for (size_t b = 0; b < blocks; ++b) {
+    const size_t size = std::min(kBlock, n - b * kBlock);
+    auto length = static_cast<uLongf>(out.size());
+    // Level 1: most of the size saved at a fraction of the default level's time (measured
+    // in bench/RESULTS.md, "Field output").
+    const int rc = compress2(out.data(), &length, in + b * kBlock, static_cast<uLong>(size), 1);
+    if (rc != Z_OK) throw OutputError(fmt::format("zlib compress2 failed ({})", rc));
+    const std::uint64_t compressed = length;
+    std::memcpy(data.data() + header + (3 + b) * sizeof compressed, &compressed, sizeof compressed);
+    data.append(reinterpret_cast<const char*>(out.data()), length);
+  }
+}
+
+void write_appended(TextBuffer& out, std::string& data, const Grid& g, VtuEncoding encoding) {
+  const auto array = [&](const char* type, const std::string& attributes, const auto& values) {
+    out.print(R"(        <DataArray type="{}" {}format="appended" offset="{}"/>)"
+              "\n",
+              type, attributes, data.size());
+    append_array(data, values.data(), values.size() * sizeof(values[0]), encoding);
+  };
+  array("Float64", R"(NumberOfComponents="3" )", g.points);
+  out.print("      </Points>\n      <Cells>\n");
+  array("Int64", R"(Name="connectivity" )", g.connectivity);
+  array("Int64", R"(Name="offsets" )", g.offsets);
+  array("UInt8", R"(Name="types" )", g.types);
+  out.print("      </Cells>\n");
+  const auto fields = [&](const std::vector<Field>& list) {
+    for (const auto& f : list)
+      array("Float64", fmt::format(R"(Name="{}" NumberOfComponents="{}" )", f.name, f.components),
+            f.values);
+  };
+  out.print("      <PointData>\n");
+  fields(g.point_data);
+  out.print("      </PointData>\n      <CellData>\n");
+  fields(g.cell_data);
+  out.print("      </CellData>\n");
+}
+
+/// The grid of `cells` of m with the points `points` (ascending; local[global] their new
+/// numbers, or identity when empty) and the fields restricted to them.
+void write_grid(const std::filesystem::path& file, const mesh::Mesh& m,
+                const std::vector<int>& points, const std::vector<int>& cells,
+                const std::vector<int>& local, const std::vector<Field>& point_data,
+                const std::vector<Field>& cell_data, VtuEncoding encoding) {
+  Grid g;
+  g.points.reserve(3 * points.size());
+  for (const int a : points) g.points.insert(g.points.end(), m.point(a).begin(), m.point(a).end());
+  for (const int c : cells) {
+    for (const int n : m.cell(c)) g.connectivity.push_back(local.empty() ? n : local[n]);
+    g.offsets.push_back(static_cast<std::int64_t>(g.connectivity.size()));
+    g.types.push_back(static_cast<std::uint8_t>(vtk_type(m.cell_type(c))));
+  }
+  auto restricted = [](const Field& f, const std::vector<int>& rows, size_t all) {
+    if (rows.size() == all) return f;
+    Field r{f.name, f.components, {}};
+    r.values.reserve(rows.size() * static_cast<size_t>(f.components));
+    for (const int i : rows)
+      for (int k = 0; k < f.components; ++k)
+        r.values.push_back(f.values[static_cast<size_t>(f.components * i + k)]);
+    return r;
+  };
+  for (const auto& f : point_data)
+    g.point_data.push_back(restricted(f, points, static_cast<size_t>(m.n_nodes())));
+  for (const auto& f : cell_data)
+    g.cell_data.push_back(restricted(f, cells, static_cast<size_t>(m.n_cells())));
+
+  TextBuffer out;
+  out.print(R"(<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="{}" header_type="UInt64"{}>
+  <UnstructuredGrid>
+    <Piece NumberOfPoints="{}" NumberOfCells="{}">
+      <Points>
+)",
+            std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian",
+            encoding == VtuEncoding::zlib ? R"( compressor="vtkZLibDataCompressor")" : "",
+            points.size(), cells.size());
+  if (encoding == VtuEncoding::ascii) {
+    write_ascii(out, g);
+    out.print("    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    write_file(file, out.view());
+    return;
+  }
+  std::string data;
+  write_appended(out, data, g, encoding);
+  // The appended section as VTK writes it: '_' then the arrays' bytes, offsets counted from
+  // the byte after it.
+  out.print("    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _");
+  std::string all(out.view());
+  all += data;
+  all += "\n  </AppendedData>\n</VTKFile>\n";
+  write_file(file, all);
+}
+
+std::vector<int> iota(int n) {
+  std::vector<int> v(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) v[static_cast<size_t>(i)] = i;
+  return v;
+}
+
+void write_data_arrays(TextBuffer& out, const char* tag, const std::vector<Field>& fields) {
+  out.print("    <{}>\n", tag);
+  for (const auto& f : fields)
+    out.print(R"(      <PDataArray type="Float64" Name="{}" NumberOfComponents="{}"/>)"
+              "\n",
+              f.name, f.components);
+  out.print("    </{}>\n", tag);
+}
+
+}  // namespace
+
+void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
+               const std::vector<Field>& point_data, const std::vector<Field>& cell_data,
+               VtuEncoding encoding) {
+  write_grid(file, m, iota(m.n_nodes()), iota(m.n_cells()), {}, point_data, cell_data, encoding);
+}
+
+void write_vtu_piece(const std::filesystem::path& file, const mesh::Mesh& m,
+                     const std::vector<int>& cells, const std::vector<Field>& point_data,
+                     const std::vector<Field>& cell_data, VtuEncoding encoding) {
+  std::vector<int> local(static_cast<size_t>(m.n_nodes()), -1), points;
+  for (const int c : cells)
+    for (const int n : m.cell(c)) local[static_cast<size_t>(n)] = 0;
+  for (int a = 0; a < m.n_nodes(); ++a)
+    if (local[static_cast<size_t>(a)] == 0) {
+      local[static_cast<size_t>(a)] = static_cast<int>(points.size());
+      points.push_back(a);
+    }
+  write_grid(file, m, points, cells, local, point_data, cell_data, encoding);
+}
+
+void write_pvtu(const std::filesystem::path& file, const std::vector<Field>& point_data,
+                const std::vector<Field>& cell_data, const std::vector<std::string>& pieces) {
+  TextBuffer out;
+  out.print(R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <PUnstructuredGrid GhostLevel="0">
+)");
+  write_data_arrays(out, "PPointData", point_data);
+  write_data_arrays(out, "PCellData", cell_data);
+  out.print(R"(    <PPoints>
+      <PDataArray type="Float64" NumberOfComponents="3"/>
+    </PPoints>
+)");
+  for (const auto& p : pieces) out.print("    <Piece Source=\"{}\"/>\n", p);
+  out.print("  </PUnstructuredGrid>\n</VTKFile>\n");
+  write_file(file, out.view());
+}
+
+void PvdCollection::add(double time, int part, const std::string& relative_file) {
+  entries_.push_back({time, part, relative_file});
+  try {
+    write();
+  } catch (...) {  // not on disk: not listed, should a later write succeed
+    entries_.pop_back();
+    throw;
+  }
+}
+
+bool PvdCollection::load(double until) {
+  entries_.clear();
+  std::ifstream in(file_);
+  if (!in) return false;
+  std::stringstream text;
+  text << in.rdbuf();
+  // Whole as write() leaves it: its head, one data set a line, its tail (a file cut short by a
+  // full disk or edited by hand is not taken for the list of what was written).
+  const std::string head =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
+  const std::string tail = "  </Collection>\n</VTKFile>\n";
+  const auto all = text.str();
+  if (all.size() < head.size() + tail.size() || all.compare(0, head.size(), head) != 0 ||
+      all.compare(all.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  std::istringstream lines(all.substr(head.size(), all.size() - head.size() - tail.size()));
+  std::string line;
+  const std::regex data_set(
+      R"re(    <DataSet timestep="([^"]*)" part="([0-9]+)" file="([^"<>&/]+)"/>)re");
+  std::smatch m;
+  std::vector<Entry> kept;
+  while (std::getline(lines, line)) {
+    if (!std::regex_match(line, m, data_set)) return false;
+    char* end = nullptr;
+    const double time = std::strtod(m[1].str().c_str(), &end);
+    if (end == m[1].str().c_str() || *end != '\0') return false;
+    if (time <= until) kept.push_back({time, std::atoi(m[2].str().c_str()), m[3].str()});
+  }
+  entries_ = std::move(kept);
+  write();
+  return true;
+}
+
+void PvdCollection::write() const {
+  TextBuffer out;
+  out.print(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n"
+      "  <Collection>\n");
+  for (const auto& e : entries_)
+    out.print("    <DataSet timestep=\"{:.12g}\" part=\"{}\" file=\"{}\"/>\n", e.time, e.part,
+              e.file);
+  out.print("  </Collection>\n</VTKFile>\n");
+  replace_file(file_, out.view());
+}
+
+}  // namespace tc::io
