@@ -11,6 +11,7 @@
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/feti/subdomain.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 
 namespace tc::feti {
 
@@ -68,7 +69,7 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
       const double diag = core::mean_diagonal(sub.a);
       auto reduced = sub.a.copy();
       reduced.zero_rows_columns(sub.fixing, diag);
-      sub.factor = core::CholeskySolver(reduced, options_.package);
+      sub.factor = linalg::CholeskySolver(reduced, options_.package);
       package_ = sub.factor.package();
       if (options_.preconditioner == Preconditioner::dirichlet) {
         for (const auto& e : sub.b) sub.boundary.push_back(e.dof);
@@ -77,7 +78,7 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
                            sub.boundary.end());
         auto inner = sub.a.copy();
         inner.zero_rows_columns(sub.boundary, diag);
-        sub.interior = core::CholeskySolver(inner, options_.package);
+        sub.interior = linalg::CholeskySolver(inner, options_.package);
       }
     }
   });
