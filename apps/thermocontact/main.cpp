@@ -21,7 +21,6 @@
 #include <sstream>
 #include <string_view>
 
-#include "tc/core/cholmod_factor.hpp"
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
@@ -34,6 +33,9 @@
 #include "tc/io/files/output_lock.hpp"
 #include "tc/io/output/output.hpp"
 #include "tc/io/restart/checkpoint.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
+#include "tc/linalg/cholmod/cholmod_factor.hpp"
+#include "tc/linalg/compliance.hpp"
 #include "tc/run/simulation.hpp"
 
 namespace {
@@ -270,11 +272,11 @@ std::string bad_options_file(const std::vector<std::string>& extra) {
 /// The factorisation package of -tc_factor_package, checked against those this PETSc has
 /// before anything is assembled (it failed in the first factorisation, exit 1).
 std::string bad_factor_package() {
-  const auto opt = tc::core::requested_factor_package();
+  const auto opt = tc::linalg::requested_factor_package();
   PetscBool given = PETSC_FALSE;
   TC_PETSC(PetscOptionsHasName(nullptr, nullptr, "-tc_factor_package", &given));
   if (opt.empty() && !given) return {};
-  const auto known = tc::core::available_cholesky_packages();
+  const auto known = tc::linalg::available_cholesky_packages();
   if (std::find(known.begin(), known.end(), opt) != known.end()) return {};
   std::string list;
   for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
@@ -286,7 +288,7 @@ std::string bad_factor_package() {
       opt.empty() ? std::string("no value") : "'" + opt + "'", list);
 }
 
-/// -tc_forward_compliance (core::CholeskySolver::forward_compliance_pays) takes a logical
+/// -tc_forward_compliance (linalg::CholmodFactor::forward_compliance_pays) takes a logical
 /// value or none; PETSc would reject another only at the first contact step, with its trace.
 std::string bad_forward_compliance() {
   char opt[64] = {};
@@ -496,10 +498,18 @@ int info(const char* program) {
   fmt::print("MPI ranks: {}\n", tc::core::PetscSession::size());
   print_thread_policy();
   std::string packages;
-  for (const auto& p : tc::core::available_cholesky_packages())
+  for (const auto& p : tc::linalg::available_cholesky_packages())
     packages += (packages.empty() ? "" : ", ") + p;
   fmt::print("Cholesky factorizations: {}\n", packages);
-  fmt::print("CHOLMOD: {}\n", tc::core::cholmod_path());
+  fmt::print("CHOLMOD: {}\n", tc::linalg::cholmod_path());
+  // What this build can take for a contact body's compliance (A⁻¹)_TT (linalg/compliance.hpp);
+  // summary.json's "compliance" says what a run took per body.
+  std::string paths;
+  for (const auto& p : tc::linalg::compliance_paths()) paths += (paths.empty() ? "" : ", ") + p;
+  fmt::print(
+      "Compliance paths: {} (CHOLMOD's on one rank, forward solves where they cost fewer "
+      "flops; MUMPS's for a factor over the ranks; FETI for a decomposed body)\n",
+      paths);
   fmt::print("Gmsh: {}\n", GMSH_API_VERSION);
   return 0;
 }

@@ -22,6 +22,7 @@
 #include "../support/growth.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/fem/assembler.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
 
 namespace {
@@ -192,7 +193,7 @@ int main(int argc, char** argv) {
     if (direct) {
       const double mem0 = rss_mib();
       t0 = Clock::now();
-      tc::core::CholeskySolver chol(a);
+      tc::linalg::CholeskySolver chol(a);
       r.t_factor = since(t0);
       r.mem_factor = rss_mib() - mem0;
       package = chol.package();

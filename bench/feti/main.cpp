@@ -46,6 +46,7 @@
 #include "../support/two_block_feti.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/feti/dual_distribution.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/physics/body/body_system.hpp"
 #include "tc/run/simulation.hpp"
@@ -118,7 +119,7 @@ Run feti_solve(const physics::BodySystem& sys, physics::Scheme scheme, feti::Pre
 }
 
 double direct_solve_seconds(const physics::BodySystem& sys) {
-  core::CholeskySolver c(
+  linalg::CholeskySolver c(
       [&] {
         auto a = sys.matrices().stiffness_u.copy();
         a.zero_rows_columns(sys.u_dirichlet_dofs(), 1.0);

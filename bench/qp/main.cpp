@@ -47,6 +47,7 @@
 #include "../../tests/support/tao_qp.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/fem/assembler.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/qp/mpgp.hpp"
 
@@ -338,7 +339,7 @@ void run_instance(Row& row, const tc::qp::LinearOperator& f, const Vector& d,
 /// the central nodes touch and the outer ones do not.
 struct ContactDual {
   tc::core::SparseMatrix k, b;
-  tc::core::CholeskySolver chol;
+  tc::linalg::CholeskySolver chol;
   Vector d;
   double scale = 1;  // F and d divided by ≈ λ_max(F), so that TAO's constants see O(1) data
   int n_dofs = 0, n_contact = 0;
@@ -380,7 +381,7 @@ ContactDual make_contact(const std::vector<double>& cells) {
   for (const int node : mesh.boundary_nodes("zmax"))
     for (int k = 0; k < 3; ++k) clamped.push_back(3 * node + k);
   c.k.zero_rows_columns(clamped, 1.0);
-  c.chol = tc::core::CholeskySolver(c.k);
+  c.chol = tc::linalg::CholeskySolver(c.k);
 
   // Own weight: f_z = −ρg ∫N_a with ρg = 1 (zero on the clamped dofs).
   Vector f(c.n_dofs);

@@ -1,4 +1,4 @@
-// A factor spread over the ranks (core::CholeskySolver with FactorRanks::all_ranks: MUMPS over
+// A factor spread over the ranks (linalg::CholeskySolver with FactorRanks::all_ranks: MUMPS over
 // PETSC_COMM_WORLD) against the same matrix factorised on each rank alone: its solves, its
 // block solves, its selected entries of A⁻¹, and the Dirichlet-constrained solver and the
 // contact compliance built on them (whole on every rank, or its rows dealt over the ranks). Run at
@@ -14,7 +14,7 @@
 #include "support/vectors.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/dual/constrained_solver.hpp"
-#include "tc/dual/dof_compliance.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 
 namespace tc::test {
 namespace {
@@ -61,8 +61,8 @@ constexpr double kTolerance = 1e-11;
 
 TEST(CholeskyOverRanks, SolvesAsTheRanksOwnFactor) {
   const auto a = grid_operator(11);
-  const core::CholeskySolver spread(a, "", core::FactorRanks::all_ranks);
-  const core::CholeskySolver own(a, "", core::FactorRanks::this_rank);
+  const linalg::CholeskySolver spread(a, "", linalg::FactorRanks::all_ranks);
+  const linalg::CholeskySolver own(a, "", linalg::FactorRanks::this_rank);
   EXPECT_EQ(spread.distributed(), world_size() > 1);
   EXPECT_FALSE(own.distributed());
   for (const double phase : {0.0, 1.3}) {
@@ -82,8 +82,8 @@ TEST(CholeskyOverRanks, SolvesAsTheRanksOwnFactor) {
 TEST(CholeskyOverRanks, BlockSolvesAndSelectedInverseEntriesAgreeWithColumnSolves) {
   const auto a = grid_operator(9);
   const PetscInt n = a.rows();
-  const core::CholeskySolver spread(a, "", core::FactorRanks::all_ranks);
-  const core::CholeskySolver own(a, "", core::FactorRanks::this_rank);
+  const linalg::CholeskySolver spread(a, "", linalg::FactorRanks::all_ranks);
+  const linalg::CholeskySolver own(a, "", linalg::FactorRanks::this_rank);
   // Columns in no order, one repeated and one absent (−1: a zero column); rows likewise.
   const std::vector<PetscInt> cols{17, 3, 700, -1, 3, 452};
   const std::vector<PetscInt> rows{0, 452, 17, 728, 3, 100, 17};
@@ -106,7 +106,7 @@ TEST(CholeskyOverRanks, BlockSolvesAndSelectedInverseEntriesAgreeWithColumnSolve
   spread.solve_many(b.get(), x.get());
 
   std::vector<double> entries(rows.size() * cols.size(), -99.0);
-  ASSERT_TRUE(spread.unit_solve_rows(cols, rows, entries.data()) || !spread.distributed());
+  if (spread.distributed()) spread.selected_inverse(cols, rows, entries.data());
   const PetscScalar* xp = nullptr;
   TC_PETSC(MatDenseGetArrayRead(x.get(), &xp));
   for (size_t j = 0; j < cols.size(); ++j) {
@@ -129,14 +129,14 @@ TEST(CholeskyOverRanks, SelectedInverseEntriesOfMoreColumnsThanOneRequestHolds) 
   // entries must land in their own columns of the answer.
   const auto a = grid_operator(11);
   const PetscInt n = a.rows();
-  const core::CholeskySolver spread(a, "", core::FactorRanks::all_ranks);
-  const core::CholeskySolver own(a, "", core::FactorRanks::this_rank);
+  const linalg::CholeskySolver spread(a, "", linalg::FactorRanks::all_ranks);
+  const linalg::CholeskySolver own(a, "", linalg::FactorRanks::this_rank);
   if (!spread.distributed()) GTEST_SKIP() << "one rank: no selected inverse";
   std::vector<PetscInt> cols;
   for (PetscInt c = n - 1; c >= n - 1200; --c) cols.push_back(c);  // descending
   const std::vector<PetscInt> rows{0, n - 1, 500, n - 1200, 1024};
   std::vector<double> entries(rows.size() * cols.size(), -99.0);
-  ASSERT_TRUE(spread.unit_solve_rows(cols, rows, entries.data()));
+  spread.selected_inverse(cols, rows, entries.data());
   for (size_t j = 0; j < cols.size(); j += 7) {  // every 7th column: both chunks, any offset
     core::Vector e(n), column(n);
     e.view()[cols[j]] = 1.0;
@@ -153,8 +153,8 @@ TEST(CholeskyOverRanks, ConstrainedSolverAndComplianceAgreeWithTheRanksOwn) {
   const PetscInt n = a.rows();
   std::vector<PetscInt> fixed;  // the face k = 0, as a clamped face
   for (PetscInt r = 0; r < 100; ++r) fixed.push_back(r);
-  const physics::ConstrainedSolver spread(a, fixed, "", core::FactorRanks::all_ranks);
-  const physics::ConstrainedSolver own(a, fixed, "", core::FactorRanks::this_rank);
+  const physics::ConstrainedSolver spread(a, fixed, "", linalg::FactorRanks::all_ranks);
+  const physics::ConstrainedSolver own(a, fixed, "", linalg::FactorRanks::this_rank);
   EXPECT_EQ(spread.unit_rows_at_once(), world_size() > 1);
 
   auto b = some_vector(n, 0.4);
@@ -166,7 +166,10 @@ TEST(CholeskyOverRanks, ConstrainedSolverAndComplianceAgreeWithTheRanksOwn) {
 
   // The compliance on a growing set T (the top face, then part of a side, with a fixed dof
   // among them), as the contact dual grows it.
-  physics::DofCompliance s_spread(spread, n), s_own(own, n);
+  const auto spread_compliance = spread.compliance(n), own_compliance = own.compliance(n);
+  auto& s_spread = *spread_compliance;
+  auto& s_own = *own_compliance;
+  EXPECT_EQ(s_spread.path() == "mumps selected inverse", world_size() > 1) << s_spread.path();
   std::vector<PetscInt> top, side{5, 215, 425, 635};
   for (PetscInt r = 900; r < 1000; r += 3) top.push_back(r);
   for (auto* s : {&s_spread, &s_own}) {
@@ -181,7 +184,8 @@ TEST(CholeskyOverRanks, ConstrainedSolverAndComplianceAgreeWithTheRanksOwn) {
   // Its rows dealt over the ranks: each rank keeps the rows q ≡ rank (mod ranks) of the same
   // columns, and the new block's means are taken the same way, so that the rows gathered are
   // s_spread's S to the bit. On one rank (or a rank's own factor) S stays whole.
-  physics::DofCompliance s_rows(spread, n, true);
+  const auto rows_compliance = spread.compliance(n, true);
+  auto& s_rows = *rows_compliance;
   s_rows.cover(top);
   s_rows.cover(side);
   EXPECT_EQ(s_rows.rows_spread(), world_size() > 1);
@@ -197,8 +201,8 @@ TEST(CholeskyOverRanks, ConstrainedSolverAndComplianceAgreeWithTheRanksOwn) {
   MPI_Allreduce(MPI_IN_PLACE, gathered.data(), static_cast<int>(t * t), MPI_DOUBLE, MPI_SUM,
                 PETSC_COMM_WORLD);  // each row from one rank, zeros from the others: exact
   EXPECT_EQ(gathered, s_spread.matrix());
-  physics::DofCompliance s_whole(own, n, true);  // a rank's own factor: nothing to deal
-  EXPECT_FALSE(s_whole.rows_spread());
+  const auto s_whole = own.compliance(n, true);  // a rank's own factor: nothing to deal
+  EXPECT_FALSE(s_whole->rows_spread());
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "support/contact_rows.hpp"
 #include "support/roller_blocks.hpp"
 #include "tc/dual/dual_contact.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 
 namespace tc::test {
 namespace {
@@ -31,9 +32,9 @@ TEST(ExplicitFOverRanks, IsTheRanksOwnFToRoundOffAndTheSameOnEveryRank) {
   auto master = make_block(3, {0, 0, 0}, {1, 1, 1}, {3, 3, 3}, "", 0.0, "zmin");
   const PetscInt n_s = slave.u_prescribed.size(), n_m = master.u_prescribed.size();
   const physics::ConstrainedSolver spread_s(slave.matrices.stiffness_u, slave.dirichlet, "",
-                                            core::FactorRanks::all_ranks);
+                                            linalg::FactorRanks::all_ranks);
   const physics::ConstrainedSolver spread_m(master.matrices.stiffness_u, master.dirichlet, "",
-                                            core::FactorRanks::all_ranks);
+                                            linalg::FactorRanks::all_ranks);
   physics::DualContactSettings settings;
   settings.scale = false;  // explicit_matrix() is then F itself
   physics::DualContactSolver over(spread_s, spread_m, n_s, n_m, settings);

@@ -16,6 +16,7 @@
 #include "tc/core/petsc.hpp"
 #include "tc/dual/constrained_solver.hpp"
 #include "tc/fem/assembler.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
 
 namespace tc::test {
@@ -123,8 +124,8 @@ TEST(MatrixOverRanks, OperatorsFormedAndConstrainedAsTheWholeOnes) {
   // The constrained solver on the spread operator, its Dirichlet data lifted on each rank's
   // rows: direct solves, each exact to a backward error of a few ε of an operator with κ
   // ≈ 1e4 here, so 1e-10 of the solution is a margin of ~50.
-  const physics::ConstrainedSolver sa(a, fixed, "", core::FactorRanks::this_rank);
-  const physics::ConstrainedSolver sb(b, fixed, "", core::FactorRanks::all_ranks);
+  const physics::ConstrainedSolver sa(a, fixed, "", linalg::FactorRanks::this_rank);
+  const physics::ConstrainedSolver sb(b, fixed, "", linalg::FactorRanks::all_ranks);
   auto ua = some_vector(n, 0.0), ub = ua.clone();
   sa.solve(x, ua);
   sb.solve(x, ub);

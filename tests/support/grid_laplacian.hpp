@@ -1,8 +1,8 @@
 #pragma once
 // Test matrices: the 1D Laplacian (tridiagonal) and a 3D Laplacian on a g³ grid (7 points, diagonal
 // shifted to 6.5: SPD), large enough at g ≥ 12 for CHOLMOD's supernodal factor, which the
-// restricted and forward-solve paths of the compliance need (core::CholeskySolver::unit_solve_rows,
-// forward_compliance).
+// restricted and forward-solve paths of the compliance need
+// (linalg::CholmodFactor::unit_solve_rows, forward_compliance).
 #include <span>
 #include <vector>
 

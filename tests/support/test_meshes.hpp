@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tc/core/petsc.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/mesh/mesh.hpp"
 
@@ -159,7 +160,7 @@ inline std::vector<double> solve_dirichlet(const core::SparseMatrix& k, std::vec
   for (size_t i = 0; i < fixed.size(); ++i) f[fixed[i]] = g[i];
   core::SparseMatrix a = k.copy();
   a.zero_rows_columns(fixed, 1.0);
-  const core::CholeskySolver solver(a);
+  const linalg::CholeskySolver solver(a);
   core::Vector b = core::Vector::from(f), x(n);
   solver.solve(b, x);
   return x.to_std();

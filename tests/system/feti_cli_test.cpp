@@ -108,7 +108,7 @@ TEST_F(FetiCli, TwoRanksGiveTheOneRankHistory) {
 
 TEST(DirectCli, RanksShareTheFactorAndRepeatTheSerialHistory) {
   // Undecomposed bodies on N > 1 ranks: each body is factorised once by MUMPS over the ranks
-  // (core::CholeskySolver, FactorRanks::all_ranks), and the rest is replicated. The factor is
+  // (linalg::CholeskySolver, FactorRanks::all_ranks), and the rest is replicated. The factor is
   // another package's than the serial CHOLMOD one, so the histories differ by round-off carried
   // through the QPs' and the fixed points' stopping tests: issue 22 asks for the same history to
   // 1e-6 at 1, 2 and 4 ranks (differences_by_unit; 1e-11 seen on the coarse case to 0.3 s).

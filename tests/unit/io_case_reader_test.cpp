@@ -282,7 +282,7 @@ TEST(AutoSubdomains, CholmodsAnalysisOfADenseMatrixIsItsClosedForm) {
   // counts a multiply-add of each update and the column's divisions so).
   const auto one = tc::mesh::make_box(3, {0, 0, 0}, {1, 1, 1}, {1, 1, 1});
   const auto p = tc::io::operator_pattern(one, 3);
-  const auto a = tc::core::analyse_cholesky(p.start, p.column);
+  const auto a = tc::linalg::analyse_cholesky(p.start, p.column);
   EXPECT_EQ(a.n, 24.0);
   EXPECT_EQ(a.entries, 300.0);
   EXPECT_NEAR(a.flops, 24.0 * 25.0 * 49.0 / 6.0, 0.5 * 24.0 * 25.0);  // ± the divisions

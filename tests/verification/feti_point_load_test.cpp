@@ -1,9 +1,12 @@
-// Total FETI (6.2) for point loads: the compliance columns A⁻¹e_j of DofCompliance (the
-// explicit contact operator of the nested form) against the undecomposed direct solve. A unit
+// Total FETI (6.2) for point loads: the compliance columns A⁻¹e_j of linalg::Compliance (the
+// explicit contact operator of the nested form) against the undecomposed direct solve, and
+// FETI's compliance (FetiCompliance) against a dense inverse. A unit
 // load on a fixing dof of its subdomain has A_s⁺f = 0, so d = 0 and the load enters only
 // through e = Rᵀf: the stopping test must not take λ₀ (feasible only) for the solution.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 #include "support/problems.hpp"
@@ -62,6 +65,64 @@ TEST(Feti, PointLoadsGiveTheDirectSolution) {
   }
   EXPECT_GT(largest, 0.0);
   EXPECT_LT(worst, 1e-7 * largest);
+}
+
+// FetiCompliance: S = (A⁻¹)_TT on dofs of the free face (a clamped dof among them), covered in
+// two chunks, against Eigen's inverse of the eliminated stiffness; a replay of its record gives
+// the same bits (FETI's block PCG is deterministic on one rank). Tolerance: FETI's, as above.
+TEST(Feti, ItsComplianceIsTheDenseInverse) {
+  auto p = box_problem(3, {1, 1, 1}, {4, 4, 4}, steel(), physics::Scheme::quasistatic, 1.0, 1);
+  p.bodies[0].subdomains = 8;
+  p.boundaries.push_back(hold("xmin", {0, 1, 2}));
+  const physics::BodySystem sys(p, 0);
+  feti::FetiOptions o;
+  o.tolerance = 1e-10;
+  o.comm = PETSC_COMM_SELF;
+  const physics::ConstrainedSolver feti(std::make_unique<feti::Feti>(
+      sys.subdomains(), sys.body().mesh.n_nodes(), 3, sys.u_dirichlet_dofs(), feti::Kernel::rigid,
+      feti::Singular::yes, [&](int s) { return sys.subdomain_matrices(s).stiffness_u.copy(); }, o));
+  const PetscInt n = sys.n_u();
+  auto fixed = sys.u_dirichlet_dofs();
+  std::sort(fixed.begin(), fixed.end());
+  const auto is_fixed = [&](PetscInt d) {
+    return std::binary_search(fixed.begin(), fixed.end(), d);
+  };
+  // A with the clamped rows and columns replaced by the identity: its inverse is A_FF⁻¹ on the
+  // free dofs and zero across, so zeroing the clamped rows and columns after gives S's entries.
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+  const auto& k = sys.matrices().stiffness_u;
+  for (PetscInt r = 0; r < n; ++r) {
+    PetscInt nz = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    TC_PETSC(MatGetRow(k.get(), r, &nz, &cols, &vals));
+    for (PetscInt q = 0; q < nz; ++q)
+      if (!is_fixed(r) && !is_fixed(cols[q])) a(r, cols[q]) = vals[q];
+    TC_PETSC(MatRestoreRow(k.get(), r, &nz, &cols, &vals));
+    if (is_fixed(r)) a(r, r) = 1.0;
+  }
+  Eigen::MatrixXd inverse = a.llt().solve(Eigen::MatrixXd::Identity(n, n));
+  for (const PetscInt d : fixed) {
+    inverse.row(d).setZero();
+    inverse.col(d).setZero();
+  }
+  std::vector<PetscInt> first, second;  // dofs of nodes near xmax, then more, and a clamped one
+  for (PetscInt d = n - 60; d < n - 20; ++d) first.push_back(d);
+  for (PetscInt d = n - 30; d < n; ++d) second.push_back(d);
+  second.push_back(fixed.front());
+  const auto c = feti.compliance(n);
+  EXPECT_EQ(c->path(), "feti");
+  c->cover(first);
+  c->cover(second);
+  const double scale = inverse.cwiseAbs().maxCoeff();
+  for (PetscInt j = 0; j < c->size(); ++j)
+    for (PetscInt i = 0; i < c->size(); ++i)
+      ASSERT_NEAR(c->matrix()(i, j), inverse(c->dofs()[i], c->dofs()[j]), 1e-7 * scale)
+          << i << ", " << j;
+  EXPECT_EQ(c->matrix(), c->matrix().transpose());  // exactly symmetric (the mean of two)
+  const auto again = feti.compliance(n);
+  again->replay(c->dofs(), c->chunks());
+  EXPECT_TRUE(again->matrix() == c->matrix());
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include "support/body_energy.hpp"
 #include "support/grid_laplacian.hpp"
 #include "support/problems.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/physics/interface_heat/interface_heat_solver.hpp"
 #include "tc/run/simulation.hpp"
 
@@ -171,7 +172,7 @@ TEST(InterfaceHeatSolver, ByForwardColumnsGivesTheSameTemperaturesInOneSolvePerB
   // halves (P G(b) = Yᵀz, θ = PᵀL⁻ᵀ(z − Y Pᵀ L_Γ y)): the same θ as the two full solves per
   // body to round-off, 1e-12 of the largest temperature (κ of the grids and of I + S L is
   // O(10²)). Exactly equal would mean the halves were not taken.
-  const auto& packages = core::available_cholesky_packages();
+  const auto& packages = linalg::available_cholesky_packages();
   if (std::find(packages.begin(), packages.end(), std::string(MATSOLVERCHOLMOD)) == packages.end())
     GTEST_SKIP() << "no CHOLMOD";
   const PetscInt gs = 14, gm = 13, side = 6;

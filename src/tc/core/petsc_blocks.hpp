@@ -1,7 +1,7 @@
 #pragma once
 // Helpers of core's PETSc wrappers for objects spread over the ranks in RowBlocks, shared by
-// petsc.cpp (SparseMatrix, jacobi_cg) and cholesky_solver.cpp (a factor over the ranks).
-// Private to core.
+// core/petsc.cpp (SparseMatrix, jacobi_cg) and linalg's solvers (linalg/mumps_ranks.cpp: a
+// factor over the ranks). For core and linalg only.
 #include "tc/core/collective.hpp"
 #include "tc/core/petsc.hpp"
 

@@ -22,12 +22,11 @@ DualContactSolver::DualContactSolver(std::vector<const ConstrainedSolver*> bodie
   const bool over_ranks = std::all_of(bodies_.begin(), bodies_.end(),
                                       [](const auto* b) { return b->unit_rows_at_once(); });
   for (int i = 0; i < n_bodies(); ++i) {
-    compliance_.emplace_back(*bodies_[i], n_u[i], over_ranks);
+    compliance_.push_back(bodies_[i]->compliance(n_u[i], over_ranks));
     w_in_.emplace_back(n_u[i]);
     y_.emplace_back(n_u[i]);
   }
-  half_z_.resize(bodies_.size());
-  half_done_.assign(bodies_.size(), 0);
+  corrected_.resize(bodies_.size());
   used_.resize(bodies_.size());
   kept_.resize(bodies_.size());
   used_row_.resize(bodies_.size());
@@ -108,7 +107,7 @@ void DualContactSolver::stack_rows() {
       b_[i] = parts[i].front().second->share();
       continue;
     }
-    const PetscInt n = compliance_[i].n_dofs();
+    const PetscInt n = compliance_[i]->n_dofs();
     std::vector<PetscInt> nnz(static_cast<size_t>(m), 0);
     for (const auto& [p, part] : parts[i])
       for (PetscInt r = 0; r < part->rows(); ++r) {
@@ -263,14 +262,11 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
 void DualContactSolver::solve_free(int i, const core::Vector& b, core::Vector& u,
                                    const core::Vector& lambda) {
   const auto k = static_cast<size_t>(i);
-  half_done_[k] = 0;
-  if (compliance_[k].keeps_forward() && n_rows() > 0) {
+  corrected_[k].cancel();
+  if (n_rows() > 0) {
     b_[k].mult_transpose(lambda, w_in_[k]);
-    // Unloaded (before the first touch) recover() has no backward solve to share.
-    if (w_in_[k].max_abs() != 0.0 && compliance_[k].solve_forward_half(b, u, half_z_[k])) {
-      half_done_[k] = 1;
-      return;
-    }
+    // Unloaded (before the first touch) recover() has no solve to share.
+    if (w_in_[k].max_abs() != 0.0 && compliance_[k]->begin_corrected(b, u, corrected_[k])) return;
   }
   bodies_[k]->solve(b, u);
 }
@@ -282,18 +278,14 @@ void DualContactSolver::recover(const core::Vector& lambda, BodyVectorsOut u) co
       b_[i].mult_transpose(lambda, w_in_[i]);
     else
       w_in_[i].zero();
-    if (half_done_[k]) {  // u_i = A_i⁻¹(b_i − B_iᵀλ): the backward half of solve_free
-      half_done_[k] = 0;
-      if (!compliance_[k].solve_backward_half(half_z_[k], w_in_[i], *u[i]))
-        throw Error("internal: the backward half of a split body solve failed");
-      continue;
-    }
+    // u_i = A_i⁻¹(b_i − B_iᵀλ): the corrected solve solve_free began
+    if (compliance_[k]->finish_corrected(corrected_[k], w_in_[i], *u[i])) continue;
     // No contact force on the body (every step before the first touch): A⁻¹0 = 0 exactly,
     // and the solve would cost as much as the step's own.
     if (w_in_[i].max_abs() == 0.0) continue;
-    // B_iᵀλ lives on T: with the compliance's forward columns Y, A⁻¹ of it is a backward
-    // solve of Y(B_iᵀλ)_T, half the full solve's flops.
-    if (!compliance_[i].solve(w_in_[i], y_[i])) {
+    // B_iᵀλ lives on T: the compliance may have a cheaper A⁻¹ of it than a solve (CHOLMOD's
+    // kept forward columns: half a solve).
+    if (!compliance_[i]->apply(w_in_[i], y_[i])) {
       y_[i].zero();
       bodies_[i]->solve(w_in_[i], y_[i]);
     }

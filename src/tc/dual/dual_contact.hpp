@@ -8,7 +8,7 @@
 // over λ_n,k ≥ 0 and ‖λ_τ,k‖ ≤ 𝔉γ_k (an interval in 2D, a disc in 3D), and then
 // u_i = A_i⁻¹(f_i − B_iᵀλ). F is applied matrix-free (two solves per application) or formed
 // explicitly when the interface is small; which one is reported. Explicitly, F is formed from
-// each body's compliance on the dofs the rows touch (DofCompliance): no solve once the rows
+// each body's compliance on the dofs the rows touch (linalg::Compliance): no solve once the rows
 // stay on dofs seen before, whatever the geometry of the step.
 #include <Eigen/Dense>
 #include <array>
@@ -19,7 +19,7 @@
 #include "tc/contact/contact_rows.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/dual/constrained_solver.hpp"
-#include "tc/dual/dof_compliance.hpp"
+#include "tc/linalg/compliance.hpp"
 #include "tc/qp/mpgp.hpp"
 
 namespace tc::physics {
@@ -152,12 +152,12 @@ class DualContactSolver {
   /// left half done by solve_free is finished here: u_i = A_i⁻¹(b_i − B_iᵀλ), all of it.
   void recover(const core::Vector& lambda, BodyVectorsOut u) const;
   /// u_i = A_i⁻¹b with the Dirichlet data in u_i, as body i's ConstrainedSolver::solve, when
-  /// recover() follows before anything reads u_i off the contact dofs: where body i's
-  /// compliance keeps its forward columns Y and λ (the current iterate) loads the body, only
-  /// the forward half is done, u_i on T = Yᵀz (all that B_i and the QP read), and recover()
-  /// forms u_i = PᵀL⁻ᵀ(z − Y(B_iᵀλ)_T): one forward and one backward solve per body for both
-  /// u_free and A⁻¹B_iᵀλ, not one forward and two backward. Until then u_i off T is stale.
-  /// Whether a body is split depends on λ alone, so a restarted run takes the same path.
+  /// recover() follows before anything reads u_i off the contact dofs: where λ (the current
+  /// iterate) loads the body, u_free and u_i = A_i⁻¹(b − B_iᵀλ) are one corrected solve of its
+  /// compliance (linalg::Compliance::begin_corrected: u_i on T now, all that B_i and the QP
+  /// read; recover() finishes it), which CHOLMOD's kept forward columns do for the price of one
+  /// solve. Until then u_i off T may be stale. Whether a body's solve is corrected depends on λ
+  /// alone, so a restarted run takes the same path.
   void solve_free(int i, const core::Vector& b, core::Vector& u, const core::Vector& lambda);
   void recover(const core::Vector& lambda, core::Vector& u_slave, core::Vector& u_master) const {
     recover(lambda, std::array{&u_slave, &u_master});
@@ -181,10 +181,17 @@ class DualContactSolver {
   /// y = Σ_i B_i A_i⁻¹ B_iᵀ x (matrix-free application; also used to form F).
   void apply_f(const core::Vector& x, core::Vector& y) const;
 
-  /// The checkpoint's part of the compliance: per body its dofs and chunks
-  /// (DofCompliance::dofs, chunks); replay_compliance rebuilds S from them with the same bits.
-  void save_compliance(std::vector<std::vector<int>>& record) const;
-  void replay_compliance(std::span<const std::vector<int>> record);
+  /// The checkpoint's part of the compliances: their records (linalg::save_compliances), and
+  /// S rebuilt from them with the same bits.
+  void save_compliance(std::vector<std::vector<int>>& record) const {
+    linalg::save_compliances(compliance_, record);
+  }
+  void replay_compliance(std::span<const std::vector<int>> record) {
+    linalg::replay_compliances(compliance_, record, "contact");
+  }
+  /// How body i's compliance is grown (linalg::Compliance::path), and whether it holds any
+  /// column yet.
+  [[nodiscard]] const linalg::Compliance& compliance(int i) const { return *compliance_[i]; }
 
  private:
   [[nodiscard]] int n_bodies() const { return static_cast<int>(bodies_.size()); }
@@ -227,7 +234,7 @@ class DualContactSolver {
   double last_tolerance_ = 0;       // the last solve's tolerance on ‖g^P‖ (its variables)
   std::vector<double> last_sigma_;  // … and its Σ (empty: unscaled)
   PetscInt lambda_max_rows_ = -1;
-  std::vector<DofCompliance> compliance_;  // per body
+  std::vector<std::unique_ptr<linalg::Compliance>> compliance_;  // per body
   // form_from_compliance, per body: the T-position of each U-position (U: the T-positions the
   // rows reach), the rows of this rank's S that W_i = B_i,U S_i,UU has (its U-positions' rows,
   // all unless S's rows are spread), each U-position's row of W_i (−1: another rank's), and
@@ -235,9 +242,8 @@ class DualContactSolver {
   std::vector<std::vector<PetscInt>> used_, kept_, used_row_;
   std::vector<std::vector<double>> w_bands_;
   mutable std::vector<core::Vector> w_in_, y_;  // per body: B_iᵀx and A_i⁻¹B_iᵀx
-  // Per body: z = L⁻¹P b of a solve_free left for recover() to finish, and whether it is.
-  std::vector<std::vector<double>> half_z_;
-  mutable std::vector<char> half_done_;
+  // Per body: a corrected solve begun by solve_free for recover() to finish.
+  mutable std::vector<linalg::CorrectedSolve> corrected_;
 };
 
 }  // namespace tc::physics

@@ -1,6 +1,6 @@
 // The explicit dual operator of DualContactSolver: F = Σ_i B_i A_i⁻¹ B_iᵀ formed by
 // multi-right-hand-side solves, or from each body's compliance S_i on the rows' dofs (its
-// threaded bands), the record of which dofs the compliance covered (restart), and the Jacobi
+// threaded bands) and the Jacobi
 // scaling Σ F Σ (docs/theory.md, 6.9). dual_contact.cpp holds the rows, the QP and the
 // recovery of u.
 #include <Eigen/SparseCore>
@@ -18,14 +18,15 @@
 #include "tc/core/threads.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/dual/dual_contact.hpp"
+#include "tc/linalg/dense.hpp"
 
 namespace tc::physics {
 
 namespace {
 
-using dense::assemble;
-using dense::Dense;
-using dense::zero_dense;
+using linalg::dense::assemble;
+using linalg::dense::Dense;
+using linalg::dense::zero_dense;
 
 /// The nonzeros of a sparse matrix as (row, column, value).
 std::vector<Eigen::Triplet<double, PetscInt>> nonzeros(const core::SparseMatrix& b) {
@@ -135,24 +136,6 @@ void DualContactSolver::form_scaled() {
   assemble(f_dense_.get());
 }
 
-void DualContactSolver::save_compliance(std::vector<std::vector<int>>& record) const {
-  for (const auto& comp : compliance_) {
-    record.emplace_back(comp.dofs().begin(), comp.dofs().end());
-    record.emplace_back(comp.chunks().begin(), comp.chunks().end());
-  }
-}
-
-void DualContactSolver::replay_compliance(std::span<const std::vector<int>> record) {
-  if (record.size() != 2 * compliance_.size())
-    throw Error("checkpoint: the compliance record does not match the contact bodies");
-  for (size_t i = 0; i < compliance_.size(); ++i) {
-    const auto& dofs = record[2 * i];
-    const auto& chunks = record[2 * i + 1];
-    compliance_[i].replay(std::vector<PetscInt>(dofs.begin(), dofs.end()),
-                          std::vector<PetscInt>(chunks.begin(), chunks.end()));
-  }
-}
-
 bool DualContactSolver::form_from_compliance() {
   // F = Σ_i B_i,T S_i B_i,Tᵀ: W = B_i,T S_i (nnz(B_i)·|T| flops), then W B_i,Tᵀ
   // (m · nnz(B_i)); no solve unless the rows reach new dofs.
@@ -170,10 +153,10 @@ bool DualContactSolver::form_from_compliance() {
     entries[i] = by_nodes ? node_nonzeros(pairs_, pair_bodies_, offsets_, i) : nonzeros(b_[i]);
     cols[i].reserve(entries[i].size());
     for (const auto& e : entries[i]) cols[i].push_back(e.col());
-    if (compliance_[i].size() + compliance_[i].missing(cols[i]) > settings_.compliance_limit)
+    if (compliance_[i]->size() + compliance_[i]->missing(cols[i]) > settings_.compliance_limit)
       return false;
   }
-  for (int i = 0; i < nb; ++i) setup_solves_ += static_cast<int>(compliance_[i].cover(cols[i]));
+  for (int i = 0; i < nb; ++i) setup_solves_ += static_cast<int>(compliance_[i]->cover(cols[i]));
   // B_i,T (Ĉ_i,T on nodes) row by row, T-positions ascending: the order in which the sparse
   // products summed before (Eigen's setFromTriplets sorts them), so B's F keeps its bits.
   // Positions are then renumbered into U_i ⊆ T, the T-positions this step's rows reach: S
@@ -182,7 +165,7 @@ bool DualContactSolver::form_from_compliance() {
   // order.
   std::vector<RowsT> bt(nb);
   for (int i = 0; i < nb; ++i) {
-    const auto& s = compliance_[i];
+    const auto& s = *compliance_[i];
     auto& r = bt[i];
     r.start.assign(static_cast<size_t>(m) + 1, 0);
     for (const auto& e : entries[i]) ++r.start[static_cast<size_t>(e.row()) + 1];
@@ -212,9 +195,9 @@ bool DualContactSolver::form_from_compliance() {
   PetscInt ldf = m;
   TC_PETSC(MatDenseGetLDA(f_dense_.get(), &ldf));
   form_bands(bt, fv, ldf);
-  // Each rank's part of G from its rows of the S_i (DofCompliance::rows_spread), summed: the
+  // Each rank's part of G from its rows of the S_i (linalg::Compliance::rows_spread), summed: the
   // same G on every rank.
-  if (compliance_.front().rows_spread())
+  if (compliance_.front()->rows_spread())
     core::sum_over_ranks(PETSC_COMM_WORLD, fv, static_cast<long>(ldf) * m, "the explicit F");
   if (by_nodes) {
     std::vector<double> v;
@@ -302,7 +285,7 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
   deal(tile_of.back(), [&](PetscInt j, std::vector<double>& tile) {
     const auto i = static_cast<size_t>(std::upper_bound(tile_of.begin(), tile_of.end(), j) -
                                        tile_of.begin() - 1);
-    const auto& comp = compliance_[i];
+    const auto& comp = *compliance_[i];
     const double* s = comp.matrix().data();  // this rank's rows of S, column-major
     const auto ld = static_cast<size_t>(comp.matrix().rows());
     const auto& used = used_[i];
@@ -367,7 +350,7 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
 
 void DualContactSolver::restrict_compliance(int i, std::vector<PetscInt>& pos) {
   const auto k = static_cast<size_t>(i);
-  const auto& comp = compliance_[k];
+  const auto& comp = *compliance_[k];
   const auto t = static_cast<size_t>(comp.size());
   std::vector<PetscInt> at(t, -1);  // T-position → U-position
   for (const PetscInt q : pos) at[static_cast<size_t>(q)] = 0;

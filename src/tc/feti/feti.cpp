@@ -11,6 +11,7 @@
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/feti/subdomain.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 
 namespace tc::feti {
 
@@ -68,7 +69,7 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
       const double diag = core::mean_diagonal(sub.a);
       auto reduced = sub.a.copy();
       reduced.zero_rows_columns(sub.fixing, diag);
-      sub.factor = core::CholeskySolver(reduced, options_.package);
+      sub.factor = linalg::CholeskySolver(reduced, options_.package);
       package_ = sub.factor.package();
       if (options_.preconditioner == Preconditioner::dirichlet) {
         for (const auto& e : sub.b) sub.boundary.push_back(e.dof);
@@ -77,7 +78,7 @@ Feti::Feti(const std::vector<mesh::SubMesh>& subdomains, int n_nodes, int block,
                            sub.boundary.end());
         auto inner = sub.a.copy();
         inner.zero_rows_columns(sub.boundary, diag);
-        sub.interior = core::CholeskySolver(inner, options_.package);
+        sub.interior = linalg::CholeskySolver(inner, options_.package);
       }
     }
   });
@@ -403,7 +404,7 @@ Feti::Block Feti::solve_dual(const Block& f_global, const Block& c, std::vector<
   // The scale of the criterion: ‖Pd‖, or ‖PFλ₀‖ = ‖P(g₀ + d)‖ when the load enters through
   // e = Rᵀf rather than d. A load on a fixing dof has A_s⁺f = 0 (d = 0, e ≠ 0): against ‖Pd‖
   // alone that column counted as solved by λ₀, which is only feasible (a unit load there came
-  // back with a residual ‖Ku − f‖ of 3, the compliance of DofCompliance 40% off).
+  // back with a residual ‖Ku − f‖ of 3, the compliance built on it 40% off).
   const Block pf0 = w + pd;
   const Block f0 = g + d;
   // The five norms of the set-up in one reduction: ‖w‖, ‖d‖, ‖Fλ₀‖, ‖Pd‖, ‖PFλ₀‖.

@@ -8,6 +8,7 @@
 
 #include "tc/core/petsc.hpp"
 #include "tc/feti/feti.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 
 namespace tc::feti {
 
@@ -40,10 +41,10 @@ struct Feti::Subdomain {
   std::vector<Eigen::Index> leaf;  // per entry of b: its row's place in the rank's leaf block
   core::SparseMatrix a;
   std::vector<PetscInt> fixing;    // dofs set to zero in A⁺ (the fixing-node generalised inverse)
-  core::CholeskySolver factor;     // of A with the fixing dofs eliminated
+  linalg::CholeskySolver factor;   // of A with the fixing dofs eliminated
   std::vector<PetscInt> boundary;  // local dofs with a row of B (Dirichlet preconditioner)
-  core::CholeskySolver interior;   // of A with the boundary dofs eliminated
-  mutable Block w, z, t;           // work blocks, n × k
+  linalg::CholeskySolver interior;  // of A with the boundary dofs eliminated
+  mutable Block w, z, t;            // work blocks, n × k
 
   [[nodiscard]] PetscInt n() const { return static_cast<PetscInt>(global_dof.size()); }
 
@@ -88,7 +89,7 @@ struct Feti::Subdomain {
   void interior_solve(Block& in, Block& out) const { solve_with(interior, in, out); }
   /// One right-hand side through KSPSolve (KSPMatSolve costs several times more for one
   /// column), more through one multi-RHS solve.
-  void solve_with(const core::CholeskySolver& c, Block& in, Block& out) const {
+  void solve_with(const linalg::CholeskySolver& c, Block& in, Block& out) const {
     out.resize(in.rows(), in.cols());
     if (in.cols() == 1) {
       core::Handle<::Vec, VecDestroy> x, y;

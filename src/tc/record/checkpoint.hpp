@@ -28,7 +28,7 @@ struct Checkpoint {
   };
   std::vector<double> lambda;  // node-major multipliers of the last step, pair after pair
   std::vector<Pair> pairs;
-  // The compliance records (DofCompliance::dofs, chunks) of each contact body of the contact
+  // The compliance records (linalg::Compliance::dofs, chunks) of each contact body of the contact
   // solver, then of the stabiliser's: replayed on restore, so F has the same bits.
   std::vector<std::vector<int>> compliance, stabiliser_compliance;
   // The same for the interface heat solver's S (InterfaceHeatSolver: each contact body's

@@ -71,7 +71,7 @@ double matrices_bytes(int dim, double n, double upper) {
 }
 
 struct Analysed {
-  core::FactorAnalysis mech, heat;
+  linalg::FactorAnalysis mech, heat;
   double matrices = 0;   // matrices_bytes
   double transient = 0;  // the mechanical factorisation's copy of A_u's triangle and its work
 };
@@ -81,12 +81,12 @@ Analysed analyse(const mesh::Mesh& mesh, int dim) {
   const double n = mesh.n_nodes();
   {
     const auto nodes = operator_pattern(mesh, 1);
-    out.heat = core::analyse_cholesky(nodes.start, nodes.column);
+    out.heat = linalg::analyse_cholesky(nodes.start, nodes.column);
     out.matrices = matrices_bytes(dim, n, static_cast<double>(nodes.column.size()));
   }
   const auto dofs = operator_pattern(mesh, dim);
-  out.mech = core::analyse_cholesky(dofs.start, dofs.column);
-  // Held at once besides what stays: while A_u is factorised, core::CholmodFactor's copy of its
+  out.mech = linalg::analyse_cholesky(dofs.start, dofs.column);
+  // Held at once besides what stays: while A_u is factorised, linalg::CholmodFactor's copy of its
   // triangle (a double and an index per entry, an index per column) and CHOLMOD's update
   // block; after the factorisations, the dynamic scheme's initial acceleration, CG on a copy of
   // M_u with its supports eliminated (its entries, dim² blocks, and five vectors).
@@ -97,7 +97,7 @@ Analysed analyse(const mesh::Mesh& mesh, int dim) {
   return out;
 }
 
-double solve_seconds(const core::FactorAnalysis& f) {
+double solve_seconds(const linalg::FactorAnalysis& f) {
   return 2.0 * f.bytes / kSolveBytesPerSecond;  // a forward and a backward pass over L
 }
 
@@ -128,7 +128,7 @@ BodyCosts body_costs(const mesh::Mesh& mesh, int dim, int factor_ranks, double c
         a.matrices + c.parts * (sub.matrices + kFactorOverhead * (sub.mech.bytes + sub.heat.bytes));
   } else {
     // Beyond the analysis (or over ranks, where MUMPS factorises): the fit, and the flops of
-    // nested dissection on a 3D body's n dofs, n², as core::CholeskySolver counts them.
+    // nested dissection on a 3D body's n dofs, n², as linalg::CholeskySolver counts them.
     c.direct_bytes = direct_memory(dim, c.u_dofs, factor_ranks);
     c.factor_seconds = c.u_dofs * c.u_dofs / kFactorFlopsPerSecond;
     c.direct_step_seconds =

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/cholmod_analysis.hpp"
+#include "tc/linalg/cholmod/cholmod_analysis.hpp"
 
 namespace tc::mesh {
 class Mesh;
@@ -18,7 +18,7 @@ namespace tc::io {
 /// Peak memory of a body solved directly [bytes], for `u_dofs` displacement dofs, by a fit to
 /// serial runs of one box body on the 2-core VM: the estimate of bodies too large to analyse
 /// (kMaxAnalysedDofs). With `factor_ranks` > 1 the factors are spread over that many ranks
-/// (MUMPS, as core::CholeskySolver does over the ranks) and the peak is that of one rank.
+/// (MUMPS, as linalg::CholeskySolver does over the ranks) and the peak is that of one rank.
 [[nodiscard]] double direct_memory(int dim, double u_dofs, int factor_ranks = 1);
 
 /// Displacement dofs per subdomain when a body is decomposed: FETI's subdomain factors are
@@ -40,7 +40,7 @@ inline constexpr double kFactorOverhead = 1.1;
 inline constexpr double kMaxAnalysedDofs = 1.5e6;
 
 /// The symmetric pattern of a body's operator, the upper triangle row by row as
-/// core::analyse_cholesky takes it: nodes coupled when they share a cell, `block` dofs per node
+/// linalg::analyse_cholesky takes it: nodes coupled when they share a cell, `block` dofs per node
 /// interleaved (block·a + k) as the assembler numbers them.
 struct Pattern {
   std::vector<int> start, column;
@@ -50,15 +50,15 @@ struct Pattern {
 /// What one body costs on each path, estimated before anything is assembled.
 struct BodyCosts {
   double u_dofs = 0;
-  bool analysed = false;            // from CHOLMOD's analysis of the pattern, else the fit
-  core::FactorAnalysis mech, heat;  // the factors of A_u and A_θ (when analysed)
-  double direct_bytes = 0;          // peak of the direct path on one rank of factor_ranks
-  double factor_seconds = 0;        // its factorisations, once
-  double direct_step_seconds = 0;   // its solves in one step
-  int parts = 1;                    // FETI subdomains: ⌈u_dofs / kDofsPerSubdomain⌉, ≥ 2
-  double feti_bytes = 0;            // peak of the FETI path
-  double feti_setup_seconds = 0;    // its subdomains' factorisations, once
-  double feti_step_seconds = 0;     // its solves in one step
+  bool analysed = false;              // from CHOLMOD's analysis of the pattern, else the fit
+  linalg::FactorAnalysis mech, heat;  // the factors of A_u and A_θ (when analysed)
+  double direct_bytes = 0;            // peak of the direct path on one rank of factor_ranks
+  double factor_seconds = 0;          // its factorisations, once
+  double direct_step_seconds = 0;     // its solves in one step
+  int parts = 1;                      // FETI subdomains: ⌈u_dofs / kDofsPerSubdomain⌉, ≥ 2
+  double feti_bytes = 0;              // peak of the FETI path
+  double feti_setup_seconds = 0;      // its subdomains' factorisations, once
+  double feti_step_seconds = 0;       // its solves in one step
 };
 
 /// The cost model's rates on the 2-core VM (docs/choices.md, "subdomains = auto"): CHOLMOD's

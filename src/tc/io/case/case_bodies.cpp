@@ -10,6 +10,7 @@
 #include "tc/io/case/case_reader_detail.hpp"
 #include "tc/io/checks/case_checks.hpp"
 #include "tc/io/files/files.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/mesh/gmsh_reader.hpp"
 #include "tc/mesh/partition.hpp"
@@ -41,7 +42,7 @@ int CaseReader::factor_ranks(const TableReader& root) const {
   std::string package;
   if (const auto* solver = root.table().get_as<toml::table>("solver"))
     package = (*solver)["factorization"].value_or(std::string());
-  return core::ranks_sharing_a_factor(package == "auto" ? std::string() : package);
+  return linalg::ranks_sharing_a_factor(package == "auto" ? std::string() : package);
 }
 
 void CaseReader::resolve_auto_subdomains(const TableReader& root) {

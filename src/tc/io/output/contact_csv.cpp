@@ -1,11 +1,13 @@
 // contact_<step>.csv (output.contact_csv): every contact node of every pair at a written step,
-// for scripts that want the interface without reading a .vtu.
+// for scripts that want the interface without reading a .vtu; summary.json's "compliance" of
+// the contact bodies.
 #include <fmt/format.h>
 
 #include <cmath>
 
 #include "tc/io/files/files.hpp"
 #include "tc/io/output/output.hpp"
+#include "tc/linalg/compliance.hpp"
 #include "tc/physics/interface_heat/contact_heat.hpp"
 
 namespace tc::io {
@@ -78,6 +80,28 @@ std::string contact_csv(const physics::Simulation& sim) {
     }
   }
   return std::string(out.view());
+}
+
+/// Per contact body, how its compliances (A⁻¹)_TT were grown (linalg::Compliance::path): the
+/// mechanical one of the contact dual, the thermal one of the interface heat step; "none" where
+/// the run took no column (F by solves or matrix-free, no conductance yet).
+std::string compliance_json(const physics::Simulation& sim) {
+  const auto* dual = sim.dual_solver();
+  const auto* heat =
+      sim.contact().enabled() ? sim.contact().heat().interface_heat_solver() : nullptr;
+  const auto path = [](const linalg::Compliance& c) {
+    return json_string(c.size() > 0 ? c.path() : "none");
+  };
+  std::string out;
+  const auto& members = sim.contact().members();
+  for (size_t i = 0; dual && i < members.size(); ++i) {
+    const int k = static_cast<int>(i);
+    out += fmt::format("{}{}: {{\"mechanics\": {}, \"heat\": {}}}", out.empty() ? "" : ", ",
+                       json_string(sim.problem().bodies[static_cast<size_t>(members[i])].name),
+                       path(dual->compliance(k)),
+                       heat ? path(heat->compliance(k)) : json_string("none"));
+  }
+  return out;
 }
 
 }  // namespace tc::io

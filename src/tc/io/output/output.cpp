@@ -521,6 +521,7 @@ std::string OutputWriter::summary_text(const physics::Simulation& sim, const std
             json_string(dual && dual->n_rows() > 0 ? physics::name(dual->kind()) : "none"));
   const auto* enforcement = sim.contact_enforcement();
   out.print("  \"contact_dual\": {},\n", json_string(enforcement ? enforcement->name() : "none"));
+  out.print("  \"compliance\": {{{}}},\n", compliance_json(sim));
   out.print("  \"smalbe_outer_iterations\": {},\n", sim.total_smalbe_outer_iterations());
   // The contact laws checked after every step (physics/contact/contact_laws.hpp; case-format.md).
   const auto& laws = sim.contact().laws_checked();

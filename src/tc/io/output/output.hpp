@@ -141,6 +141,8 @@ struct PairNodeFields {
 
 /// contact_<step>.csv's text: one row per contact node of every pair (output.contact_csv).
 [[nodiscard]] std::string contact_csv(const physics::Simulation& sim);
+/// summary.json's "compliance": per contact body, how its compliances (A⁻¹)_TT were grown.
+[[nodiscard]] std::string compliance_json(const physics::Simulation& sim);
 
 /// A progress line: rewritten in place on a terminal, plain lines (about 20 per run) otherwise.
 class ProgressLine : public physics::Observer {

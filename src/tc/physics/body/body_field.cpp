@@ -7,6 +7,7 @@
 
 #include "tc/core/error.hpp"
 #include "tc/core/verify.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/physics/body/time_scheme.hpp"
 
 namespace tc::physics {
@@ -73,9 +74,9 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
     dirichlet = std::move(both);
   }
   if (sys.subdomains().empty())
-    // One factorisation shared by the ranks rather than one per rank (core::CholeskySolver).
+    // One factorisation shared by the ranks rather than one per rank (linalg::CholeskySolver).
     return std::make_unique<ConstrainedSolver>(a, dirichlet, p.solver.factorization,
-                                               core::FactorRanks::all_ranks);
+                                               linalg::FactorRanks::all_ranks);
   const bool inertia = body_time_scheme(p).mass_factor(p.time.step) != 0.0;
   auto local = [&](int s) {
     const auto m = sys.subdomain_matrices(s);
@@ -125,8 +126,8 @@ std::unique_ptr<ConstrainedSolver> body_solver(const Problem& p, const BodySyste
   std::vector<PetscInt> dirichlet =
       op != BodyOperator::heat ? sys.u_dirichlet_dofs() : sys.theta_dirichlet_dofs();
   TC_VERIFY(op != BodyOperator::mass, "body_solver: M_u is kept, not consumed");
-  return std::make_unique<ConstrainedSolver>(std::move(a), std::move(dirichlet),
-                                             p.solver.factorization, core::FactorRanks::all_ranks);
+  return std::make_unique<ConstrainedSolver>(
+      std::move(a), std::move(dirichlet), p.solver.factorization, linalg::FactorRanks::all_ranks);
 }
 
 BodyField::BodyField(const Problem& p, const BodySystem& sys) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "tc/linalg/cholesky_solver.hpp"
 #include "tc/physics/body/time_scheme.hpp"
 
 namespace tc::physics {
@@ -25,10 +26,10 @@ std::vector<PetscInt> keys(const std::map<PetscInt, TimeTable>& m) {
 }
 
 /// The dofs of an undecomposed body (`per_node` a node) in the blocks its factor will have
-/// (one rule: core::ranks_sharing_a_factor), so that no rank holds a matrix of the body whole;
+/// (one rule: linalg::ranks_sharing_a_factor), so that no rank holds a matrix of the body whole;
 /// none otherwise.
 core::RowBlocks spread_rows(const Problem& problem, const Body& body, int per_node) {
-  if (body.subdomains > 1 || core::ranks_sharing_a_factor(problem.solver.factorization) <= 1)
+  if (body.subdomains > 1 || linalg::ranks_sharing_a_factor(problem.solver.factorization) <= 1)
     return {};
   return core::RowBlocks::over(PETSC_COMM_WORLD,
                                static_cast<PetscInt>(per_node) * body.mesh.n_nodes());

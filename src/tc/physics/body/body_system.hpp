@@ -39,7 +39,7 @@ class BodySystem {
   [[nodiscard]] PetscInt n_u() const { return dim_ * body_->mesh.n_nodes(); }
   [[nodiscard]] PetscInt n_theta() const { return body_->mesh.n_nodes(); }
   /// All five have their rows spread over the ranks (core::SparseMatrix::over_ranks) when the
-  /// body is undecomposed and its factors are spread (core::ranks_sharing_a_factor > 1): M_u,
+  /// body is undecomposed and its factors are spread (linalg::ranks_sharing_a_factor > 1): M_u,
   /// K_u and K_uθ in the displacement dofs' blocks, M_θ and K_θ in the temperature dofs'.
   [[nodiscard]] const fem::BodyMatrices& matrices() const { return m_; }
 

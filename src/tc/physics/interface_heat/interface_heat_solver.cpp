@@ -26,28 +26,17 @@ InterfaceHeatSolver::InterfaceHeatSolver(std::vector<const ConstrainedSolver*> s
     }
     offset_.push_back(offset_.back() + static_cast<int>(nodes_[i].size()));
     rhs_.emplace_back(n_[i]);
-    compliance_.emplace_back(*solver_[i], n_[i]);
+    compliance_.push_back(solver_[i]->compliance(n_[i]));
   }
-  z_.resize(static_cast<size_t>(n_bodies()));
+  corrected_.resize(static_cast<size_t>(n_bodies()));
 }
 
 void InterfaceHeatSolver::save_compliance(std::vector<std::vector<int>>& record) const {
-  for (const auto& comp : compliance_) {
-    record.emplace_back(comp.dofs().begin(), comp.dofs().end());
-    record.emplace_back(comp.chunks().begin(), comp.chunks().end());
-  }
+  linalg::save_compliances(compliance_, record);
 }
 
 void InterfaceHeatSolver::replay_compliance(std::span<const std::vector<int>> record) {
-  if (record.size() != 2 * compliance_.size())
-    throw Error("checkpoint: the interface heat compliance record does not match the bodies");
-  for (size_t i = 0; i < compliance_.size(); ++i) {
-    for (const int d : record[2 * i])
-      if (d < 0 || d >= n_[i]) throw Error("checkpoint: an interface heat dof out of range");
-    compliance_[i].replay(
-        std::vector<PetscInt>(record[2 * i].begin(), record[2 * i].end()),
-        std::vector<PetscInt>(record[2 * i + 1].begin(), record[2 * i + 1].end()));
-  }
+  linalg::replay_compliances(compliance_, record, "interface heat");
   // J, L_JJ and the LU are set afresh by the first heat step of the next time step
   // (set_conductance without refinement): nothing else passes between steps.
   active_.clear();
@@ -135,10 +124,10 @@ void InterfaceHeatSolver::set_conductance(std::span<const PairConductance> pairs
     node[a] = nodes_[body[a]][active_[a] - offset_[body[a]]];
     nodes[body[a]].push_back(node[a]);
   }
-  for (int i = 0; i < n_bodies(); ++i) setup_solves_ += compliance_[i].cover(nodes[i]);
+  for (int i = 0; i < n_bodies(); ++i) setup_solves_ += compliance_[i]->cover(nodes[i]);
   s_.setZero(na, na);
   for (Eigen::Index b = 0; b < na; ++b) {
-    const auto& comp = compliance_[body[b]];
+    const auto& comp = *compliance_[body[b]];
     const PetscInt cb = comp.index(node[b]);
     for (Eigen::Index a = 0; a < na; ++a)
       if (body[a] == body[b]) s_(a, b) = comp.matrix()(comp.index(node[a]), cb);
@@ -201,14 +190,14 @@ void InterfaceHeatSolver::interface_solve(Eigen::VectorXd& y) const {
 
 void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
                                 std::span<core::Vector* const> x) const {
-  // x = G(b), P x = y₀. Where body i's S keeps its forward columns Y (DofCompliance), the
-  // forward half alone gives x on T ⊇ J (Yᵀz), and the second solve's backward half gives
-  // θ = PᵀL⁻ᵀ(z − Y(Pᵀ L_Γ y)): one solve per body instead of two.
-  std::vector<char> half(static_cast<size_t>(n_bodies()), 0);
+  // x = G(b), P x = y₀, then θ = G(b − Pᵀ L_Γ y): one corrected solve of body i's compliance
+  // where it has one (x on T ⊇ J first, linalg::Compliance::begin_corrected), else two solves.
+  std::vector<char> shared(static_cast<size_t>(n_bodies()), 0);
   for (int i = 0; i < n_bodies(); ++i) {
     const auto k = static_cast<size_t>(i);
-    half[k] = !active_.empty() && compliance_[k].solve_forward_half(*b[i], *x[i], z_[k]);
-    if (!half[k]) solver_[i]->solve(*b[i], *x[i]);
+    corrected_[k].cancel();
+    shared[k] = !active_.empty() && compliance_[k]->begin_corrected(*b[i], *x[i], corrected_[k]);
+    if (!shared[k]) solver_[i]->solve(*b[i], *x[i]);
   }
   if (active_.empty()) return;
   const auto na = static_cast<Eigen::Index>(active_.size());
@@ -224,9 +213,9 @@ void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
   const Eigen::VectorXd c = l_active_ * y0;  // L_Γ y
   std::vector<char> touched(static_cast<size_t>(n_bodies()), 0);
   for (int i = 0; i < n_bodies(); ++i) {
-    // b − Pᵀ L_Γ y, or Pᵀ L_Γ y alone for the backward half, which subtracts it from b
-    const double sign = half[static_cast<size_t>(i)] ? 1.0 : -1.0;
-    if (half[static_cast<size_t>(i)])
+    // b − Pᵀ L_Γ y, or Pᵀ L_Γ y alone for the corrected solve, which subtracts it from b
+    const double sign = shared[static_cast<size_t>(i)] ? 1.0 : -1.0;
+    if (shared[static_cast<size_t>(i)])
       rhs_[i].zero();
     else
       rhs_[i].copy_from(*b[i]);
@@ -240,9 +229,9 @@ void InterfaceHeatSolver::solve(std::span<const core::Vector* const> b,
   }
   for (int i = 0; i < n_bodies(); ++i) {
     const auto k = static_cast<size_t>(i);
-    if (half[k]) {
-      if (!compliance_[k].solve_backward_half(z_[k], rhs_[i], *x[i]))
-        throw Error("internal: the backward half of a split heat solve failed");
+    if (shared[k]) {
+      TC_VERIFY(compliance_[k]->finish_corrected(corrected_[k], rhs_[i], *x[i]),
+                "a begun corrected heat solve finishes");
     } else if (touched[i]) {
       solver_[i]->solve(rhs_[i], *x[i]);  // θ = G(b − Pᵀ L_Γ y)
     }

@@ -15,8 +15,8 @@
 //
 // an exact solve of the coupled system (Woodbury's identity written on the interface) with two
 // solves per body and one dense LU of the nodes that L touches: A is never refactorised. Where
-// S comes from the forward solves Y = L⁻¹P E_T (DofCompliance), the two solves share their
-// halves: P G(b) = Yᵀz after the forward solve z = L⁻¹P b, θ = PᵀL⁻ᵀ(z − Y(Pᵀ L_Γ y)).
+// the compliance can (linalg::Compliance::begin_corrected: CHOLMOD's kept forward columns), the
+// two solves are one corrected solve, for the price of one.
 // I + S L_Γ is similar to I + S^½ L_Γ S^½ (on the free nodes), so its eigenvalues are ≥ 1.
 //
 // L changes little from one iteration of (6.3) to the next (γ = λ_n moves by the fixed point's
@@ -37,7 +37,7 @@
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/core/petsc.hpp"
 #include "tc/dual/constrained_solver.hpp"
-#include "tc/dual/dof_compliance.hpp"
+#include "tc/linalg/compliance.hpp"
 
 namespace tc::physics {
 
@@ -89,13 +89,15 @@ class InterfaceHeatSolver {
   [[nodiscard]] long factorizations() const { return factorizations_; }
   [[nodiscard]] long refinement_steps() const { return refinement_steps_; }
 
-  /// The record of each body's S (DofCompliance::dofs, chunks: the columns added in which
+  /// The record of each body's S (linalg::Compliance::dofs, chunks: the columns added in which
   /// blocks), appended to `record`, and S rebuilt from such a record: a restart's S then has the
   /// bits of the run's (the columns grow with the nodes that carried conductance, in blocks of
   /// their first contact; one block of all of them gave other bits, history.csv differed from
   /// the uninterrupted run's by 1e-10 relative after a few steps, issue 41).
   void save_compliance(std::vector<std::vector<int>>& record) const;
   void replay_compliance(std::span<const std::vector<int>> record);
+  /// How body i's S is grown (linalg::Compliance::path).
+  [[nodiscard]] const linalg::Compliance& compliance(int i) const { return *compliance_[i]; }
 
  private:
   [[nodiscard]] int n_bodies() const { return static_cast<int>(solver_.size()); }
@@ -112,8 +114,8 @@ class InterfaceHeatSolver {
   std::vector<int> offset_;              // first global interface index of each body, then n_Γ
   // S_i = (A_i⁻¹) on the interface nodes of body i that have carried conductance, grown as
   // nodes first do: their columns in blocks of right-hand sides (restricted to the supernodes
-  // they reach when the factor allows), not one solve each (DofCompliance).
-  std::vector<DofCompliance> compliance_;
+  // they reach when the factor allows), not one solve each (linalg::Compliance).
+  std::vector<std::unique_ptr<linalg::Compliance>> compliance_;
   long setup_solves_ = 0;
 
   std::vector<int> active_;               // J: global interface indices, ⊇ the rows of L
@@ -127,7 +129,7 @@ class InterfaceHeatSolver {
   mutable bool lu_current_ = false;  // the LU is of the current L
   mutable long factorizations_ = 0, refinement_steps_ = 0;
   mutable std::vector<core::Vector> rhs_;
-  mutable std::vector<std::vector<double>> z_;  // per body: L⁻¹P b of a solve by halves
+  mutable std::vector<linalg::CorrectedSolve> corrected_;  // per body, within solve()
 };
 
 }  // namespace tc::physics

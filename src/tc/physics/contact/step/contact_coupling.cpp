@@ -445,7 +445,7 @@ int ContactCoupling::couple(int step) {
         for (const int b : group_.members) steps_.mech_step(b, step, iteration);
         break;
       case DisplacementFeedback::per_iterate: {
-        // The same, by halves where that saves a backward solve: finish_qps recovers u at once.
+        // The same, as a solve the recovery corrects (solve_free): finish_qps recovers u at once.
         auto scope = timers_.scope("mechanical_solve");
         for (int i = 0; i < g.size(); ++i) {
           steps_.mech_load(group_.members[static_cast<size_t>(i)], step);

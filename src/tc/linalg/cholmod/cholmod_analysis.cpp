@@ -1,4 +1,4 @@
-#include "tc/core/cholmod_analysis.hpp"
+#include "tc/linalg/cholmod/cholmod_analysis.hpp"
 
 #include <cholmod.h>
 #include <fmt/format.h>
@@ -7,7 +7,7 @@
 #include "tc/core/error.hpp"
 #include "tc/core/verify.hpp"
 
-namespace tc::core {
+namespace tc::linalg {
 
 FactorAnalysis analyse_cholesky(const std::vector<int>& start, const std::vector<int>& column) {
   TC_VERIFY(!start.empty() && static_cast<size_t>(start.back()) == column.size(),
@@ -52,4 +52,4 @@ FactorAnalysis analyse_cholesky(const std::vector<int>& start, const std::vector
   return out;
 }
 
-}  // namespace tc::core
+}  // namespace tc::linalg

@@ -1,4 +1,4 @@
-#include "tc/core/cholmod_factor.hpp"
+#include "tc/linalg/cholmod/cholmod_factor.hpp"
 
 #include <cholmod.h>
 #include <fmt/format.h>
@@ -12,7 +12,9 @@
 #include "tc/core/threads.hpp"
 #include "tc/core/verify.hpp"
 
-namespace tc::core {
+namespace tc::linalg {
+
+using core::KernelThreads;
 
 static_assert(std::is_same_v<cholmod_factor_struct, cholmod_factor>);
 
@@ -175,4 +177,4 @@ std::string cholmod_path() {
       SUITESPARSE_SUBSUB_VERSION);
 }
 
-}  // namespace tc::core
+}  // namespace tc::linalg

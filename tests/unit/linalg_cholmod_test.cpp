@@ -10,9 +10,10 @@
 #include <vector>
 
 #include "support/grid_laplacian.hpp"
-#include "tc/core/cholmod_factor.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
+#include "tc/linalg/cholmod/cholmod_factor.hpp"
 
 namespace {
 
@@ -76,9 +77,9 @@ void expect_same_bits(const std::vector<double>& a, const std::vector<double>& b
 void compare_with_petsc(const tc::core::SparseMatrix& a, bool supernodal) {
   const PetscInt n = a.rows();
   const PetscCholmod reference(a);
-  const tc::core::CholeskySolver ours(a, MATSOLVERCHOLMOD);
+  const tc::linalg::CholeskySolver ours(a, MATSOLVERCHOLMOD);
   {
-    const tc::core::CholmodFactor f(a.get());
+    const tc::linalg::CholmodFactor f(a.get());
     EXPECT_EQ(f.supernodal(), supernodal) << "CHOLMOD's choice of factor for n = " << n;
   }
   for (const PetscInt k : {1, 7}) {  // one column (MatSolve) and a block (MatMatSolve)
@@ -119,10 +120,10 @@ TEST(Cholmod, SimplicialSolvesArePetscsCholmodBitForBit) {
 
 TEST(Cholmod, IsTheAutomaticPackageOnOneRank) {
   // Built in (CMake fails without it), so the automatic choice whatever PETSc was built with.
-  const auto packages = tc::core::available_cholesky_packages();
+  const auto packages = tc::linalg::available_cholesky_packages();
   ASSERT_FALSE(packages.empty());
   EXPECT_EQ(packages.front(), MATSOLVERCHOLMOD);
-  EXPECT_NE(tc::core::cholmod_path().find("public API"), std::string::npos);
+  EXPECT_NE(tc::linalg::cholmod_path().find("public API"), std::string::npos);
 }
 
 TEST(Cholmod, AnIndefiniteMatrixIsRefusedNamingTheColumn) {
@@ -134,7 +135,7 @@ TEST(Cholmod, AnIndefiniteMatrixIsRefusedNamingTheColumn) {
   TC_PETSC(MatSetValue(a.get(), 1000, 1000, -20.0, ADD_VALUES));  // 6.5 − 20 < 0
   a.assemble();
   try {
-    const tc::core::CholeskySolver solver(a, MATSOLVERCHOLMOD);
+    const tc::linalg::CholeskySolver solver(a, MATSOLVERCHOLMOD);
     ADD_FAILURE() << "an indefinite matrix was factorised";
   } catch (const tc::PetscError& e) {
     EXPECT_NE(std::string(e.what()).find("not positive definite"), std::string::npos) << e.what();

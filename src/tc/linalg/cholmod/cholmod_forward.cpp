@@ -1,4 +1,4 @@
-// (A⁻¹)_TT by forward solves alone on CHOLMOD's supernodal factor (CholeskySolver::
+// (A⁻¹)_TT by forward solves alone on CHOLMOD's supernodal factor (CholmodFactor::
 // forward_compliance), the values (A⁻¹b)_T from a kept forward half (forward_values) and the
 // solve finished from it (solve_from_forward): the dual set-up's forward solves
 // (docs/theory.md). The factor is read through cholmod_factor's public fields.
@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "tc/core/blas.hpp"  // the BLAS that CHOLMOD calls: the same kernels, the same bits
-#include "tc/core/cholmod_supernodes.hpp"
+#include "tc/linalg/cholmod/cholmod_supernodes.hpp"
 
-namespace tc::core {
+namespace tc::linalg {
 
 using supernodal::backward_one;
 using supernodal::columns_of;
@@ -165,8 +165,8 @@ double forward_flops(int nscol, int nsrow, double k) {
 
 }  // namespace
 
-bool CholeskySolver::forward_compliance_pays(std::span<const PetscInt> dofs, int block) const {
-  CholeskyColumns* c = columns_of(cholmod_.get(), columns_);
+bool CholmodFactor::forward_compliance_pays(std::span<const PetscInt> dofs, int block) const {
+  CholeskyColumns* c = columns_of(this, columns_);
   if (!c || dofs.empty()) return false;
   // -tc_forward_compliance takes this path at any size of a supernodal factor (CHOLMOD picks
   // a simplicial one for the smallest cases, then there is no c): no case of test size
@@ -209,9 +209,9 @@ void ForwardColumnsDeleter::operator()(ForwardColumns* y) const {
   delete y;
 }
 
-bool CholeskySolver::forward_compliance(ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
-                                        double* out) const {
-  CholeskyColumns* c = columns_of(cholmod_.get(), columns_);
+bool CholmodFactor::forward_compliance(ForwardColumnsPtr& kept, std::span<const PetscInt> fresh,
+                                       double* out) const {
+  CholeskyColumns* c = columns_of(this, columns_);
   if (!c || (kept && kept->factor != c->factor)) return false;
   if (!kept) {
     kept.reset(new ForwardColumns);
@@ -368,9 +368,9 @@ bool CholeskySolver::forward_compliance(ForwardColumnsPtr& kept, std::span<const
   return true;
 }
 
-bool CholeskySolver::forward_values(const ForwardColumns& kept, std::span<const double> z,
-                                    std::span<double> out) const {
-  CholeskyColumns* c = columns_of(cholmod_.get(), columns_);
+bool CholmodFactor::forward_values(const ForwardColumns& kept, std::span<const double> z,
+                                   std::span<double> out) const {
+  CholeskyColumns* c = columns_of(this, columns_);
   if (!c || kept.factor != c->factor || z.size() != c->factor->n || out.size() != kept.size)
     return false;
   const auto* super = static_cast<const int*>(c->factor->super);
@@ -398,9 +398,9 @@ bool CholeskySolver::forward_values(const ForwardColumns& kept, std::span<const 
   return true;
 }
 
-bool CholeskySolver::solve_from_forward(const ForwardColumns& kept, std::span<const double> w,
-                                        double* x, std::span<const double> z) const {
-  CholeskyColumns* c = columns_of(cholmod_.get(), columns_);
+bool CholmodFactor::solve_from_forward(const ForwardColumns& kept, std::span<const double> w,
+                                       double* x, std::span<const double> z) const {
+  CholeskyColumns* c = columns_of(this, columns_);
   if (!c || kept.factor != c->factor || w.size() != kept.size ||
       (!z.empty() && z.size() != c->factor->n))
     return false;
@@ -440,4 +440,4 @@ bool CholeskySolver::solve_from_forward(const ForwardColumns& kept, std::span<co
   return true;
 }
 
-}  // namespace tc::core
+}  // namespace tc::linalg

@@ -1,17 +1,17 @@
 // Columns of A⁻¹ on a few rows, for unit right-hand sides, from CHOLMOD's supernodal factor
-// (CholeskySolver::unit_solve_rows), and the forward half of a solve (forward_half), each
+// (CholmodFactor::unit_solve_rows), and the forward half of a solve (forward_half), each
 // supernode with CHOLMOD's own BLAS calls in CHOLMOD's order. The factor is this project's
-// (core/cholmod_factor.hpp, SuiteSparse's public API), read through cholmod_factor's public
+// (cholmod_factor.hpp, SuiteSparse's public API), read through cholmod_factor's public
 // fields.
 #include <algorithm>
 #include <memory>
 #include <vector>
 
 #include "tc/core/blas.hpp"  // the BLAS that CHOLMOD calls: the same kernels, the same bits
-#include "tc/core/cholmod_supernodes.hpp"
 #include "tc/core/verify.hpp"
+#include "tc/linalg/cholmod/cholmod_supernodes.hpp"
 
-namespace tc::core {
+namespace tc::linalg {
 namespace supernodal {
 
 CholeskyColumns* columns_of(const CholmodFactor* f, std::shared_ptr<CholeskyColumns>& cache) {
@@ -92,13 +92,9 @@ using supernodal::columns_of;
 using supernodal::forward_one;
 using supernodal::reach;
 
-bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
-                                     double* out) const {
-  if (distributed()) {
-    inverse_entries(cols, rows, out);
-    return true;
-  }
-  CholeskyColumns* c = columns_of(cholmod_.get(), columns_);
+bool CholmodFactor::unit_solve_rows(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
+                                    double* out) const {
+  CholeskyColumns* c = columns_of(this, columns_);
   if (!c || cols.empty()) return c != nullptr;
   const cholmod_factor& l = *c->factor;
   const int n = static_cast<int>(l.n);
@@ -170,8 +166,8 @@ bool CholeskySolver::unit_solve_rows(std::span<const PetscInt> cols, std::span<c
   return true;
 }
 
-bool CholeskySolver::forward_half(std::span<const double> b, std::vector<double>& z) const {
-  CholeskyColumns* c = columns_of(cholmod_.get(), columns_);
+bool CholmodFactor::forward_half(std::span<const double> b, std::vector<double>& z) const {
+  CholeskyColumns* c = columns_of(this, columns_);
   if (!c || b.size() != c->factor->n) return false;
   const cholmod_factor& l = *c->factor;
   const auto* perm = static_cast<const int*>(l.Perm);
@@ -183,4 +179,4 @@ bool CholeskySolver::forward_half(std::span<const double> b, std::vector<double>
   return true;
 }
 
-}  // namespace tc::core
+}  // namespace tc::linalg

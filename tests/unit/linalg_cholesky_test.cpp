@@ -1,6 +1,6 @@
-// core::CholeskySolver on one rank with each package this build offers: solves, the A⁻¹0
+// linalg::CholeskySolver on one rank with each package this build offers: solves, the A⁻¹0
 // shortcut, and, with CHOLMOD's supernodal factor, the restricted unit-column solves and the
-// compliance by forward solves (core/cholmod_columns.cpp, core/cholmod_forward.cpp).
+// compliance by forward solves (linalg/cholmod/cholmod_columns.cpp, cholmod_forward.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,13 +10,14 @@
 #include "support/grid_laplacian.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/linalg/cholesky_solver.hpp"
 
 TEST(Petsc, CholeskySolvesAnSpdSystem) {
   // 1D Laplacian with Dirichlet ends: tridiag(-1, 2, -1), solution of A x = A·1 is 1.
   const PetscInt n = 50;
   const auto a = tc::test::tridiagonal(n, 2.0);
-  for (const auto& package : tc::core::available_cholesky_packages()) {
-    tc::core::CholeskySolver solver(a, package);
+  for (const auto& package : tc::linalg::available_cholesky_packages()) {
+    tc::linalg::CholeskySolver solver(a, package);
     tc::core::Vector one(n), b(n), x(n);
     one.fill(1.0);
     a.mult(one, b);
@@ -34,8 +35,8 @@ TEST(Petsc, CholeskyZeroRightHandSideIsTheSolvesOwnZeros) {
   // be the factor's own for b = 0, +0 in every entry, whatever x held before.
   const auto a = tc::test::shifted_laplacian(12);  // supernodal in CHOLMOD
   const PetscInt n = a.rows();
-  for (const auto& package : tc::core::available_cholesky_packages()) {
-    tc::core::CholeskySolver solver(a, package);
+  for (const auto& package : tc::linalg::available_cholesky_packages()) {
+    tc::linalg::CholeskySolver solver(a, package);
     tc::core::Vector zero(n), x(n), by_factor(n);
     x.fill(7.0);
     by_factor.fill(7.0);
@@ -72,18 +73,15 @@ TEST(Petsc, CholeskyUnitColumnsAreTheBlockSolveBitForBit) {
   std::vector<PetscInt> rows;  // a face, as the contact dofs are
   for (PetscInt y = 0; y < g; ++y)
     for (PetscInt x = 0; x < g; ++x) rows.push_back(id(x, y, g - 1));
-  for (const auto& package : tc::core::available_cholesky_packages()) {
-    tc::core::CholeskySolver solver(a, package);
+  for (const auto& package : tc::linalg::available_cholesky_packages()) {
+    tc::linalg::CholeskySolver solver(a, package);
     for (const PetscInt k : {1, 5, 64}) {
       std::vector<PetscInt> cols(rows.begin(), rows.begin() + k);
       if (k == 5) cols[2] = -1;  // a zero right-hand side
       std::vector<double> out(rows.size() * static_cast<size_t>(k), -7.0);
-      const bool done = solver.unit_solve_rows(cols, rows, out.data());
-#if PETSC_VERSION_GE(3, 14, 0) && PETSC_VERSION_LT(3, 19, 0)  // where the path is compiled
-      const bool expected = package == MATSOLVERCHOLMOD;
-#else
-      const bool expected = false;
-#endif
+      const bool done =
+          (solver.cholmod() && solver.cholmod()->unit_solve_rows(cols, rows, out.data()));
+      const bool expected = package == MATSOLVERCHOLMOD;  // CHOLMOD's own supernodal solves
       if (!expected) {
         EXPECT_FALSE(done) << package;
         EXPECT_EQ(out[0], -7.0) << package;
@@ -128,27 +126,25 @@ TEST(Petsc, CholeskyForwardComplianceIsTheRestrictedSolveToRoundOff) {
   first[5] = -1;  // constrained
   std::vector<PetscInt> all(first);
   all.insert(all.end(), more.begin(), more.end());
-  for (const auto& package : tc::core::available_cholesky_packages()) {
-    tc::core::CholeskySolver solver(a, package);
-    EXPECT_FALSE(solver.forward_compliance_pays(first, 64)) << "below the floor: " << package;
-    tc::core::ForwardColumnsPtr kept;
+  for (const auto& package : tc::linalg::available_cholesky_packages()) {
+    tc::linalg::CholeskySolver solver(a, package);
+    EXPECT_FALSE((solver.cholmod() && solver.cholmod()->forward_compliance_pays(first, 64)))
+        << "below the floor: " << package;
+    tc::linalg::ForwardColumnsPtr kept;
     const auto nf = first.size(), na = all.size(), nm = more.size();
     std::vector<double> s1(nf * nf, -7.0), s2(na * nm, -7.0);
-    const bool done = solver.forward_compliance(kept, first, s1.data());
-#if PETSC_VERSION_GE(3, 14, 0) && PETSC_VERSION_LT(3, 19, 0)  // where the path is compiled
-    const bool expected = package == MATSOLVERCHOLMOD;
-#else
-    const bool expected = false;
-#endif
+    const bool done =
+        (solver.cholmod() && solver.cholmod()->forward_compliance(kept, first, s1.data()));
+    const bool expected = package == MATSOLVERCHOLMOD;  // CHOLMOD's own supernodal solves
     ASSERT_EQ(done, expected) << package;
     if (!expected) {
       EXPECT_EQ(s1[0], -7.0) << package;
       continue;
     }
-    ASSERT_TRUE(solver.forward_compliance(kept, more, s2.data()));
+    ASSERT_TRUE((solver.cholmod() && solver.cholmod()->forward_compliance(kept, more, s2.data())));
     std::vector<double> r1(nf * nf), r2(na * nm);
-    ASSERT_TRUE(solver.unit_solve_rows(first, first, r1.data()));
-    ASSERT_TRUE(solver.unit_solve_rows(more, all, r2.data()));
+    ASSERT_TRUE((solver.cholmod() && solver.cholmod()->unit_solve_rows(first, first, r1.data())));
+    ASSERT_TRUE((solver.cholmod() && solver.cholmod()->unit_solve_rows(more, all, r2.data())));
     double scale = 0;
     for (const double v : r1) scale = std::max(scale, std::abs(v));
     for (size_t j = 0; j < nf; ++j)
@@ -180,7 +176,7 @@ TEST(Petsc, CholeskyForwardComplianceIsTheRestrictedSolveToRoundOff) {
       }
     }
     std::vector<double> x(static_cast<size_t>(a.rows()), -7.0);
-    ASSERT_TRUE(solver.solve_from_forward(*kept, w, x.data()));
+    ASSERT_TRUE((solver.cholmod() && solver.cholmod()->solve_from_forward(*kept, w, x.data())));
     tc::core::Vector reference(a.rows());
     solver.solve(b, reference);
     const auto rv = reference.read();
@@ -200,8 +196,8 @@ TEST(Petsc, CholeskyForwardComplianceIsTheRestrictedSolveToRoundOff) {
     cw.copy_from(c);
     cw.axpy(1.0, b);
     std::vector<double> z, on_t(na, -7.0);
-    ASSERT_TRUE(solver.forward_half(c.read().span(), z));
-    ASSERT_TRUE(solver.forward_values(*kept, z, on_t));
+    ASSERT_TRUE((solver.cholmod() && solver.cholmod()->forward_half(c.read().span(), z)));
+    ASSERT_TRUE((solver.cholmod() && solver.cholmod()->forward_values(*kept, z, on_t)));
     tc::core::Vector xc(a.rows()), xcw(a.rows());
     solver.solve(c, xc);
     solver.solve(cw, xcw);
@@ -215,7 +211,7 @@ TEST(Petsc, CholeskyForwardComplianceIsTheRestrictedSolveToRoundOff) {
         EXPECT_EQ(on_t[q], 0.0);
       else
         EXPECT_NEAR(on_t[q], xcv[all[q]], 1e-13 * cs) << q;
-    ASSERT_TRUE(solver.solve_from_forward(*kept, w, x.data(), z));
+    ASSERT_TRUE((solver.cholmod() && solver.cholmod()->solve_from_forward(*kept, w, x.data(), z)));
     for (PetscInt i = 0; i < a.rows(); ++i)
       EXPECT_NEAR(x[static_cast<size_t>(i)], xcwv[i], 1e-13 * cs) << i;
   }
@@ -240,14 +236,14 @@ TEST(Petsc, CholeskyForwardCompliancePaysWhereItsFlopsAreFewer) {
   };
   // CHOLMOD only: the other packages' false is checked above, and PETSc's own Cholesky of this
   // size would take half a minute.
-  const auto packages = tc::core::available_cholesky_packages();
+  const auto packages = tc::linalg::available_cholesky_packages();
   if (std::find(packages.begin(), packages.end(), MATSOLVERCHOLMOD) == packages.end())
     GTEST_SKIP() << "no CHOLMOD";
-  tc::core::CholeskySolver solver(a, MATSOLVERCHOLMOD);
+  tc::linalg::CholeskySolver solver(a, MATSOLVERCHOLMOD);
 #if PETSC_VERSION_GE(3, 14, 0) && PETSC_VERSION_LT(3, 19, 0)  // where the path is compiled
-  EXPECT_TRUE(solver.forward_compliance_pays(patch(24), 64));
+  EXPECT_TRUE((solver.cholmod() && solver.cholmod()->forward_compliance_pays(patch(24), 64)));
 #else
-  EXPECT_FALSE(solver.forward_compliance_pays(patch(24), 64));
+  EXPECT_FALSE((solver.cholmod() && solver.cholmod()->forward_compliance_pays(patch(24), 64)));
 #endif
-  EXPECT_FALSE(solver.forward_compliance_pays(patch(8), 64));
+  EXPECT_FALSE((solver.cholmod() && solver.cholmod()->forward_compliance_pays(patch(8), 64)));
 }

@@ -4,10 +4,10 @@
 // factorisation's time, for io::auto_subdomains' choice between the direct and the FETI path.
 #include <vector>
 
-namespace tc::core {
+namespace tc::linalg {
 
 /// What cholmod_analyze predicts for a factor: exact for the pattern it is given, since the
-/// ordering and the supernodes depend on the pattern alone (core::CholmodFactor analyses the
+/// ordering and the supernodes depend on the pattern alone (CholmodFactor analyses the
 /// same lower triangle with the same defaults).
 struct FactorAnalysis {
   double n = 0;           // rows
@@ -23,4 +23,4 @@ struct FactorAnalysis {
 [[nodiscard]] FactorAnalysis analyse_cholesky(const std::vector<int>& start,
                                               const std::vector<int>& column);
 
-}  // namespace tc::core
+}  // namespace tc::linalg

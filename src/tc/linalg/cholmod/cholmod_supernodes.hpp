@@ -1,17 +1,18 @@
 #pragma once
-// The supernodal structure of a CHOLMOD factor (core/cholmod_factor.hpp) and the per-supernode
+// The supernodal structure of a CHOLMOD factor (cholmod_factor.hpp) and the per-supernode
 // steps of its solves, shared by the restricted solves (cholmod_columns.cpp) and the forward
-// solves of the compliance (cholmod_forward.cpp). Private to core: only those two include it.
+// solves of the compliance (cholmod_forward.cpp). Private to linalg/cholmod/: only those two
+// include it.
 #include <cholmod.h>
 
 #include <memory>
 #include <span>
 #include <vector>
 
-#include "tc/core/cholmod_factor.hpp"
 #include "tc/core/petsc.hpp"
+#include "tc/linalg/cholmod/cholmod_factor.hpp"
 
-namespace tc::core {
+namespace tc::linalg {
 
 /// The supernodal structure the restricted solves need, built on first use.
 struct CholeskyColumns {
@@ -62,4 +63,4 @@ void forward_one(const cholmod_factor& l, int s, double* y, double* e);
 std::vector<int> reach(CholeskyColumns& c, std::span<const PetscInt> dofs);
 
 }  // namespace supernodal
-}  // namespace tc::core
+}  // namespace tc::linalg

@@ -1,209 +1,29 @@
-// CholeskySolver: a factor on this rank (CHOLMOD through its own API, core/cholmod_factor.hpp;
-// MUMPS or PETSc's own through a KSP) or spread over the ranks (MUMPS), and the choice of the
-// package.
+// MUMPS's Cholesky factor of a matrix spread over the ranks (linalg/mumps_ranks.hpp): the
+// factorisation with its work-space retry, the solves of replicated vectors and blocks, and
+// the selected entries of A⁻¹.
+#include "tc/linalg/mumps_ranks.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstring>
+#include <array>
 #include <vector>
 
-#include "tc/core/cholmod_factor.hpp"
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
 #include "tc/core/petsc_blocks.hpp"
 #include "tc/core/threads.hpp"
 #include "tc/core/verify.hpp"
 
-namespace tc::core {
+namespace tc::linalg {
 
-using blocks::on_blocks;
+using core::Handle;
+using core::KernelThreads;
+using core::RowBlocks;
+using core::SparseMatrix;
+using core::blocks::on_blocks;
 
-// -------------------------------------------------------------------- CholeskySolver
-
-std::vector<std::string> available_cholesky_packages() {
-  // The packages register with Mat's initialisation, which nothing may have triggered yet.
-  TC_PETSC(MatInitializePackage());
-  // CHOLMOD is this project's own (CholmodFactor, required at configure time), first: the
-  // automatic choice on one rank. The others are PETSc's.
-  std::vector<std::string> out{MATSOLVERCHOLMOD};
-  for (const char* p : {MATSOLVERMUMPS, MATSOLVERPETSC}) {
-    PetscBool found = PETSC_FALSE;
-    TC_PETSC(MatSolverTypeGet(p, MATSEQAIJ, MAT_FACTOR_CHOLESKY, &found, nullptr, nullptr));
-    if (found) out.emplace_back(p);
-  }
-  return out;
-}
-
-std::string requested_factor_package() {
-  char opt[64] = {};
-  PetscBool set = PETSC_FALSE;
-  TC_PETSC(PetscOptionsGetString(nullptr, nullptr, "-tc_factor_package", opt, sizeof opt, &set));
-  return set ? std::string(opt) : std::string();
-}
-
-namespace {
-/// The work of factorising n rows, for the thread policy: n², nested dissection's flops for a
-/// 3D body (a 2D body's n^1.5 are fewer: it may get threads it could do without, never the
-/// reverse). 10⁴ rows (a 3D body's 0.4 s on one core) sit at the threshold.
-double factorisation_flops(PetscInt n) {
-  return static_cast<double>(n) * static_cast<double>(n);
-}
-}  // namespace
-
-CholeskySolver::CholeskySolver(const SparseMatrix& a, const std::string& package,
-                               FactorRanks ranks) {
-  package_ = package;
-  if (spread_over_ranks(ranks, a.distributed())) {
-    factor_over_ranks(a);
-    return;
-  }
-
-  if (package_ == MATSOLVERCHOLMOD) {
-    cholmod_ = std::make_shared<const CholmodFactor>(a.get());
-    return;
-  }
-  TC_PETSC(MatSetOption(a.get(), MAT_SYMMETRIC, PETSC_TRUE));
-  TC_PETSC(MatSetOption(a.get(), MAT_SPD, PETSC_TRUE));
-  // The KSP only factorises: the factor is kept and the KSP dropped, so that it no longer
-  // holds a reference to `a` and the caller's copy of the matrix can be freed (a 3D body's
-  // operator is about a tenth of its factor).
-  Handle<::KSP, KSPDestroy> ksp;
-  TC_PETSC(KSPCreate(PETSC_COMM_SELF, ksp.out()));
-  TC_PETSC(KSPSetOperators(ksp.get(), a.get(), a.get()));
-  TC_PETSC(KSPSetType(ksp.get(), KSPPREONLY));
-  PC pc = nullptr;
-  TC_PETSC(KSPGetPC(ksp.get(), &pc));
-  TC_PETSC(PCSetType(pc, PCCHOLESKY));
-  TC_PETSC(PCFactorSetMatSolverType(pc, package_.c_str()));
-  TC_PETSC(KSPSetErrorIfNotConverged(ksp.get(), PETSC_TRUE));
-  {
-    const KernelThreads threads(factorisation_flops(a.rows()));
-    TC_PETSC(KSPSetUp(ksp.get()));  // the factorisation happens here, once
-  }
-  ::Mat f = nullptr;
-  TC_PETSC(PCFactorGetMatrix(pc, &f));
-  TC_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(f)));
-  factor_ = Handle<::Mat, MatDestroy>(f);
-}
-
-int ranks_sharing_a_factor(const std::string& package) {
-  std::string asked = requested_factor_package();
-  if (asked.empty()) asked = package;
-  // Over ranks, the factor is MUMPS's unless a package that factorises on one rank only was
-  // asked for: the same factorisation repeated on every rank divides nothing.
-  if (!asked.empty() && asked != MATSOLVERMUMPS) return 1;
-  int size = 1;
-  TC_MPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
-  return size;
-}
-
-bool CholeskySolver::spread_over_ranks(FactorRanks ranks, bool spread_matrix) {
-  // A matrix already spread over the ranks is factorised where it lies, by MUMPS.
-  if (spread_matrix || (ranks == FactorRanks::all_ranks && ranks_sharing_a_factor(package_) > 1)) {
-    package_ = MATSOLVERMUMPS;
-    return true;
-  }
-  if (auto opt = requested_factor_package(); !opt.empty()) package_ = std::move(opt);
-  if (package_.empty()) package_ = available_cholesky_packages().front();
-  return false;
-}
-
-CholeskySolver::CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> eliminated,
-                               double diag, const std::string& package, FactorRanks ranks) {
-  package_ = package;
-  if (spread_over_ranks(ranks, a.distributed())) {
-    factor_over_ranks(a, eliminated, diag);
-    return;
-  }
-  auto reduced = a.copy();  // freed once factorised: the factor keeps no reference to it
-  reduced.zero_rows_columns(eliminated, diag);
-  *this = CholeskySolver(reduced, package_, FactorRanks::this_rank);
-}
-
-CholeskySolver::CholeskySolver(SparseMatrix&& a, std::span<const PetscInt> eliminated, double diag,
-                               const std::string& package, FactorRanks ranks) {
-  package_ = package;
-  if (spread_over_ranks(ranks, a.distributed())) {
-    factor_over_ranks(a, eliminated, diag);
-    return;
-  }
-  a.zero_rows_columns(eliminated, diag);
-  if (package_ == MATSOLVERCHOLMOD) {
-    cholmod_ = std::make_shared<const CholmodFactor>(a.get(), [&a] { a = SparseMatrix{}; });
-    return;
-  }
-  *this = CholeskySolver(a, package_, FactorRanks::this_rank);
-}
-
-// MatSolve and MatMatSolve on the factor are what KSPPREONLY with PCCHOLESKY calls: the same
-// bits as solving through the KSP.
-void CholeskySolver::solve(const Vector& b, Vector& x) const {
-  // A⁻¹0 = 0 without reading the factor (the solve's own result, +0 everywhere): a body at rest
-  // with no load, before a touch, would otherwise be solved at every coupling iteration. Over
-  // the ranks b is replicated; they agree all the same before leaving a collective solve.
-  int zero = 1;  // every entry == 0 (a NaN is not: it goes to the solve, and on to the checks)
-  {
-    const auto bv = b.read();
-    for (const double e : bv.span())
-      if (e != 0.0) {
-        zero = 0;
-        break;
-      }
-  }
-  if (distributed()) TC_MPI(MPI_Allreduce(MPI_IN_PLACE, &zero, 1, MPI_INT, MPI_LAND, ranks_.comm));
-  if (zero) {
-    x.zero();
-    return;
-  }
-  solve_raw(b.get(), x.get());
-}
-
-void CholeskySolver::solve_raw(::Vec b, ::Vec x) const {
-  TC_VERIFY(b != x, "MatSolve and CHOLMOD need distinct vectors");
-  if (distributed()) {
-    solve_over_ranks(b, x);
-    return;
-  }
-  if (cholmod_) {
-    const double* bv = nullptr;
-    double* xv = nullptr;
-    TC_PETSC(VecGetArrayRead(b, &bv));
-    TC_PETSC(VecGetArrayWrite(x, &xv));
-    const int n = cholmod_->size();
-    cholmod_->solve(bv, n, xv, n, 1);
-    TC_PETSC(VecRestoreArrayWrite(x, &xv));
-    TC_PETSC(VecRestoreArrayRead(b, &bv));
-    return;
-  }
-  TC_PETSC(MatSolve(factor_.get(), b, x));
-}
-
-void CholeskySolver::solve_many(::Mat b, ::Mat x) const {
-  if (distributed()) {
-    solve_many_over_ranks(b, x);
-    return;
-  }
-  if (cholmod_) {
-    PetscInt n = 0, k = 0, ldb = 0, ldx = 0;
-    TC_PETSC(MatGetSize(b, &n, &k));
-    TC_PETSC(MatDenseGetLDA(b, &ldb));
-    TC_PETSC(MatDenseGetLDA(x, &ldx));
-    const double* bv = nullptr;
-    double* xv = nullptr;
-    TC_PETSC(MatDenseGetArrayRead(b, &bv));
-    TC_PETSC(MatDenseGetArrayWrite(x, &xv));
-    cholmod_->solve(bv, static_cast<int>(ldb), xv, static_cast<int>(ldx), static_cast<int>(k));
-    TC_PETSC(MatDenseRestoreArrayWrite(x, &xv));
-    TC_PETSC(MatDenseRestoreArrayRead(b, &bv));
-    return;
-  }
-  TC_PETSC(MatMatSolve(factor_.get(), b, x));
-}
-
-// ------------------------------------------------------- CholeskySolver over the ranks
-
-void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const PetscInt> eliminated,
-                                       double diag) {
+MumpsOverRanks::MumpsOverRanks(const SparseMatrix& a, std::span<const PetscInt> eliminated,
+                               double diag) {
   auto& r = ranks_;
   r = RowBlocks::over(PETSC_COMM_WORLD, a.rows());
   const int size = static_cast<int>(r.count.size());
@@ -288,12 +108,12 @@ void CholeskySolver::factor_over_ranks(const SparseMatrix& a, std::span<const Pe
   }
 }
 
-void CholeskySolver::solve_over_ranks(::Vec b, ::Vec x) const {
+void MumpsOverRanks::solve(::Vec b, ::Vec x) const {
   on_blocks(ranks_, ranks_, b, x,
             [&](::Vec bl, ::Vec xl) { TC_PETSC(MatSolve(factor_.get(), bl, xl)); });
 }
 
-void CholeskySolver::solve_many_over_ranks(::Mat b, ::Mat x) const {
+void MumpsOverRanks::solve_many(::Mat b, ::Mat x) const {
   const auto& r = ranks_;
   const PetscInt first = r.start[static_cast<size_t>(r.rank)];
   const PetscInt m = r.count[static_cast<size_t>(r.rank)];
@@ -333,8 +153,8 @@ void CholeskySolver::solve_many_over_ranks(::Mat b, ::Mat x) const {
 // elimination tree they touch, and no n × k block is formed. MUMPS takes the request on the
 // host, as a sparse matrix whose row c lists the rows wanted of column c, and writes the
 // entries into its values there; the host then sends them to every rank.
-void CholeskySolver::inverse_entries(std::span<const PetscInt> cols, std::span<const PetscInt> rows,
-                                     double* out) const {
+void MumpsOverRanks::selected_inverse(std::span<const PetscInt> cols,
+                                      std::span<const PetscInt> rows, double* out) const {
   const auto nr = static_cast<PetscInt>(rows.size());
   const auto nc = static_cast<PetscInt>(cols.size());
   std::fill_n(out, nr * nc, 0.0);
@@ -379,7 +199,7 @@ void CholeskySolver::inverse_entries(std::span<const PetscInt> cols, std::span<c
   }
 }
 
-void CholeskySolver::inverse_entries_chunk(std::span<const PetscInt> asked,
+void MumpsOverRanks::inverse_entries_chunk(std::span<const PetscInt> asked,
                                            std::span<const PetscInt> wanted,
                                            std::vector<double>& entries) const {
   const auto& r = ranks_;
@@ -427,4 +247,4 @@ void CholeskySolver::inverse_entries_chunk(std::span<const PetscInt> asked,
   TC_MPI(MPI_Bcast(entries.data(), static_cast<int>(entries.size()), MPI_DOUBLE, 0, r.comm));
 }
 
-}  // namespace tc::core
+}  // namespace tc::linalg
