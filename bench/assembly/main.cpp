@@ -8,7 +8,10 @@
 // what an iterative body solver would cost against the factorisation (issue 22's choice of
 // the path at 10⁶ dofs). --no-direct skips the factorisation (sizes it cannot fit).
 //
-//   build/bin/bench_assembly [cells per axis ...] [--iterative] [--no-direct]
+// --element T boxes of T cells (Hex8 by default; Hex20, Hex27, Tet4, Tet10: issue 37's
+// assembly time per dof of order 2 against order 1).
+//
+//   build/bin/bench_assembly [cells per axis ...] [--iterative] [--no-direct] [--element T]
 //                            [-tc_factor_package mumps|cholmod]
 #include <fmt/format.h>
 #include <petscksp.h>
@@ -147,8 +150,15 @@ int main(int argc, char** argv) {
   std::vector<int> sizes;
   std::vector<char*> petsc_args{argv[0]};
   bool iterative = false, direct = true;
+  auto element = tc::mesh::CellType::Hex8;
   for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--iterative") {
+    if (std::string(argv[i]) == "--element" && i + 1 < argc) {
+      const std::string name = argv[++i];
+      for (const auto t :
+           {tc::mesh::CellType::Hex8, tc::mesh::CellType::Hex20, tc::mesh::CellType::Hex27,
+            tc::mesh::CellType::Tet4, tc::mesh::CellType::Tet10})
+        if (name == tc::mesh::name(t)) element = t;
+    } else if (std::string(argv[i]) == "--iterative") {
       iterative = true;
     } else if (std::string(argv[i]) == "--no-direct") {
       direct = false;
@@ -172,7 +182,7 @@ int main(int argc, char** argv) {
   std::vector<Row> rows;
   std::string package;
   for (const int n : sizes) {
-    const auto mesh = tc::mesh::make_box(3, {0, 0, 0}, {1, 1, 1}, {n, n, n});
+    const auto mesh = tc::mesh::make_box(3, {0, 0, 0}, {1, 1, 1}, {n, n, n}, element);
     const auto graph = tc::fem::node_graph(mesh);
     Row r{};
     r.dofs = 3.0 * mesh.n_nodes();

@@ -15,6 +15,7 @@
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/mesh/mesh.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::test {
 
@@ -166,9 +167,11 @@ inline std::vector<double> solve_dirichlet(const core::SparseMatrix& k, std::vec
   return x.to_std();
 }
 
-/// Box mesh of the given type on [0,1]^d with n cells per axis (simplices by splitting).
+/// Box mesh of the given type on [0,1]^d with n cells per axis (simplices by splitting; the
+/// second-order types by make_box).
 inline mesh::Mesh unit_box(mesh::CellType t, int n) {
   const int d = mesh::dimension(t);
+  if (mesh::order(t) == 2) return mesh::make_box(d, {0, 0, 0}, {1, 1, 1}, {n, n, n}, t);
   auto m = mesh::make_box(d, {0, 0, 0}, {1, 1, 1}, {n, n, n});
   if (t == mesh::CellType::Tri3) return split_quads(m);
   if (t == mesh::CellType::Tet4) return split_hexes(m);

@@ -5,7 +5,14 @@
 //  - conduction: θ = c + g·x, K_θ θ = 0 in the interior;
 //  - thermal stress: uniform ΔT with the free expansion u = αΔT x, K_u u = −K_uθ ΔT 1
 //    (σ = 0 in 3D; in 2D plane strain σ = −λαΔT I_2 is constant, so the interior equations
-//    hold as well).
+//    hold as well);
+//  - second order (Tri6, Quad8, Quad9, Tet10, Hex20, Hex27), the same on curved cells (every
+//    interior node moved, mid-edge ones too: isoparametric cells reproduce linear fields), and
+//    quadratic fields, which the second-order spaces hold, on straight-edged cells (corners
+//    moved, Quad9/Hex27's bilinear map keeps x², xy, … in Q2; serendipity Quad8/Hex20 hold P2
+//    only on affine cells, so theirs are sheared): a quadratic displacement with its constant
+//    body force, a quadratic temperature with its constant source, and the free thermal
+//    expansion of a linear temperature, stress-free.
 // All matrices come from fem::assemble_body with steel constants, so the test also covers the
 // assembly (interleaved dofs, 4.1) and the Material moduli.
 //
@@ -21,6 +28,8 @@
 #include "support/problems.hpp"
 #include "support/test_meshes.hpp"
 #include "tc/fem/assembler.hpp"
+#include "tc/mesh/reference_cell.hpp"
+#include "tc/mesh/second_order.hpp"
 
 using namespace tc;
 using mesh::CellType;
@@ -30,10 +39,13 @@ namespace {
 using test::steel;
 
 /// A distorted mesh of [0,1]^d: n cells per axis, interior nodes moved by up to 0.2 h (small
-/// enough that every cell stays convex; the kernels throw on an inverted cell).
+/// enough that every cell stays convex; the kernels throw on an inverted cell). Second order:
+/// up to 0.08 h, mid-edge nodes included, which curves the cells' edges while keeping every
+/// Jacobian positive (a mid-edge node must stay well within the middle half of its edge).
 mesh::Mesh distorted_box(CellType t) {
-  const int n = mesh::dimension(t) == 2 ? 5 : 3;
-  return test::perturb(test::unit_box(t, n), 0.2 / n, 2024);
+  const bool second = mesh::order(t) == 2;
+  const int n = mesh::dimension(t) == 2 ? (second ? 3 : 5) : (second ? 2 : 3);
+  return test::perturb(test::unit_box(t, n), (second ? 0.08 : 0.2) / n, 2024);
 }
 
 /// Dofs (with `block` components per node) of the given nodes.
@@ -140,7 +152,128 @@ TEST_P(Patch, UniformHeatingGivesFreeExpansion) {
 
 INSTANTIATE_TEST_SUITE_P(EveryElement, Patch,
                          ::testing::Values(CellType::Quad4, CellType::Tri3, CellType::Hex8,
-                                           CellType::Tet4),
+                                           CellType::Tet4, CellType::Tri6, CellType::Quad8,
+                                           CellType::Quad9, CellType::Tet10, CellType::Hex20,
+                                           CellType::Hex27),
+                         type_name);
+
+// ---- Second order: quadratic fields ---------------------------------------------------------
+
+namespace {
+
+/// [0,1]^d in cells of type t with straight edges: the first-order box's interior corners
+/// moved by up to 0.2 h, then the second-order nodes placed on the straight edges; Quad8 and
+/// Hex20 on an affine (sheared) box instead.
+mesh::Mesh straight_box(CellType t) {
+  const int d = mesh::dimension(t), n = d == 2 ? 3 : 2;
+  const bool serendipity = t == CellType::Quad8 || t == CellType::Hex20;
+  auto lin = mesh::make_box(d, {0, 0, 0}, {1, 1, 1}, {n, n, n});
+  if (!serendipity) lin = test::perturb(lin, 0.2 / n, 7);
+  const auto corners = mesh::corner_type(t);
+  if (corners == CellType::Tri3 || corners == CellType::Tet4) lin = mesh::split_into_simplices(lin);
+  auto m = mesh::to_second_order(lin, t);
+  if (serendipity && d == 2) m.transform({{{1, 0.3, 0}, {0.1, 1, 0}, {0, 0, 1}}}, {0.2, -0.1, 0});
+  if (serendipity && d == 3)
+    m.transform({{{1, 0.3, 0.2}, {0.1, 1, -0.2}, {0, 0.15, 1}}}, {0.2, -0.1, 0.05});
+  return m;
+}
+
+class QuadraticPatch : public ::testing::TestWithParam<CellType> {};
+
+/// u_i = ½ xᵀ H_i x + G x, H_i symmetric; the body force f = −div σ is constant:
+/// f_i = −((λ + μ) Σ_k (H_k)_ki + μ tr H_i).
+const double kH[3][3][3] = {{{2e-3, 1e-3, -1e-3}, {1e-3, -3e-3, 0.5e-3}, {-1e-3, 0.5e-3, 1e-3}},
+                            {{-1e-3, 2e-3, 0}, {2e-3, 1e-3, -2e-3}, {0, -2e-3, 3e-3}},
+                            {{0.5e-3, 0, 1e-3}, {0, 2e-3, 1e-3}, {1e-3, 1e-3, -1e-3}}};
+
+}  // namespace
+
+TEST_P(QuadraticPatch, QuadraticDisplacementWithItsBodyForce) {
+  const auto m = straight_box(GetParam());
+  const int d = m.dim();
+  const auto mat = steel();
+  const double lambda = mat.lame_lambda(), mu = mat.lame_mu();
+  const auto mats = fem::assemble_body(m, mat);
+  const Field exact = [&](const mesh::Point& p, int i) {
+    double u = 1e-3 * (i + 1) * p[(i + 1) % d];
+    for (int j = 0; j < d; ++j)
+      for (int k = 0; k < d; ++k) u += 0.5 * kH[i][j][k] * p[j] * p[k];
+    return u;
+  };
+  const auto w = fem::volume_integrals(m);  // ∫ N_a
+  std::vector<double> f(static_cast<size_t>(d * m.n_nodes()), 0.0);
+  for (int i = 0; i < d; ++i) {
+    double fi = 0;
+    for (int k = 0; k < d; ++k) fi -= (lambda + mu) * kH[k][k][i] + mu * kH[i][k][k];
+    for (int a = 0; a < m.n_nodes(); ++a) f[d * a + i] = fi * w[a];
+  }
+  EXPECT_LT(patch_error(m, mats.stiffness_u, f, d, exact), 1e-10);
+}
+
+TEST_P(QuadraticPatch, QuadraticTemperatureWithItsSource) {
+  const auto m = straight_box(GetParam());
+  const auto mat = steel();
+  const auto mats = fem::assemble_body(m, mat);
+  // θ = 300 + 20x − 35y + 12z + 40x² − 25xy + 30y² + 15yz − 20z²: −κΔθ = −κ(80 + 60 − 40).
+  const bool three = m.dim() == 3;
+  const Field exact = [&](const mesh::Point& p, int) {
+    return 300 + 20 * p[0] - 35 * p[1] + 12 * p[2] + 40 * p[0] * p[0] - 25 * p[0] * p[1] +
+           30 * p[1] * p[1] + 15 * p[1] * p[2] - 20 * p[2] * p[2];
+  };
+  const double source = -mat.thermal_conductivity * (80 + 60 - (three ? 40 : 0));
+  auto f = fem::volume_integrals(m);
+  for (double& v : f) v *= source;
+  EXPECT_LT(patch_error(m, mats.stiffness_theta, f, 1, exact), 1e-10);
+}
+
+TEST_P(QuadraticPatch, LinearTemperatureExpandsFreelyWithoutStress) {
+  // Δθ = a + b·x: the strain c Δθ I (c = β/(2(λ + μ)) in-plane in 2D plane strain, α in 3D) is
+  // compatible, u_i = c (a x_i + (b·x) x_i − ½ b_i |x|²), and σ = 0 (in 2D its in-plane part).
+  const auto m = straight_box(GetParam());
+  const int d = m.dim();
+  const auto mat = steel();
+  const auto mats = fem::assemble_body(m, mat);
+  const double lambda = mat.lame_lambda(), mu = mat.lame_mu(), beta = mat.thermal_stress_modulus();
+  const double c = d == 2 ? beta / (2 * (lambda + mu)) : mat.thermal_expansion;
+  const double a = 30, b[3] = {80, -50, 40};
+  const auto dtheta = [&](const mesh::Point& p) {
+    double t = a;
+    for (int k = 0; k < d; ++k) t += b[k] * p[k];
+    return t;
+  };
+  const Field exact = [&](const mesh::Point& p, int i) {
+    double r2 = 0;
+    for (int k = 0; k < d; ++k) r2 += p[k] * p[k];
+    return c * (dtheta(p) * p[i] - 0.5 * b[i] * r2);
+  };
+  std::vector<double> nodal;
+  for (int n = 0; n < m.n_nodes(); ++n) nodal.push_back(dtheta(m.point(n)));
+  const core::Vector th = core::Vector::from(nodal);
+  core::Vector rhs(d * m.n_nodes());
+  mats.coupling_u_theta.mult(th, rhs);
+  rhs.scale(-1.0);
+  EXPECT_LT(patch_error(m, mats.stiffness_u, rhs.to_std(), d, exact), 1e-10);
+  // The stress of the exact field at each cell centre vanishes (in-plane in 2D), to rounding
+  // against the scale βΔθ.
+  double worst = 0, scale = 0;
+  for (int e = 0; e < m.n_cells(); ++e) {
+    const auto x = fem::cell_coords(m, e);
+    const auto nodes = m.cell(e);
+    Eigen::VectorXd ue(d * x.rows()), te(x.rows());
+    for (Eigen::Index n = 0; n < x.rows(); ++n) {
+      te[n] = dtheta(m.point(nodes[n]));
+      for (int k = 0; k < d; ++k) ue[d * n + k] = exact(m.point(nodes[n]), k);
+    }
+    const auto s = fem::cell_stress(m.cell_type(e), x, ue, te, lambda, mu, beta);
+    worst = std::max(worst, s.topLeftCorner(d, d).cwiseAbs().maxCoeff());
+    scale = std::max(scale, beta * te.cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-10 * scale);
+}
+
+INSTANTIATE_TEST_SUITE_P(SecondOrder, QuadraticPatch,
+                         ::testing::Values(CellType::Tri6, CellType::Quad8, CellType::Quad9,
+                                           CellType::Tet10, CellType::Hex20, CellType::Hex27),
                          type_name);
 
 // ---- Assembly bookkeeping ------------------------------------------------------------------

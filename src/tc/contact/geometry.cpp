@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include "tc/core/verify.hpp"
+#include "tc/mesh/reference_cell.hpp"
+
 namespace tc::contact {
 
 using mesh::FacetType;
@@ -32,12 +35,16 @@ ShapeValues facet_shape(FacetType t, const Vec2& xi) {
       }
       break;
     }
+    default:
+      TC_VERIFY(false, "contact facets are of first order (MortarPair refuses the others)");
   }
   return s;
 }
 
 FacetPoints facet_points(const mesh::Facet& f, std::span<const Vec3> x) {
   FacetPoints p;
+  TC_VERIFY(mesh::order(f.type) == 1,
+            "contact facets are of first order (MortarPair refuses the others)");
   p.type = f.type;
   p.n = mesh::n_nodes(f.type);
   for (int a = 0; a < p.n; ++a) p.x[a] = x[f.nodes[a]];
@@ -54,6 +61,8 @@ Vec3 centre_normal(const FacetPoints& f) {
       return normalized(cross(f.x[1] - f.x[0], f.x[2] - f.x[0]));
     case FacetType::Quad4:
       return normalized(cross(f.x[2] - f.x[0], f.x[3] - f.x[1]));
+    default:
+      TC_VERIFY(false, "contact facets are of first order (MortarPair refuses the others)");
   }
   return {};
 }
@@ -203,6 +212,8 @@ PlaneMap PlaneMap::of(FacetType t, const std::array<Vec2, 4>& q) {
       m.affine = std::abs(m.d[0]) + std::abs(m.d[1]) <= 1e-15 * size;
       break;
     }
+    default:
+      TC_VERIFY(false, "contact facets are of first order (MortarPair refuses the others)");
   }
   return m;
 }

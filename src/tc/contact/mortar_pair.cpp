@@ -6,6 +6,7 @@
 
 #include "tc/contact/search.hpp"
 #include "tc/core/error.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::contact {
 
@@ -33,6 +34,11 @@ std::vector<mesh::Facet> checked_boundary(const mesh::Mesh& m, const std::string
                     "' (it has: " + known + ")");
   }
   auto facets = m.boundary(name);
+  for (const auto& f : facets)
+    if (mesh::order(f.type) != 1)
+      throw MeshError(std::string("mortar pair: ") + side + " boundary '" + name + "' has " +
+                      mesh::name(f.type) +
+                      " faces: quadratic contact surfaces are not supported yet");
   for (const auto& f : facets)
     if (!facet_fits(f.type, m.dim()))
       throw MeshError(std::string("mortar pair: ") + side + " boundary '" + name + "' has a " +

@@ -10,6 +10,7 @@
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/verify.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::fem {
 
@@ -27,7 +28,8 @@ constexpr double kGauss4W[] = {0.17392742256872693, 0.32607257743127307, 0.32607
 /// Rules of higher order than quadrature(t), for measuring errors of smooth exact solutions
 /// without the superconvergence of the 2-point Gauss points polluting the observed H1 order:
 /// 4^d tensor Gauss on Quad4/Hex8, and the same collapsed onto the simplex (Duffy) for
-/// Tri3/Tet4, exact to degree 7 (Quad4, Hex8), 6 (Tri3), 5 (Tet4).
+/// Tri3/Tet4, exact to degree 7 (Quad4, Hex8), 6 (Tri3), 5 (Tet4); a second-order type takes
+/// its corner type's rule (the squared error of a quadratic field has degree 4).
 std::vector<QuadraturePoint> error_rule(CellType t) {
   std::vector<QuadraturePoint> out;
   const int d = mesh::dimension(t);
@@ -38,7 +40,7 @@ std::vector<QuadraturePoint> error_rule(CellType t) {
         const double s = kGauss4X[i], r = kGauss4X[j], q = d == 3 ? kGauss4X[k] : 0.0;
         const double w = kGauss4W[i] * kGauss4W[j] * (d == 3 ? kGauss4W[k] : 1.0);
         QuadraturePoint p;
-        switch (t) {
+        switch (mesh::corner_type(t)) {
           case CellType::Quad4:  // [0,1]² → [−1,1]², Jacobian 4
             p = {{2 * s - 1, 2 * r - 1, 0}, 4 * w};
             break;
@@ -51,6 +53,8 @@ std::vector<QuadraturePoint> error_rule(CellType t) {
           case CellType::Tet4:  // (s, r, q) → (s, r(1−s), q(1−s)(1−r)), Jacobian (1−s)²(1−r)
             p = {{s, r * (1 - s), q * (1 - s) * (1 - r)}, w * (1 - s) * (1 - s) * (1 - r)};
             break;
+          default:
+            TC_VERIFY(false, "a corner type is of first order");
         }
         out.push_back(p);
       }
@@ -281,8 +285,10 @@ ErrorNorms error_norms(const mesh::Mesh& m, std::span<const double> field, int c
                        const std::function<double(const mesh::Point&, int)>& exact,
                        const std::function<Eigen::Vector3d(const mesh::Point&, int)>& exact_grad) {
   const std::vector<QuadraturePoint> rules[] = {
-      error_rule(CellType::Tri3), error_rule(CellType::Quad4), error_rule(CellType::Tet4),
-      error_rule(CellType::Hex8)};
+      error_rule(CellType::Tri3),  error_rule(CellType::Quad4), error_rule(CellType::Tet4),
+      error_rule(CellType::Hex8),  error_rule(CellType::Tri6),  error_rule(CellType::Quad8),
+      error_rule(CellType::Quad9), error_rule(CellType::Tet10), error_rule(CellType::Hex20),
+      error_rule(CellType::Hex27)};
   const int d = m.dim();
   double l2 = 0, h1 = 0;
   Eigen::VectorXd n;

@@ -8,16 +8,18 @@
 #include "tc/fem/element.hpp"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "tc/core/error.hpp"
 #include "tc/core/verify.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::fem {
 
 namespace {
 
-constexpr int kMaxNodes = 8;  // Hex8
+constexpr int kMaxNodes = mesh::kMaxCellNodes;  // Hex27
 // Fixed capacity, dynamic size: lives on the stack.
 using NodeVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxNodes, 1>;
 using NodeGrad = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxNodes, 3>;
@@ -43,6 +45,68 @@ const QuadraturePoint kTet4[] = {{{kTb, kTb, kTb}, 1.0 / 24},
                                  {{kTa, kTb, kTb}, 1.0 / 24},
                                  {{kTb, kTa, kTb}, 1.0 / 24},
                                  {{kTb, kTb, kTa}, 1.0 / 24}};
+
+// ---- Second-order rules: exact for products of two quadratic shape functions (degree 4 on
+// the simplices, degree 2 + 2 per direction on the tensor cells), the mass matrices' integrand
+// on cells with straight edges; stiffness and coupling need less (degrees 2 and 3).
+
+constexpr double kG3 = 0.77459666924148337704;  // √(3/5): 3-point Gauss, exact to degree 5
+constexpr double kG3Points[3] = {-kG3, 0.0, kG3};
+constexpr double kG3Weights[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+
+/// The 3^d tensor Gauss rule on [−1, 1]^d (d = 1, 2, 3).
+std::vector<QuadraturePoint> gauss3(int d) {
+  std::vector<QuadraturePoint> out;
+  for (int k = 0; k < (d == 3 ? 3 : 1); ++k)
+    for (int j = 0; j < (d >= 2 ? 3 : 1); ++j)
+      for (int i = 0; i < 3; ++i)
+        out.push_back(
+            {{kG3Points[i], d >= 2 ? kG3Points[j] : 0.0, d == 3 ? kG3Points[k] : 0.0},
+             kG3Weights[i] * (d >= 2 ? kG3Weights[j] : 1.0) * (d == 3 ? kG3Weights[k] : 1.0)});
+  return out;
+}
+
+/// Strang–Fix/Dunavant's 6-point rule on the triangle, exact to degree 4 (weights of the
+/// reference area 1/2).
+std::vector<QuadraturePoint> triangle6() {
+  constexpr double a = 0.44594849091596488632, wa = 0.22338158967801146570;
+  constexpr double b = 0.091576213509770743460, wb = 0.10995174365532186764;
+  std::vector<QuadraturePoint> out;
+  for (const auto& [x, w] : {std::pair{a, wa}, std::pair{b, wb}}) {
+    out.push_back({{x, x, 0}, 0.5 * w});
+    out.push_back({{1 - 2 * x, x, 0}, 0.5 * w});
+    out.push_back({{x, 1 - 2 * x, 0}, 0.5 * w});
+  }
+  return out;
+}
+
+/// Walkington's (Keast's) 14-point rule on the tetrahedron, exact to degree 5, positive
+/// weights (of the reference volume 1/6).
+std::vector<QuadraturePoint> tetrahedron14() {
+  constexpr double a1 = 0.31088591926330060980, w1 = 0.11268792571801585080;
+  constexpr double a2 = 0.092735250310891226402, w2 = 0.073493043116361949544;
+  constexpr double a3 = 0.045503704125649649492, w3 = 0.042546020777081466438;
+  std::vector<QuadraturePoint> out;
+  for (const auto& [x, w] : {std::pair{a1, w1}, std::pair{a2, w2}}) {
+    const double y = 1 - 3 * x;  // barycentric (x, x, x, y) and its 4 permutations
+    out.push_back({{x, x, x}, w / 6});
+    out.push_back({{y, x, x}, w / 6});
+    out.push_back({{x, y, x}, w / 6});
+    out.push_back({{x, x, y}, w / 6});
+  }
+  const double b = 0.5 - a3;  // barycentric (a, a, b, b): 6 permutations
+  const double pts[6][3] = {{a3, a3, b}, {a3, b, a3}, {b, a3, a3},
+                            {b, b, a3},  {b, a3, b},  {a3, b, b}};
+  for (const auto& p : pts) out.push_back({{p[0], p[1], p[2]}, w3 / 6});
+  return out;
+}
+
+const std::vector<QuadraturePoint>& second_order_rule(int dim, bool simplex) {
+  static const std::vector<QuadraturePoint> line = gauss3(1), quad = gauss3(2), hex = gauss3(3),
+                                            tri = triangle6(), tet = tetrahedron14();
+  if (simplex) return dim == 2 ? tri : tet;
+  return dim == 1 ? line : dim == 2 ? quad : hex;
+}
 
 // ---- Shape functions (templated so that the tables and the public API share them) -----------
 
@@ -101,6 +165,25 @@ void shape_hex(const std::array<double, 3>& xi, V& n, M& dn) {
   }
 }
 
+/// The second-order types through mesh's shape functions (the isoparametric map the cell
+/// checks use too), copied into n and the first `dim` columns of dn.
+template <class T, class V, class M>
+void shape_second_order(T t, int dim, const std::array<double, 3>& xi, V& n, M& dn) {
+  const int nn = mesh::n_nodes(t);
+  double v[mesh::kMaxCellNodes], g[3 * mesh::kMaxCellNodes];
+  mesh::shape_functions(t, xi, v, g);
+  n.resize(nn);
+  dn.resize(nn, dim);
+  for (int a = 0; a < nn; ++a) {
+    n[a] = v[a];
+    for (int k = 0; k < dim; ++k) dn(a, k) = g[3 * a + k];
+  }
+}
+
+int facet_dimension(FacetType t) {
+  return t == FacetType::Line2 || t == FacetType::Line3 ? 1 : 2;
+}
+
 template <class V, class M>
 void shape_any(CellType t, const std::array<double, 3>& xi, V& n, M& dn) {
   switch (t) {
@@ -112,6 +195,8 @@ void shape_any(CellType t, const std::array<double, 3>& xi, V& n, M& dn) {
       return shape_tet(xi, n, dn);
     case CellType::Hex8:
       return shape_hex(xi, n, dn);
+    default:
+      return shape_second_order(t, mesh::dimension(t), xi, n, dn);
   }
 }
 
@@ -124,6 +209,8 @@ void shape_any(FacetType t, const std::array<double, 3>& xi, V& n, M& dn) {
       return shape_tri(xi, n, dn);
     case FacetType::Quad4:
       return shape_quad(xi, n, dn);
+    default:
+      return shape_second_order(t, facet_dimension(t), xi, n, dn);
   }
 }
 
@@ -150,19 +237,25 @@ std::vector<Tabulated> tabulate(T t) {
 
 const std::vector<Tabulated>& table(CellType t) {
   static const std::vector<Tabulated> tables[] = {
-      tabulate(CellType::Tri3), tabulate(CellType::Quad4), tabulate(CellType::Tet4),
-      tabulate(CellType::Hex8)};
+      tabulate(CellType::Tri3),  tabulate(CellType::Quad4), tabulate(CellType::Tet4),
+      tabulate(CellType::Hex8),  tabulate(CellType::Tri6),  tabulate(CellType::Quad8),
+      tabulate(CellType::Quad9), tabulate(CellType::Tet10), tabulate(CellType::Hex20),
+      tabulate(CellType::Hex27)};
   return tables[static_cast<int>(t)];
 }
 
 const std::vector<Tabulated>& table(FacetType t) {
   static const std::vector<Tabulated> tables[] = {
-      tabulate(FacetType::Line2), tabulate(FacetType::Tri3), tabulate(FacetType::Quad4)};
+      tabulate(FacetType::Line2), tabulate(FacetType::Tri3), tabulate(FacetType::Quad4),
+      tabulate(FacetType::Line3), tabulate(FacetType::Tri6), tabulate(FacetType::Quad8),
+      tabulate(FacetType::Quad9)};
   return tables[static_cast<int>(t)];
 }
 
 std::array<double, 3> centre(CellType t) {
-  switch (t) {
+  // The centroid of the reference cell, where cell_strain, cell_stress and cell_heat_flux
+  // evaluate (docs/choices.md, "Cell fields at the reference centre").
+  switch (mesh::corner_type(t)) {
     case CellType::Tri3:
       return {1.0 / 3, 1.0 / 3, 0};
     case CellType::Tet4:
@@ -243,8 +336,10 @@ std::span<const QuadraturePoint> quadrature(CellType t) {
       return kTet4;
     case CellType::Hex8:
       return kHex2x2x2;
+    default:
+      return second_order_rule(mesh::dimension(t), mesh::corner_type(t) == CellType::Tri3 ||
+                                                       mesh::corner_type(t) == CellType::Tet4);
   }
-  return {};
 }
 
 std::span<const QuadraturePoint> quadrature(FacetType t) {
@@ -255,8 +350,9 @@ std::span<const QuadraturePoint> quadrature(FacetType t) {
       return kTri3;
     case FacetType::Quad4:
       return kQuad2x2;
+    default:
+      return second_order_rule(facet_dimension(t), t == FacetType::Tri6);
   }
-  return {};
 }
 
 void shape(CellType t, const std::array<double, 3>& xi, Eigen::VectorXd& n, Eigen::MatrixXd& dn) {

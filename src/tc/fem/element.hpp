@@ -19,8 +19,10 @@ struct QuadraturePoint {
   double weight = 0;
 };
 
-/// Rules exact for the products of two shape functions (mass matrices): Gauss 2×2(×2) on
-/// Quad4/Hex8, degree-2 rules on Tri3/Tet4; Line2 and facet rules likewise.
+/// Rules exact for the products of two shape functions (mass matrices) on cells with straight
+/// edges: Gauss 2×2(×2) on Quad4/Hex8, degree-2 rules on Tri3/Tet4; Gauss 3×3(×3) on Quad8,
+/// Quad9, Hex20, Hex27, the degree-4 6-point rule on Tri6 and the degree-5 14-point rule on
+/// Tet10; Line2/Line3 and the facet rules likewise.
 [[nodiscard]] std::span<const QuadraturePoint> quadrature(CellType t);
 [[nodiscard]] std::span<const QuadraturePoint> quadrature(FacetType t);
 
@@ -53,7 +55,7 @@ using Func = std::function<double(const mesh::Point&)>;
 /// ∫ N_a N_b over a boundary facet, n²: the film (Robin) matrix of one facet per unit h.
 [[nodiscard]] Eigen::MatrixXd facet_mass(FacetType t, const Coords& x);
 
-// ---- Post-processing at the cell centre. --------------------------------------------------
+// ---- Post-processing at the cell centre (the reference cell's centroid). -----------------
 
 /// Small-strain tensor ε(u) at the cell centre (3×3; zero third row and column in 2D).
 [[nodiscard]] Eigen::Matrix3d cell_strain(CellType t, const Coords& x, const Eigen::VectorXd& u_e);

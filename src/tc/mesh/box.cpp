@@ -5,6 +5,8 @@
 #include <string>
 
 #include "tc/core/error.hpp"
+#include "tc/mesh/reference_cell.hpp"
+#include "tc/mesh/second_order.hpp"
 
 namespace tc::mesh {
 
@@ -98,6 +100,17 @@ Mesh make_box(int dim, const Point& min, const Point& max, const std::array<int,
   }
   return dim == 2 ? make_box_2d(min, max, cells[0], cells[1])
                   : make_box_3d(min, max, cells[0], cells[1], cells[2]);
+}
+
+Mesh make_box(int dim, const Point& min, const Point& max, const std::array<int, 3>& cells,
+              CellType element) {
+  if (dimension(element) != dim)
+    throw MeshError(std::string("make_box: a ") + std::to_string(dim) + "D box cannot have " +
+                    name(element) + " cells");
+  Mesh m = make_box(dim, min, max, cells);
+  const CellType corners = corner_type(element);
+  if (corners == CellType::Tri3 || corners == CellType::Tet4) m = split_into_simplices(m);
+  return order(element) == 2 ? to_second_order(m, element) : m;
 }
 
 }  // namespace tc::mesh

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
+#include <vector>
 
 #include "tc/core/error.hpp"
 #include "tc/mesh/mesh.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::mesh {
 namespace {
@@ -60,6 +62,96 @@ double jacobian_det(const Mesh& m, int c, const Vec& xi) {
   return m.dim() == 2 ? cross2(j[0], j[1]) : det3(j[0], j[1], j[2]);
 }
 
+// ---- Second-order cells: the isoparametric map of all their nodes --------------------------
+
+/// det ∂x/∂ξ of a cell at reference point xi, from the shape functions of its type.
+double isoparametric_det(const Mesh& m, int c, const Vec& xi) {
+  const auto v = m.cell(c);
+  double n[kMaxCellNodes], dn[3 * kMaxCellNodes];
+  shape_functions(m.cell_type(c), xi, n, dn);
+  std::array<Vec, 3> j{};  // j[k] = ∂x/∂ξ_k
+  for (std::size_t a = 0; a < v.size(); ++a)
+    for (int k = 0; k < m.dim(); ++k)
+      for (int i = 0; i < 3; ++i) j[k][i] += dn[3 * a + k] * m.point(v[a])[i];
+  return m.dim() == 2 ? cross2(j[0], j[1]) : det3(j[0], j[1], j[2]);
+}
+
+struct WeightedPoint {
+  Vec xi;
+  double w;
+};
+
+/// 4-point Gauss per direction on [−1, 1]^d, collapsed onto the simplex (Duffy) for Tri/Tet:
+/// exact to degree 7 per direction, more than det J of any second-order cell needs (Hex27:
+/// degree 5 per direction; Tet10: total degree 3).
+std::vector<WeightedPoint> gauss4(CellType t) {
+  constexpr double x[4] = {-0.86113631159405257522, -0.33998104358485626480, 0.33998104358485626480,
+                           0.86113631159405257522};
+  constexpr double w[4] = {0.34785484513745385737, 0.65214515486254614263, 0.65214515486254614263,
+                           0.34785484513745385737};
+  const int d = dimension(t);
+  const bool simplex = corner_type(t) == CellType::Tri3 || corner_type(t) == CellType::Tet4;
+  std::vector<WeightedPoint> out;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < (d == 3 ? 4 : 1); ++k) {
+        if (!simplex) {
+          out.push_back({{x[i], x[j], d == 3 ? x[k] : 0.0}, w[i] * w[j] * (d == 3 ? w[k] : 1.0)});
+          continue;
+        }
+        // [0, 1]^d → simplex: (s, r, q) ↦ (s, r(1 − s), q(1 − s)(1 − r)).
+        const double s = 0.5 * (1 + x[i]), r = 0.5 * (1 + x[j]), q = 0.5 * (1 + x[k]);
+        const double ws = 0.5 * w[i], wr = 0.5 * w[j], wq = 0.5 * w[k];
+        if (d == 2)
+          out.push_back({{s, r * (1 - s), 0}, ws * wr * (1 - s)});
+        else
+          out.push_back({{s, r * (1 - s), q * (1 - s) * (1 - r)},
+                         ws * wr * wq * (1 - s) * (1 - s) * (1 - r)});
+      }
+  return out;
+}
+
+const std::vector<WeightedPoint>& gauss4_table(CellType t) {
+  static const std::vector<WeightedPoint> tables[] = {{},
+                                                      {},
+                                                      {},
+                                                      {},
+                                                      gauss4(CellType::Tri6),
+                                                      gauss4(CellType::Quad8),
+                                                      gauss4(CellType::Quad9),
+                                                      gauss4(CellType::Tet10),
+                                                      gauss4(CellType::Hex20),
+                                                      gauss4(CellType::Hex27)};
+  return tables[static_cast<int>(t)];
+}
+
+/// What is wrong with a second-order cell ("" when nothing): its Jacobian must be positive at
+/// every node (where a curved edge folds first) and every point of the 4^d rule, which holds
+/// the kernels' points within its span (fem's rules lie inside the same reference cell).
+std::string curved_cell_problem(const Mesh& m, int c, double tol) {
+  const CellType t = m.cell_type(c);
+  std::ostringstream msg;
+  msg.precision(3);
+  for (int a = 0; a < n_nodes(t); ++a) {
+    const double det = isoparametric_det(m, c, reference_node(t, a));
+    if (!(det > tol)) {
+      msg << "Jacobian " << det << " at node " << a
+          << (det < 0 ? " (a curved edge folds, or the cell is inverted)" : " (degenerate)");
+      return msg.str();
+    }
+  }
+  for (const auto& p : gauss4_table(t)) {
+    const double det = isoparametric_det(m, c, p.xi);
+    if (!(det > tol)) {
+      msg << "Jacobian " << det << " at the quadrature point (" << p.xi[0] << ", " << p.xi[1]
+          << ", " << p.xi[2] << ")"
+          << (det < 0 ? " (a curved edge folds, or the cell is inverted)" : " (degenerate)");
+      return msg.str();
+    }
+  }
+  return "";
+}
+
 /// Largest distance between two nodes of cell c, the length scale of "zero measure".
 double cell_size(const Mesh& m, int c) {
   const auto v = m.cell(c);
@@ -87,6 +179,7 @@ std::string cell_problem(const Mesh& m, int c) {
         << (measure < 0 ? " (inverted)" : " (degenerate)");
     return msg.str();
   }
+  if (order(t) == 2) return curved_cell_problem(m, c, tol);
   // A simplex has a constant Jacobian; a Quad4/Hex8 can be non-convex (Jacobian of the wrong
   // sign at a corner) while its measure is positive.
   if (t == CellType::Tri3 || t == CellType::Tet4) return "";
@@ -127,6 +220,12 @@ double cell_measure(const Mesh& m, int c) {
         for (const double y : {0.5 - g, 0.5 + g})
           for (const double x : {0.5 - g, 0.5 + g}) vol += 0.125 * jacobian_det(m, c, {x, y, z});
       return vol;
+    }
+    default: {
+      double measure = 0;
+      for (const auto& q : gauss4_table(m.cell_type(c)))
+        measure += q.w * isoparametric_det(m, c, q.xi);
+      return measure;
     }
   }
   return 0;
@@ -181,8 +280,10 @@ void check_no_fold(const Mesh& m, const std::string& source) {
   int n_bad = 0;
   for (int c = 0; c < m.n_cells(); ++c) {
     const auto v = m.cell(c);
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const int a = v[i], b = v[(i + 1) % v.size()];
+    // The corners' cycle: a second-order cell's edges join its corners too.
+    const auto nc = static_cast<std::size_t>(n_corners(m.cell_type(c)));
+    for (std::size_t i = 0; i < nc; ++i) {
+      const int a = v[i], b = v[(i + 1) % nc];
       const auto [it, fresh] = left_of.emplace(key(a, b), c);
       if (fresh) continue;
       if (++n_bad <= max_listed)

@@ -8,6 +8,10 @@
 // - 3D: gmsh's Tet4/Hex8 node orderings are VTK's (positive Jacobian for a valid cell) and
 //   gmsh's mesher always writes positively oriented cells, so there is no convention to
 //   translate: a negative-volume cell in a file is a broken mesh and check_cells rejects it.
+// - Second order: Gmsh lists corners, then one node per edge, then face and volume nodes, as
+//   VTK does, but in another order of the edges for Tet10 and Hex20 and of the faces for
+//   Hex27 (Gmsh reference manual, "Node ordering"). Cells are renumbered to VTK's order once,
+//   here (kGmshToVtk), and nowhere else; line, triangle and quadrangle orders agree.
 // - Boundary facets take the node order of the matching local face of their (positively
 //   oriented) cell, whose normal points outward by construction. This is exact and needs no
 //   geometric tolerance, unlike a comparison with the cell centroid, which can fail for
@@ -22,6 +26,7 @@
 #include <unordered_map>
 
 #include "tc/core/error.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::mesh {
 namespace {
@@ -33,74 +38,70 @@ using detail::RawMesh;
 // ---- Element types -------------------------------------------------------------------------
 
 // gmsh element type numbers (gmsh reference manual, "MSH file format").
-constexpr int kLine2 = 1, kTri3 = 2, kQuad4 = 3, kTet4 = 4, kHex8 = 5;
+struct GmshType {
+  int gmsh, dim;  // dim: of the mesh whose cells (or facets) these are
+  bool cell;
+  int type;  // CellType or FacetType
+};
+constexpr GmshType kGmshTypes[] = {
+    {2, 2, true, int(CellType::Tri3)},     {3, 2, true, int(CellType::Quad4)},
+    {9, 2, true, int(CellType::Tri6)},     {16, 2, true, int(CellType::Quad8)},
+    {10, 2, true, int(CellType::Quad9)},   {4, 3, true, int(CellType::Tet4)},
+    {5, 3, true, int(CellType::Hex8)},     {11, 3, true, int(CellType::Tet10)},
+    {17, 3, true, int(CellType::Hex20)},   {12, 3, true, int(CellType::Hex27)},
+    {1, 2, false, int(FacetType::Line2)},  {8, 2, false, int(FacetType::Line3)},
+    {2, 3, false, int(FacetType::Tri3)},   {3, 3, false, int(FacetType::Quad4)},
+    {9, 3, false, int(FacetType::Tri6)},   {16, 3, false, int(FacetType::Quad8)},
+    {10, 3, false, int(FacetType::Quad9)},
+};
+
+const GmshType* find_type(int gmsh_type, int dim, bool cell) {
+  for (const auto& g : kGmshTypes)
+    if (g.gmsh == gmsh_type && g.dim == dim && g.cell == cell) return &g;
+  return nullptr;
+}
+
+/// "Tri3 (2), Quad4 (3), …": the supported types for messages.
+std::string supported(int dim, bool cell) {
+  std::string out;
+  for (const auto& g : kGmshTypes)
+    if (g.dim == dim && g.cell == cell)
+      out += std::string(out.empty() ? "" : ", ") +
+             (cell ? name(CellType(g.type)) : name(FacetType(g.type))) + " (" +
+             std::to_string(g.gmsh) + ")";
+  return out;
+}
 
 bool to_cell_type(int gmsh_type, int dim, CellType& t) {
-  if (dim == 2 && gmsh_type == kTri3)
-    t = CellType::Tri3;
-  else if (dim == 2 && gmsh_type == kQuad4)
-    t = CellType::Quad4;
-  else if (dim == 3 && gmsh_type == kTet4)
-    t = CellType::Tet4;
-  else if (dim == 3 && gmsh_type == kHex8)
-    t = CellType::Hex8;
-  else
-    return false;
-  return true;
+  const auto* g = find_type(gmsh_type, dim, true);
+  if (g) t = CellType(g->type);
+  return g != nullptr;
 }
 
 bool to_facet_type(int gmsh_type, int dim, FacetType& t) {
-  if (dim == 2 && gmsh_type == kLine2)
-    t = FacetType::Line2;
-  else if (dim == 3 && gmsh_type == kTri3)
-    t = FacetType::Tri3;
-  else if (dim == 3 && gmsh_type == kQuad4)
-    t = FacetType::Quad4;
-  else
-    return false;
-  return true;
+  const auto* g = find_type(gmsh_type, dim, false);
+  if (g) t = FacetType(g->type);
+  return g != nullptr;
+}
+
+/// kGmshToVtk[t][a]: the Gmsh node that is VTK node a of a cell of type t, where they differ.
+/// Tet10: VTK's edges 1–3 and 2–3 are Gmsh's 9 and 8. Hex20: Gmsh orders the edges 01 03 04
+/// 12 15 23 26 37 45 47 56 67, VTK 01 12 23 30 45 56 67 74 04 15 26 37. Hex27: Gmsh's face
+/// nodes are z− y− x− x+ y+ z+ (20–25), VTK's x− x+ y− y+ z− z+.
+constexpr int kTet10[] = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
+constexpr int kHex27[] = {0,  1,  2,  3,  4,  5,  6,  7,  8,  11, 13, 9,  16, 18,
+                          19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26};
+
+int gmsh_node(CellType t, int a) {
+  if (t == CellType::Tet10) return kTet10[a];
+  if (t == CellType::Hex20 || t == CellType::Hex27) return kHex27[a];
+  return a;
 }
 
 std::string describe_type(const RawMesh& raw, int type) {
   const auto it = raw.type_names.find(type);
   return "gmsh type " + std::to_string(type) +
          (it != raw.type_names.end() ? " (" + it->second + ")" : "");
-}
-
-/// Local faces of each cell type, numbered so that the normal of the face (counter-clockwise
-/// seen from outside; for Line2 the tangent turned clockwise, n = (t_y, −t_x)) points out of a
-/// positively oriented cell.
-struct LocalFace {
-  FacetType type;
-  std::array<int, 4> v;
-};
-
-std::span<const LocalFace> local_faces(CellType t) {
-  using F = FacetType;
-  static constexpr LocalFace tri[] = {
-      {F::Line2, {0, 1, -1, -1}}, {F::Line2, {1, 2, -1, -1}}, {F::Line2, {2, 0, -1, -1}}};
-  static constexpr LocalFace quad[] = {{F::Line2, {0, 1, -1, -1}},
-                                       {F::Line2, {1, 2, -1, -1}},
-                                       {F::Line2, {2, 3, -1, -1}},
-                                       {F::Line2, {3, 0, -1, -1}}};
-  static constexpr LocalFace tet[] = {{F::Tri3, {0, 2, 1, -1}},
-                                      {F::Tri3, {0, 1, 3, -1}},
-                                      {F::Tri3, {0, 3, 2, -1}},
-                                      {F::Tri3, {1, 2, 3, -1}}};
-  static constexpr LocalFace hex[] = {{F::Quad4, {0, 3, 2, 1}}, {F::Quad4, {4, 5, 6, 7}},
-                                      {F::Quad4, {0, 1, 5, 4}}, {F::Quad4, {1, 2, 6, 5}},
-                                      {F::Quad4, {2, 3, 7, 6}}, {F::Quad4, {0, 4, 7, 3}}};
-  switch (t) {
-    case CellType::Tri3:
-      return tri;
-    case CellType::Quad4:
-      return quad;
-    case CellType::Tet4:
-      return tet;
-    case CellType::Hex8:
-      return hex;
-  }
-  return {};
 }
 
 // ---- Nodes and cells -----------------------------------------------------------------------
@@ -192,17 +193,23 @@ void add_cells(const RawMesh& raw, const TagMap& ids, Mesh& m, const std::string
     CellType t{};
     if (!to_cell_type(b.type, dim, t))
       throw MeshError(where + ": unsupported element " + describe_type(raw, b.type) + " in a " +
-                      std::to_string(dim) + "D mesh; supported: " +
-                      (dim == 2 ? "Tri3 (2), Quad4 (3)" : "Tet4 (4), Hex8 (5)") +
-                      " (first-order elements only)");
+                      std::to_string(dim) + "D mesh; supported: " + supported(dim, true) +
+                      " (elements of order 1 and 2; order 3 and above are not supported)");
     const std::size_t n = static_cast<std::size_t>(n_nodes(t));
     for (std::size_t e = 0; e + n <= b.nodes.size(); e += n) {
-      std::array<int, 8> v{};
-      for (std::size_t a = 0; a < n; ++a) v[a] = ids.at(b.nodes[e + a]);
+      std::array<int, kMaxCellNodes> v{};
+      for (std::size_t a = 0; a < n; ++a)
+        v[a] = ids.at(b.nodes[e + static_cast<std::size_t>(gmsh_node(t, static_cast<int>(a)))]);
       const std::span<int> nodes(v.data(), n);
       // Clockwise 2D cells come from surfaces with normal −z (see the top of this file):
-      // reversing keeps node 0 and turns the cell counter-clockwise.
-      if (dim == 2 && twice_area(m, nodes) < 0) std::reverse(nodes.begin() + 1, nodes.end());
+      // reversing the corners after node 0 turns the cell counter-clockwise; the edges, and so
+      // their nodes, then come in the reverse order (the centre of a Quad9 stays last).
+      const auto nc = static_cast<std::size_t>(n_corners(t));
+      if (dim == 2 && twice_area(m, nodes.first(nc)) < 0) {
+        std::reverse(nodes.begin() + 1, nodes.begin() + static_cast<long>(nc));
+        std::reverse(nodes.begin() + static_cast<long>(nc),
+                     nodes.begin() + static_cast<long>(2 * nc));
+      }
       const auto group = group_of.find(cell_key(&b.nodes[e], n));
       m.add_cell(t, nodes, group == group_of.end() ? -1 : group->second);
     }
@@ -255,8 +262,7 @@ std::vector<PendingFacet> collect_facets(const RawMesh& raw, const TagMap& ids, 
       FacetType t{};
       if (!to_facet_type(b.type, dim, t))
         throw MeshError(where + ": boundary '" + g.name + "' has unsupported element " +
-                        describe_type(raw, b.type) +
-                        "; supported: " + (dim == 2 ? "Line2 (1)" : "Tri3 (2), Quad4 (3)"));
+                        describe_type(raw, b.type) + "; supported: " + supported(dim, false));
       const std::size_t n = static_cast<std::size_t>(n_nodes(t));
       for (std::size_t e = 0; e + n <= b.nodes.size(); e += n) {
         PendingFacet p{g.name, Facet{}, {b.nodes.begin() + e, b.nodes.begin() + e + n}, 0};
@@ -279,22 +285,34 @@ void attach_to_cells(std::vector<PendingFacet>& facets, const Mesh& m) {
   for (std::size_t i = 0; i < facets.size(); ++i) {
     const auto& f = facets[i].facet;
     const auto s = f.node_span();
+    // Keyed by the corners, which a face's other nodes follow.
     if (std::find(s.begin(), s.end(), -1) == s.end())
-      by_key[key_of(s)].push_back(static_cast<int>(i));
+      by_key[key_of(s.first(static_cast<std::size_t>(n_nodes(corner_type(f.type)))))].push_back(
+          static_cast<int>(i));
   }
   for (int c = 0; c < m.n_cells(); ++c) {
     const auto cell = m.cell(c);
     for (const auto& lf : local_faces(m.cell_type(c))) {
-      std::array<int, 4> face{-1, -1, -1, -1};
-      const int n = n_nodes(lf.type);
-      for (int a = 0; a < n; ++a) face[a] = cell[lf.v[a]];
-      const auto it = by_key.find(key_of({face.data(), static_cast<std::size_t>(n)}));
+      Facet face;
+      face.type = lf.type;
+      face.cell = c;
+      for (int a = 0; a < n_nodes(lf.type); ++a) face.nodes[a] = cell[lf.v[a]];
+      const auto corners = static_cast<std::size_t>(n_nodes(corner_type(lf.type)));
+      const auto it = by_key.find(key_of(face.node_span().first(corners)));
       if (it == by_key.end()) continue;
       for (const int i : it->second) {
         auto& p = facets[i];
         if (++p.n_cells > 1) continue;
-        p.facet.cell = c;
-        p.facet.nodes = face;
+        // A facet of another type than its cell's face (a Line2 on a Tri6) or with other
+        // mid-edge nodes is not that face: it is reported as bounding no cell.
+        auto mine = p.facet.nodes, theirs = face.nodes;
+        std::sort(mine.begin(), mine.end());
+        std::sort(theirs.begin(), theirs.end());
+        if (p.facet.type != face.type || mine != theirs) {
+          p.n_cells = 0;
+          continue;
+        }
+        p.facet = face;
       }
     }
   }

@@ -17,6 +17,18 @@ int n_nodes(CellType t) {
       return 4;
     case CellType::Hex8:
       return 8;
+    case CellType::Tri6:
+      return 6;
+    case CellType::Quad8:
+      return 8;
+    case CellType::Quad9:
+      return 9;
+    case CellType::Tet10:
+      return 10;
+    case CellType::Hex20:
+      return 20;
+    case CellType::Hex27:
+      return 27;
   }
   return 0;
 }
@@ -29,12 +41,29 @@ int n_nodes(FacetType t) {
       return 3;
     case FacetType::Quad4:
       return 4;
+    case FacetType::Line3:
+      return 3;
+    case FacetType::Tri6:
+      return 6;
+    case FacetType::Quad8:
+      return 8;
+    case FacetType::Quad9:
+      return 9;
   }
   return 0;
 }
 
 int dimension(CellType t) {
-  return (t == CellType::Tri3 || t == CellType::Quad4) ? 2 : 3;
+  switch (t) {
+    case CellType::Tri3:
+    case CellType::Quad4:
+    case CellType::Tri6:
+    case CellType::Quad8:
+    case CellType::Quad9:
+      return 2;
+    default:
+      return 3;
+  }
 }
 
 const char* name(CellType t) {
@@ -47,6 +76,18 @@ const char* name(CellType t) {
       return "Tet4";
     case CellType::Hex8:
       return "Hex8";
+    case CellType::Tri6:
+      return "Tri6";
+    case CellType::Quad8:
+      return "Quad8";
+    case CellType::Quad9:
+      return "Quad9";
+    case CellType::Tet10:
+      return "Tet10";
+    case CellType::Hex20:
+      return "Hex20";
+    case CellType::Hex27:
+      return "Hex27";
   }
   return "?";
 }
@@ -59,6 +100,14 @@ const char* name(FacetType t) {
       return "Tri3";
     case FacetType::Quad4:
       return "Quad4";
+    case FacetType::Line3:
+      return "Line3";
+    case FacetType::Tri6:
+      return "Tri6";
+    case FacetType::Quad8:
+      return "Quad8";
+    case FacetType::Quad9:
+      return "Quad9";
   }
   return "?";
 }

@@ -1,7 +1,8 @@
 #pragma once
 // The mesh of one body: nodes, cells of possibly mixed type, and named boundaries made of
-// facets. No physics here. Node ordering of cells and facets follows VTK (= Gmsh for these
-// linear types): Quad4 and the faces of Hex8 counter-clockwise seen from outside.
+// facets. No physics here. Node ordering of cells and facets follows VTK (= Gmsh for the
+// linear types): Quad4 and the faces of Hex8 counter-clockwise seen from outside; the
+// second-order types (reference_cell.hpp) list their corners first, as the linear type does.
 #include <array>
 #include <map>
 #include <span>
@@ -11,12 +12,13 @@
 
 namespace tc::mesh {
 
-enum class CellType { Tri3, Quad4, Tet4, Hex8 };
-enum class FacetType { Line2, Tri3, Quad4 };
+// The first-order values come first: tables indexed by the type start with them.
+enum class CellType { Tri3, Quad4, Tet4, Hex8, Tri6, Quad8, Quad9, Tet10, Hex20, Hex27 };
+enum class FacetType { Line2, Tri3, Quad4, Line3, Tri6, Quad8, Quad9 };
 
 [[nodiscard]] int n_nodes(CellType t);
 [[nodiscard]] int n_nodes(FacetType t);
-[[nodiscard]] int dimension(CellType t);  // 2 for Tri3/Quad4, 3 for Tet4/Hex8
+[[nodiscard]] int dimension(CellType t);  // 2 for Tri/Quad, 3 for Tet/Hex
 [[nodiscard]] const char* name(CellType t);
 [[nodiscard]] const char* name(FacetType t);
 
@@ -24,11 +26,12 @@ using Point = std::array<double, 3>;  // z = 0 in 2D
 
 /// A boundary facet (edge in 2D, face in 3D), oriented with its normal pointing out of `cell`:
 /// Tri3/Quad4 counter-clockwise seen from outside; Line2 with n = (t_y, −t_x), t = x1 − x0
-/// (the edge runs counter-clockwise around its cell).
+/// (the edge runs counter-clockwise around its cell). Second-order facets: the corners so,
+/// then the mid-edge nodes (and the Quad9 centre), as reference_cell.hpp's LocalFace.
 struct Facet {
   FacetType type = FacetType::Line2;
-  std::array<int, 4> nodes{-1, -1, -1, -1};  // first n_nodes(type) are used
-  int cell = -1;                             // the cell it bounds
+  std::array<int, 9> nodes{-1, -1, -1, -1, -1, -1, -1, -1, -1};  // first n_nodes(type) used
+  int cell = -1;                                                 // the cell it bounds
   [[nodiscard]] std::span<const int> node_span() const {
     return {nodes.data(), static_cast<size_t>(n_nodes(type))};
   }
@@ -76,11 +79,15 @@ class Mesh {
   std::map<std::string, std::vector<Facet>> boundaries_;
 };
 
-/// Signed measure (area in 2D, volume in 3D) of cell c; negative means inverted.
+/// Signed measure (area in 2D, volume in 3D) of cell c; negative means inverted. Exact for
+/// the first-order cells and for second-order cells whose Jacobian determinant has degree ≤ 7
+/// per reference direction (every Tri6, Tet10, Quad8, Quad9, Hex20, Hex27: 4-point Gauss).
 [[nodiscard]] double cell_measure(const Mesh& m, int c);
 
-/// Throws MeshError naming the first bad cells (inverted or zero measure, at most 10 listed),
-/// or the first node whose coordinates are not finite or beyond kMaxCoordinate.
+/// Throws MeshError naming the first bad cells (inverted or zero measure, a Jacobian not
+/// positive at a corner, or, for second-order cells, at a node or a point of the 4^d Gauss
+/// rule; at most 10 listed), or the first node whose coordinates are not finite or beyond
+/// kMaxCoordinate.
 void check_cells(const Mesh& m, const std::string& source);
 
 /// The largest |coordinate| a mesh may have [m]: cell measures and the contact geometry take

@@ -6,17 +6,19 @@
 #include <string>
 
 #include "tc/core/error.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::mesh {
 
 namespace {
 
-// Nodes two cells must share to be neighbours in the dual graph: a facet of the smallest kind.
+// Nodes two cells must share to be neighbours in the dual graph: a facet of the smallest kind
+// (2 or 3 nodes of an edge in 2D; 3, 4, 6, 8 or 9 of a face in 3D).
 idx_t common_nodes(const Mesh& m) {
-  if (m.dim() == 2) return 2;
+  int fewest = 9;
   for (int c = 0; c < m.n_cells(); ++c)
-    if (m.cell_type(c) == CellType::Tet4) return 3;
-  return 4;
+    for (const auto& f : local_faces(m.cell_type(c))) fewest = std::min(fewest, n_nodes(f.type));
+  return fewest;
 }
 
 }  // namespace

@@ -179,7 +179,18 @@ void CaseReader::read_box(const TableReader& box, physics::Body& body) {
   const auto hi = hi_node ? read_vector(*hi_node, box.key("max"), issues_, dim_) : std::nullopt;
   const auto cells =
       cells_node ? read_counts(*cells_node, box.key("cells"), issues_, dim_) : std::nullopt;
+  const auto element = box.choice("element");
   if (!lo || !hi || !cells || dim_ == 0) return;
+  // The cell type of the name (the choices are the mesh's names of the types).
+  std::optional<mesh::CellType> type;
+  for (int t = 0; element && t <= static_cast<int>(mesh::CellType::Hex27); ++t)
+    if (*element == mesh::name(mesh::CellType(t))) type = mesh::CellType(t);
+  if (type && mesh::dimension(*type) != dim_) {
+    box.issue("element", fmt::format("found \"{}\", a {}D cell, expected a cell of the case's "
+                                     "dimension {}",
+                                     *element, mesh::dimension(*type), dim_));
+    return;
+  }
   bool good = true;
   for (int k = 0; k < dim_; ++k)
     if (!((*hi)[k] > (*lo)[k])) {
@@ -190,7 +201,8 @@ void CaseReader::read_box(const TableReader& box, physics::Body& body) {
     }
   if (!good || !box_size_ok(box, *cells)) return;
   try {
-    body.mesh = mesh::make_box(dim_, *lo, *hi, *cells);
+    body.mesh = type ? mesh::make_box(dim_, *lo, *hi, *cells, *type)
+                     : mesh::make_box(dim_, *lo, *hi, *cells);
     // Boxes whose cells round to nothing (max = [1e-320, …], or coordinates near 1e20 with a
     // width below their precision): reported here, at the key, not as "K_u not finite" or a
     // Jacobian without a file later (issue 20, #14).

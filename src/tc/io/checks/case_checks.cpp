@@ -7,9 +7,11 @@
 #include <cmath>
 #include <iterator>
 #include <map>
+#include <tuple>
 
 #include "tc/core/error.hpp"
 #include "tc/mesh/partition.hpp"
+#include "tc/mesh/reference_cell.hpp"
 #include "tc/model/checks.hpp"
 #include "tc/record/history.hpp"
 
@@ -137,6 +139,20 @@ void check_contact_pairs(std::vector<physics::ContactSettings>& cs,
       return std::nullopt;
     };
     const auto& c = cs[j];
+    // Quadratic faces have no dual mortar basis yet (issue 37): refused, never run wrong.
+    for (const auto& [side, body, where] : {std::tuple{"slave", c.slave_body, &c.slave_where},
+                                            std::tuple{"master", c.master_body, &c.master_where}})
+      if (body >= 0 && bodies[static_cast<size_t>(body)].mesh.has_boundary(*where))
+        for (const auto& f : bodies[static_cast<size_t>(body)].mesh.boundary(*where))
+          if (mesh::order(f.type) == 2) {
+            t.issue(side, fmt::format("found the {} surface \"{}\" of body \"{}\" with {} faces: "
+                                      "quadratic contact surfaces are not supported yet; "
+                                      "expected first-order cells (Line2, Tri3 or Quad4 faces) "
+                                      "along a contact surface",
+                                      side, *where, bodies[static_cast<size_t>(body)].name,
+                                      mesh::name(f.type)));
+            break;
+          }
     if (!c.name.empty())
       if (const auto other = earlier([&](const auto& d) { return d.name == c.name; }))
         t.issue("name", fmt::format("found \"{}\", the name of {} too; expected a unique name "
@@ -454,9 +470,30 @@ void check_quasistatic_bodies_held(const Problem& p, const toml::table& root, Is
   }
 }
 
+/// Row-sum lumping of M_θ gives Tri6 corners no heat capacity and Quad8, Tet10 and Hex20
+/// corners a negative one (∫N_a ≤ 0 there): refused (docs/choices.md, "Second-order mass").
+void check_lumped_second_order(const Problem& p, const toml::table& root, Issues& issues) {
+  if (!p.physics.lumped_heat_capacity) return;
+  for (const auto& b : p.bodies)
+    for (int c = 0; c < b.mesh.n_cells(); ++c) {
+      const auto t = b.mesh.cell_type(c);
+      if (t != mesh::CellType::Tri6 && t != mesh::CellType::Quad8 && t != mesh::CellType::Tet10 &&
+          t != mesh::CellType::Hex20)
+        continue;
+      issues.add(line_of(*root.get("physics")), "physics.heat_capacity",
+                 fmt::format("found heat_capacity = \"lumped\" with body \"{}\" of {} cells, "
+                             "whose row sums of M_θ are zero or negative at the corners; "
+                             "expected heat_capacity = \"consistent\" (or Quad9, Hex27 cells, "
+                             "whose row sums are positive)",
+                             b.name, mesh::name(t)));
+      return;
+    }
+}
+
 }  // namespace
 
 void check_across_sections(const Problem& p, const toml::table& root, Issues& issues) {
+  if (issues.empty()) check_lumped_second_order(p, root, issues);
   if (issues.empty()) check_boundary_conflicts(p, root, issues);
   if (issues.empty()) check_load_control(p, root, issues);
   if (issues.empty()) check_reaction_columns(p, root, issues);

@@ -10,6 +10,7 @@
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/contact/search.hpp"
 #include "tc/core/error.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::io {
 
@@ -47,9 +48,10 @@ Vec3 point3(const mesh::Point& p) {
 /// The simplices (local node indices) a cell is cut into for a point-in-cell test: Quad4 by
 /// one diagonal, Hex8 into six tetrahedra around the diagonal 0–6 (VTK numbering). For a
 /// distorted cell that is its shape only approximately, which suffices for what it is used
-/// for: finding bodies that overlap by a sizeable part of a cell.
+/// for: finding bodies that overlap by a sizeable part of a cell. A second-order cell is cut
+/// as its corners are (its corners come first).
 std::vector<std::vector<int>> simplices(mesh::CellType t) {
-  switch (t) {
+  switch (mesh::corner_type(t)) {
     case mesh::CellType::Tri3:
       return {{0, 1, 2}};
     case mesh::CellType::Quad4:
@@ -58,6 +60,8 @@ std::vector<std::vector<int>> simplices(mesh::CellType t) {
       return {{0, 1, 2, 3}};
     case mesh::CellType::Hex8:
       return {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+    default:
+      return {};  // corner_type is of first order
   }
   return {};
 }

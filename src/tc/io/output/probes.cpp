@@ -5,6 +5,7 @@
 
 #include "tc/core/verify.hpp"
 #include "tc/fem/element.hpp"
+#include "tc/mesh/reference_cell.hpp"
 #include "tc/run/simulation.hpp"
 
 namespace tc::io {
@@ -14,7 +15,8 @@ namespace {
 /// Whether ξ lies in the reference cell of t (to `tol`): the unit simplex for Tri3/Tet4,
 /// [−1, 1]^d for Quad4/Hex8.
 bool inside(mesh::CellType t, const Eigen::Vector3d& xi, int dim, double tol) {
-  if (t == mesh::CellType::Tri3 || t == mesh::CellType::Tet4) {
+  const auto corners = mesh::corner_type(t);
+  if (corners == mesh::CellType::Tri3 || corners == mesh::CellType::Tet4) {
     double sum = 0;
     for (int k = 0; k < dim; ++k) {
       if (xi[k] < -tol) return false;

@@ -29,6 +29,19 @@ int vtk_type(mesh::CellType t) {
       return 10;
     case mesh::CellType::Hex8:
       return 12;
+    // VTK's quadratic cells, whose node order mesh/ keeps (reference_cell.hpp).
+    case mesh::CellType::Tri6:
+      return 22;  // VTK_QUADRATIC_TRIANGLE
+    case mesh::CellType::Quad8:
+      return 23;  // VTK_QUADRATIC_QUAD
+    case mesh::CellType::Quad9:
+      return 28;  // VTK_BIQUADRATIC_QUAD
+    case mesh::CellType::Tet10:
+      return 24;  // VTK_QUADRATIC_TETRA
+    case mesh::CellType::Hex20:
+      return 25;  // VTK_QUADRATIC_HEXAHEDRON
+    case mesh::CellType::Hex27:
+      return 29;  // VTK_TRIQUADRATIC_HEXAHEDRON
   }
   return 0;
 }

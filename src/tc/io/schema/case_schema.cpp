@@ -210,6 +210,9 @@ constexpr Key kMesh[] = {
     {.name = "file", .type = T::string, .doc = "a Gmsh 4 file, relative to the case file"},
 };
 
+constexpr std::string_view kBoxElements[] = {"Quad4", "Quad8", "Quad9", "Tri3", "Tri6",
+                                             "Hex8",  "Hex20", "Hex27", "Tet4", "Tet10"};
+
 constexpr Key kBox[] = {
     {.name = "min",
      .type = T::vector,
@@ -228,6 +231,11 @@ constexpr Key kBox[] = {
      .default_value = "required",
      .doc = "cells per axis; at most 10⁸ in all",
      .expected = "an array of integers ≥ 1"},
+    {.name = "element",
+     .type = T::choice,
+     .choices = kBoxElements,
+     .default_value = "none",
+     .doc = "the cells, of the body's dimension: Quad4 (2D) and Hex8 (3D) when absent"},
 };
 
 // ---------------------------------------------------------------------------------------
