@@ -117,6 +117,10 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> 
   }
   auto reduced = a.copy();  // freed once factorised: the factor keeps no reference to it
   reduced.zero_rows_columns(eliminated, diag);
+  if (package_ == MATSOLVERCHOLMOD) {
+    cholmod_ = std::make_shared<const CholmodFactor>(reduced.get(), nullptr, eliminated);
+    return;
+  }
   *this = CholeskySolver(reduced, package_, FactorRanks::this_rank);
 }
 
@@ -129,7 +133,8 @@ CholeskySolver::CholeskySolver(SparseMatrix&& a, std::span<const PetscInt> elimi
   }
   a.zero_rows_columns(eliminated, diag);
   if (package_ == MATSOLVERCHOLMOD) {
-    cholmod_ = std::make_shared<const CholmodFactor>(a.get(), [&a] { a = SparseMatrix{}; });
+    cholmod_ = std::make_shared<const CholmodFactor>(
+        a.get(), [&a] { a = SparseMatrix{}; }, eliminated);
     return;
   }
   *this = CholeskySolver(a, package_, FactorRanks::this_rank);

@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 
 struct cholmod_factor_struct;  // cholmod.h's cholmod_factor, kept out of the includers
@@ -23,8 +24,11 @@ class CholmodFactor {
  public:
   explicit CholmodFactor(::Mat a);
   /// The same, calling `release` once CHOLMOD's copy of a's triangle is made: the caller may
-  /// free `a` there, before the factor is allocated.
-  CholmodFactor(::Mat a, const std::function<void()>& release);
+  /// free `a` there, before the factor is allocated. The sorted `decoupled` rows (eliminated
+  /// dofs: zero off their diagonal) enter without their zero entries, so that their couplings
+  /// add no fill (the 10⁶-dof case's factors 5 % smaller, issue 39).
+  CholmodFactor(::Mat a, const std::function<void()>& release,
+                std::span<const PetscInt> decoupled = {});
   ~CholmodFactor();
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;
