@@ -1,4 +1,4 @@
-// CHOLMOD through SuiteSparse's public API (core/cholmod_factor.hpp) against PETSc's own
+// CHOLMOD through SuiteSparse's public API (linalg/cholmod/cholmod_factor.hpp) against PETSc's own
 // CHOLMOD matrix type, which CholeskySolver called before: the same matrix handed to CHOLMOD,
 // the same default ordering and supernodes, hence the same factor and the same solves bit for
 // bit. That is what keeps every history byte-identical across the change.

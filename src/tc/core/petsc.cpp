@@ -17,6 +17,7 @@
 
 #include "tc/core/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/matrix_views.hpp"
 #include "tc/core/petsc_blocks.hpp"
 #include "tc/core/threads.hpp"
 #include "tc/core/verify.hpp"
@@ -461,6 +462,129 @@ double jacobi_cg(const SparseMatrix& a, const Vector& b, Vector& x, double rtol,
     return reached;
   }
   return jacobi_cg_on(a.get(), b.get(), x.get(), rtol, max_iterations, iterations);
+}
+
+namespace {
+
+// jacobi_cg's masked operator: A with the rows and columns of `fixed` replaced by diag·I,
+// applied to A itself. CG's iterates are zero on the fixed dofs (b is, and so are the residual,
+// the search direction and the product there), so A's product sums on a free row the terms of
+// a copy whose fixed columns are zeroed, in the same order, A_ij·0 where the copy has 0·x_j:
+// the same values (zeros may differ in sign only).
+struct MaskedOperator {
+  ::Mat a = nullptr;
+  std::vector<PetscInt> fixed;  // this rank's rows among them
+  double diag = 1.0;
+};
+
+// PETSc calls these back: errors are returned, not thrown (PetscCall's PetscError would name
+// tc::PetscError here).
+#define TC_RETURN_ON_ERROR(call)         \
+  do {                                   \
+    const PetscErrorCode code_ = (call); \
+    if (code_) return code_;             \
+  } while (0)
+
+PetscErrorCode masked_apply(::Mat shell, ::Vec x, ::Vec y) {
+  MaskedOperator* op = nullptr;
+  TC_RETURN_ON_ERROR(MatShellGetContext(shell, &op));
+  TC_RETURN_ON_ERROR(MatMult(op->a, x, y));
+  PetscInt lo = 0, hi = 0;
+  TC_RETURN_ON_ERROR(VecGetOwnershipRange(y, &lo, &hi));
+  const PetscScalar* xv = nullptr;
+  PetscScalar* yv = nullptr;
+  TC_RETURN_ON_ERROR(VecGetArrayRead(x, &xv));
+  TC_RETURN_ON_ERROR(VecGetArray(y, &yv));
+  for (const PetscInt d : op->fixed) yv[d - lo] = op->diag * xv[d - lo];
+  TC_RETURN_ON_ERROR(VecRestoreArray(y, &yv));
+  return VecRestoreArrayRead(x, &xv);
+}
+
+PetscErrorCode masked_diagonal(::Mat shell, ::Vec d) {
+  MaskedOperator* op = nullptr;
+  TC_RETURN_ON_ERROR(MatShellGetContext(shell, &op));
+  TC_RETURN_ON_ERROR(MatGetDiagonal(op->a, d));
+  PetscInt lo = 0, hi = 0;
+  TC_RETURN_ON_ERROR(VecGetOwnershipRange(d, &lo, &hi));
+  PetscScalar* dv = nullptr;
+  TC_RETURN_ON_ERROR(VecGetArray(d, &dv));
+  for (const PetscInt f : op->fixed) dv[f - lo] = op->diag;
+  return VecRestoreArray(d, &dv);
+}
+
+#undef TC_RETURN_ON_ERROR
+
+}  // namespace
+
+double jacobi_cg(const SparseMatrix& a, std::span<const PetscInt> fixed, double diag,
+                 const Vector& b, Vector& x, double rtol, int max_iterations, int& iterations) {
+  MaskedOperator op;
+  op.a = a.get();
+  op.diag = diag;
+  PetscInt lo = 0, hi = 0, m = 0, n = 0;
+  TC_PETSC(MatGetOwnershipRange(a.get(), &lo, &hi));
+  TC_PETSC(MatGetLocalSize(a.get(), &m, &n));
+  std::copy_if(fixed.begin(), fixed.end(), std::back_inserter(op.fixed),
+               [&](PetscInt d) { return d >= lo && d < hi; });
+  MPI_Comm comm = MPI_COMM_NULL;
+  TC_PETSC(PetscObjectGetComm(reinterpret_cast<PetscObject>(a.get()), &comm));
+  Handle<::Mat, MatDestroy> shell;
+  TC_PETSC(MatCreateShell(comm, m, n, a.rows(), a.cols(), &op, shell.out()));
+  TC_PETSC(
+      MatShellSetOperation(shell.get(), MATOP_MULT, reinterpret_cast<void (*)()>(masked_apply)));
+  TC_PETSC(MatShellSetOperation(shell.get(), MATOP_GET_DIAGONAL,
+                                reinterpret_cast<void (*)()>(masked_diagonal)));
+  if (a.distributed()) {
+    double reached = 0;
+    on_blocks(a.row_blocks(), a.row_blocks(), b.get(), x.get(), [&](::Vec bl, ::Vec xl) {
+      reached = jacobi_cg_on(shell.get(), bl, xl, rtol, max_iterations, iterations);
+    });
+    return reached;
+  }
+  return jacobi_cg_on(shell.get(), b.get(), x.get(), rtol, max_iterations, iterations);
+}
+
+void share_pattern(SparseMatrix& m, const SparseMatrix& like) {
+  TC_VERIFY(
+      !m.distributed() && !like.distributed() && m.rows() == like.rows() && m.cols() == like.cols(),
+      "share_pattern: two whole matrices of one size");
+  PetscInt n = 0, nl = 0;
+  const PetscInt *ia = nullptr, *ja = nullptr, *il = nullptr, *jl = nullptr;
+  PetscBool done = PETSC_FALSE, done_like = PETSC_FALSE;
+  TC_PETSC(MatGetRowIJ(m.get(), 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  TC_PETSC(MatGetRowIJ(like.get(), 0, PETSC_FALSE, PETSC_FALSE, &nl, &il, &jl, &done_like));
+  TC_VERIFY(done && done_like, "share_pattern: sequential AIJ matrices");
+  const bool same = std::equal(ia, ia + n + 1, il) && std::equal(ja, ja + ia[n], jl);
+  const PetscInt entries = ia[n];
+  auto* ip = const_cast<PetscInt*>(il);  // PETSc's type has no const; `like` keeps them
+  auto* jp = const_cast<PetscInt*>(jl);
+  TC_PETSC(MatRestoreRowIJ(like.get(), 0, PETSC_FALSE, PETSC_FALSE, &nl, &il, &jl, &done_like));
+  TC_PETSC(MatRestoreRowIJ(m.get(), 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  TC_VERIFY(same, "share_pattern: the two matrices have one nonzero pattern");
+  // m's values in an array of their own (its index arrays share one allocation with them),
+  // owned by a container composed with the matrix: freed with it.
+  PetscScalar* v = nullptr;
+  TC_PETSC(PetscMalloc1(std::max<PetscInt>(entries, 1), &v));
+  {
+    const PetscScalar* from = nullptr;
+    TC_PETSC(MatSeqAIJGetArrayRead(m.get(), &from));
+    std::copy(from, from + entries, v);
+    TC_PETSC(MatSeqAIJRestoreArrayRead(m.get(), &from));
+  }
+  Handle<PetscContainer, PetscContainerDestroy> values;
+  TC_PETSC(PetscContainerCreate(PETSC_COMM_SELF, values.out()));
+  TC_PETSC(PetscContainerSetPointer(values.get(), v));
+  TC_PETSC(PetscContainerSetUserDestroy(values.get(), PetscContainerUserDestroyDefault));
+  ::Mat shared = nullptr;
+  TC_PETSC(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, m.rows(), m.cols(), ip, jp, v, &shared));
+  // m's PETSc object takes the new storage (its old arrays are freed), so every owner of it
+  // sees the change.
+  TC_PETSC(MatHeaderReplace(m.get(), &shared));
+  auto* obj = reinterpret_cast<PetscObject>(m.get());
+  TC_PETSC(PetscObjectCompose(obj, "tc_values", reinterpret_cast<PetscObject>(values.get())));
+  TC_PETSC(PetscObjectCompose(obj, "tc_pattern", reinterpret_cast<PetscObject>(like.get())));
+  // A new entry would reallocate arrays this matrix does not own.
+  TC_PETSC(MatSetOption(m.get(), MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
 }
 
 }  // namespace tc::core

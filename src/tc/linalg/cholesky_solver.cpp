@@ -28,7 +28,9 @@ namespace {
 class CholmodDirect final : public DirectFactor {
  public:
   explicit CholmodDirect(::Mat a) : f_(a) {}
-  CholmodDirect(::Mat a, const std::function<void()>& release) : f_(a, release) {}
+  CholmodDirect(::Mat a, const std::function<void()>& release,
+                std::span<const PetscInt> decoupled)
+      : f_(a, release, decoupled) {}
   void solve(::Vec b, ::Vec x) const override {
     const double* bv = nullptr;
     double* xv = nullptr;
@@ -172,6 +174,10 @@ CholeskySolver::CholeskySolver(const SparseMatrix& a, std::span<const PetscInt> 
   }
   auto reduced = a.copy();  // freed once factorised: the factor keeps no reference to it
   reduced.zero_rows_columns(eliminated, diag);
+  if (package_ == MATSOLVERCHOLMOD) {
+    keep(std::make_shared<const CholmodDirect>(reduced.get(), nullptr, eliminated));
+    return;
+  }
   *this = CholeskySolver(reduced, package_, FactorRanks::this_rank);
 }
 
@@ -184,7 +190,7 @@ CholeskySolver::CholeskySolver(SparseMatrix&& a, std::span<const PetscInt> elimi
   }
   a.zero_rows_columns(eliminated, diag);
   if (package_ == MATSOLVERCHOLMOD) {
-    keep(std::make_shared<const CholmodDirect>(a.get(), [&a] { a = SparseMatrix{}; }));
+    keep(std::make_shared<const CholmodDirect>(a.get(), [&a] { a = SparseMatrix{}; }, eliminated));
     return;
   }
   *this = CholeskySolver(a, package_, FactorRanks::this_rank);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "tc/core/error.hpp"
+#include "tc/core/heap.hpp"
 #include "tc/physics/body/body_field.hpp"
 #include "tc/physics/body/time_scheme.hpp"
 
@@ -51,6 +52,9 @@ void Simulation::set_up() {
     }
     factorization_ = s->mech->package();
     bodies_.fields.push_back(std::move(s));
+    // The assembly's node graphs, the copies made to factorise and CHOLMOD's work, freed in
+    // small blocks amid what stays: returned before the next body's factor is added to them.
+    core::release_free_heap();
   }
   smallest_step_ = problem_.time.step;
   initialise();

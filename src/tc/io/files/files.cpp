@@ -122,6 +122,13 @@ void write_file(const std::filesystem::path& file, std::string_view bytes) {
   fill(create_new(file, 0), file, bytes, true);
 }
 
+void write_file(const std::filesystem::path& file, std::initializer_list<std::string_view> parts) {
+  const int fd = create_new(file, 0);
+  size_t left = parts.size();
+  for (const auto part : parts) fill(fd, file, part, --left == 0);
+  if (parts.size() == 0) fill(fd, file, {}, true);
+}
+
 void replace_file(const std::filesystem::path& file, std::string_view bytes) {
   const auto tmp = temporary(file);
   write_file(tmp, bytes);

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <initializer_list>
 #include <iterator>
 #include <string>
 #include <string_view>
@@ -51,6 +52,8 @@ class PinnedDirectory {
 /// there) is unlinked first and the file is created with O_EXCL | O_NOFOLLOW: nothing is ever
 /// written through a link to a file outside the output directory (issue 42, D1).
 void write_file(const std::filesystem::path& file, std::string_view bytes);
+/// The same with the bytes given in parts, written one after the other.
+void write_file(const std::filesystem::path& file, std::initializer_list<std::string_view> parts);
 
 /// write_file to `file`.tmp, then renames it over `file`: a reader sees the old file or the
 /// new one, whole. The rename replaces a link named `file` itself, never its target.

@@ -87,8 +87,10 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
   const auto& mat = sys.body().material;
   const int dim = sys.dim();
   const double theta0 = sim.problem().physics.reference_temperature;
-  point_data = {vector_field("displacement", st.u, dim), vector_field("velocity", st.v, dim),
-                Field{"temperature", 1, st.theta.to_std()}};
+  point_data.clear();  // moved in, not copied from an initializer list (as cell_data below)
+  point_data.push_back(vector_field("displacement", st.u, dim));
+  point_data.push_back(vector_field("velocity", st.v, dim));
+  point_data.push_back(Field{"temperature", 1, st.theta.to_std()});
 
   const auto u = st.u.to_std();
   const auto& theta = point_data.back().values;
@@ -100,6 +102,9 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
   Field stress{"stress", 9, {}}, strain{"strain", 9, {}};
   Field body_index{"body", 1, std::vector<double>(static_cast<size_t>(m.n_cells()), body)};
   Field group{"physical_group", 1, {}};
+  const auto cells = static_cast<size_t>(m.n_cells());  // exact sizes: no growth by doubling
+  for (auto* f : {&vm, &flux, &sub, &stress, &strain, &group})
+    f->values.reserve(cells * static_cast<size_t>(f->components));
   for (int c = 0; c < m.n_cells(); ++c) {
     const auto nodes = m.cell(c);
     const auto x = fem::cell_coords(m, c);
@@ -123,8 +128,11 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
     flux.values.insert(flux.values.end(), {q[0], q[1], q[2]});
     sub.values.push_back(sys.cell_subdomain()[static_cast<size_t>(c)]);
   }
-  cell_data = {std::move(vm),     std::move(flux),       std::move(sub),  std::move(stress),
-               std::move(strain), std::move(body_index), std::move(group)};
+  // Moved in one by one: an initializer list would copy every field (a list's elements are
+  // const), twice the cell data at once.
+  cell_data.clear();
+  for (auto* f : {&vm, &flux, &sub, &stress, &strain, &body_index, &group})
+    cell_data.push_back(std::move(*f));
   contact_fields(sim, body, point_data);
 }
 

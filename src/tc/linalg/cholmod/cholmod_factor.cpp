@@ -46,7 +46,7 @@ struct LowerColumns {
   std::vector<int> p, i;
   std::vector<double> x;
   cholmod_sparse view{};
-  explicit LowerColumns(::Mat a) {
+  LowerColumns(::Mat a, std::span<const PetscInt> decoupled) {
     PetscInt n = 0;
     const PetscInt *ia = nullptr, *ja = nullptr;
     PetscBool done = PETSC_FALSE;
@@ -56,13 +56,19 @@ struct LowerColumns {
     TC_PETSC(MatSeqAIJGetArrayRead(a, &va));
     TC_VERIFY(ia[n] <= std::numeric_limits<int>::max(),
               "the matrix's entries must fit CHOLMOD's int indices");
+    std::vector<char> apart(decoupled.empty() ? 0 : static_cast<size_t>(n), 0);
+    for (const PetscInt d : decoupled) apart[static_cast<size_t>(d)] = 1;
+    const auto kept = [&](PetscInt r, PetscInt c, PetscScalar v) {  // c ≥ r
+      return c == r || v != 0.0 || apart.empty() ||
+             !(apart[static_cast<size_t>(r)] || apart[static_cast<size_t>(c)]);
+    };
     p.resize(static_cast<size_t>(n) + 1);
     i.reserve(static_cast<size_t>(ia[n] + n) / 2);
     x.reserve(i.capacity());
     for (PetscInt r = 0; r < n; ++r) {
       p[static_cast<size_t>(r)] = static_cast<int>(i.size());
       for (PetscInt k = ia[r]; k < ia[r + 1]; ++k)
-        if (ja[k] >= r) {  // columns sorted: the diagonal, then the upper triangle
+        if (ja[k] >= r && kept(r, ja[k], va[k])) {  // sorted: the diagonal, then the upper
           i.push_back(static_cast<int>(ja[k]));
           x.push_back(static_cast<double>(va[k]));
         }
@@ -107,10 +113,11 @@ double factorisation_flops(int n) {
 
 CholmodFactor::CholmodFactor(::Mat a) : CholmodFactor(a, {}) {}
 
-CholmodFactor::CholmodFactor(::Mat a, const std::function<void()>& release)
+CholmodFactor::CholmodFactor(::Mat a, const std::function<void()>& release,
+                             std::span<const PetscInt> decoupled)
     : state_(std::make_unique<State>()) {
   auto& c = state_->common;
-  LowerColumns lower(a);
+  LowerColumns lower(a, decoupled);
   if (release) release();  // `a` is not read again
   state_->n = static_cast<int>(lower.view.nrow);
   const KernelThreads threads(factorisation_flops(state_->n));

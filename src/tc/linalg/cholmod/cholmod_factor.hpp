@@ -33,8 +33,11 @@ class CholmodFactor {
  public:
   explicit CholmodFactor(::Mat a);
   /// The same, calling `release` once CHOLMOD's copy of a's triangle is made: the caller may
-  /// free `a` there, before the factor is allocated.
-  CholmodFactor(::Mat a, const std::function<void()>& release);
+  /// free `a` there, before the factor is allocated. The sorted `decoupled` rows (eliminated
+  /// dofs: zero off their diagonal) enter without their zero entries, so that their couplings
+  /// add no fill (a smaller factor and fewer flops: bench/RESULTS.md, the 10⁶-dof case's memory).
+  CholmodFactor(::Mat a, const std::function<void()>& release,
+                std::span<const PetscInt> decoupled = {});
   ~CholmodFactor();
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;
