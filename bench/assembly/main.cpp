@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "../support/growth.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"

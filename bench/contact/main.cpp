@@ -16,7 +16,7 @@
 #include "../../tests/support/problems.hpp"  // steel(): the constants the tests use
 #include "../support/growth.hpp"
 #include "../support/sliding_blocks.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/run/simulation.hpp"
 

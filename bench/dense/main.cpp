@@ -13,8 +13,8 @@
 #include <random>
 #include <vector>
 
-#include "tc/core/blas.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/blas.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace {
 

@@ -44,7 +44,7 @@
 #include "../../tests/support/problems.hpp"
 #include "../support/sliding_blocks.hpp"
 #include "../support/two_block_feti.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/feti/dual_distribution.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"

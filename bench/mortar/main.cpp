@@ -21,7 +21,7 @@
 
 #include "../support/growth.hpp"
 #include "tc/contact/mortar_pair.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/mesh/box.hpp"
 
 namespace {

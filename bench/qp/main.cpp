@@ -45,7 +45,7 @@
 
 #include "../../tests/support/qp_problems.hpp"
 #include "../../tests/support/tao_qp.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/io/case/case_reader.hpp"
 #include "tc/run/simulation.hpp"
 

@@ -12,7 +12,7 @@
 #include <limits>
 
 #include "tc/core/error.hpp"
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 
 namespace {
 

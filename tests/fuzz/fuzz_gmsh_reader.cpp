@@ -11,7 +11,7 @@
 #include <string>
 
 #include "tc/core/error.hpp"
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 
 namespace fs = std::filesystem;
 

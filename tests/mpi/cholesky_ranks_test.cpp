@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "support/vectors.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/dual/constrained_solver.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 

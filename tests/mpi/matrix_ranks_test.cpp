@@ -13,7 +13,7 @@
 #include "support/problems.hpp"
 #include "support/vectors.hpp"
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/dual/constrained_solver.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/linalg/cholesky_solver.hpp"

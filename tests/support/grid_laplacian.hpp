@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::test {
 

@@ -3,7 +3,7 @@
 
 #include <cstdlib>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 int main(int argc, char** argv) {
   // ctest runs as many tests at once as there are cores (scripts/test.sh), and a run takes

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/model/problem.hpp"
 

@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/qp/sets.hpp"
 
 namespace tc::test {

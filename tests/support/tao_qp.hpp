@@ -17,7 +17,7 @@
 #include <limits>
 #include <string>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/qp/operator.hpp"
 #include "tc/qp/sets.hpp"
 

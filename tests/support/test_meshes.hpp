@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/mesh/mesh.hpp"

@@ -3,7 +3,7 @@
 // over the ranks (tests/mpi).
 #include <cmath>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::test {
 

@@ -1,4 +1,4 @@
-// core/matrix_views.hpp against the copies they replace: CG on M_u with fixed dofs masked gives
+// core/numeric/matrix_views.hpp against the copies they replace: CG on M_u with fixed dofs masked gives
 // the bits of CG on a copy with those rows and columns eliminated (zero_rows_columns), and a
 // matrix moved onto another's index arrays keeps its every product to the bit. Both claims are
 // of equal arithmetic, so the comparisons are exact (a sign of zero aside: == holds for ±0).
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tc/core/error.hpp"
-#include "tc/core/matrix_views.hpp"
+#include "tc/core/numeric/matrix_views.hpp"
 #include "tc/fem/assembler.hpp"
 #include "tc/mesh/box.hpp"
 

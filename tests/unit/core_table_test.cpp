@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/core/table.hpp"
 
 using tc::core::TemperatureTable;

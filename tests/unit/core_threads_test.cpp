@@ -1,9 +1,9 @@
-// The BLAS thread policy (core/threads.hpp) and the checkpoint policy (io/restart/checkpoint.hpp):
+// The BLAS thread policy (core/numeric/threads.hpp) and the checkpoint policy (io/restart/checkpoint.hpp):
 // the budget from the affinity mask, the cgroup quota and the ranks of a node; the threads a
 // large kernel gets from the CPUs other processes left free; when a checkpoint is due.
 #include <gtest/gtest.h>
 
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/threads.hpp"
 #include "tc/io/restart/checkpoint.hpp"
 
 using namespace tc;

@@ -8,7 +8,7 @@
 
 #include "tc/core/error.hpp"
 #include "tc/io/case/case_reader.hpp"
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 
 namespace fs = std::filesystem;
 

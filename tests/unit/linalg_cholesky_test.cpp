@@ -9,7 +9,7 @@
 
 #include "support/grid_laplacian.hpp"
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 
 TEST(Petsc, CholeskySolvesAnSpdSystem) {

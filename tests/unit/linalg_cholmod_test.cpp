@@ -11,7 +11,7 @@
 
 #include "support/grid_laplacian.hpp"
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/linalg/cholmod/cholmod_factor.hpp"
 

@@ -15,7 +15,7 @@
 
 #include "support/grid_laplacian.hpp"
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/linalg/compliance.hpp"
 #include "tc/linalg/eliminated_cholesky.hpp"
 

@@ -18,8 +18,9 @@
 #include <functional>
 #include <numbers>
 
+#include "support/cli.hpp"
 #include "tc/core/error.hpp"
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 #include "tc/mesh/reference_cell.hpp"
 
 namespace fs = std::filesystem;
@@ -27,24 +28,11 @@ using namespace tc::mesh;
 
 namespace {
 
+// One directory for the process, removed when it ends (tests/support/cli.hpp).
 fs::path temp_dir() {
-  static const fs::path dir = [] {
-    const auto d = fs::temp_directory_path() / ("tc_gmsh_order2_" + std::to_string(getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
+  static const fs::path dir = tc::test::fresh_dir("gmsh-order2");
   return dir;
 }
-
-class RemoveTempDir : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(temp_dir(), ec);
-  }
-};
-[[maybe_unused]] const auto* const remove_temp_dir =
-    ::testing::AddGlobalTestEnvironment(new RemoveTempDir);
 
 struct Files {
   fs::path v41, v22;

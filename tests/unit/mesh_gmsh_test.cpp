@@ -17,9 +17,10 @@
 #include <random>
 #include <set>
 
+#include "support/cli.hpp"
 #include "tc/core/error.hpp"
 #include "tc/mesh/box.hpp"
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 #include "tc/mesh/mesh.hpp"
 
 namespace fs = std::filesystem;
@@ -32,24 +33,11 @@ namespace {
 
 // ---- Fixtures --------------------------------------------------------------------------------
 
+// One directory for the process, removed when it ends (tests/support/cli.hpp).
 fs::path temp_dir() {
-  static const fs::path dir = [] {
-    const auto d = fs::temp_directory_path() / ("tc_mesh_gmsh_test_" + std::to_string(getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
+  static const fs::path dir = tc::test::fresh_dir("mesh-gmsh");
   return dir;
 }
-
-class RemoveTempDir : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(temp_dir(), ec);
-  }
-};
-[[maybe_unused]] const auto* const remove_temp_dir =
-    ::testing::AddGlobalTestEnvironment(new RemoveTempDir);
 
 /// A gmsh session of the test's own, closed before read_gmsh opens its own (libgmsh is a
 /// global singleton).

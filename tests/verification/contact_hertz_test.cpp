@@ -19,7 +19,7 @@
 #include <numbers>
 
 #include "support/problems.hpp"
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 #include "tc/run/simulation.hpp"
 
 namespace tc::test {

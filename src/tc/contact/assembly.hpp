@@ -4,7 +4,7 @@
 #include <span>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::contact {
 

@@ -4,7 +4,7 @@
 // the weighted gap g of (2.6) and the nodal weights of the multiplier basis.
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::contact {
 

@@ -28,7 +28,7 @@
 #include "tc/contact/assembly.hpp"
 #include "tc/contact/contact_rows.hpp"
 #include "tc/contact/integration.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/mesh/mesh.hpp"
 
 namespace tc::contact {

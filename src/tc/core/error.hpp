@@ -89,7 +89,7 @@ class OutputError : public Error {
   using Error::Error;
 };
 
-/// Marks an error that every rank threw together (core/collective.hpp): reported once, on
+/// Marks an error that every rank threw together (core/numeric/collective.hpp): reported once, on
 /// rank 0, where an error of one rank alone is reported by that rank.
 class Collective {
  public:

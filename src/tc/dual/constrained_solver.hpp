@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/feti/feti.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/linalg/compliance.hpp"

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "tc/core/error.hpp"
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/threads.hpp"
 #include "tc/core/verify.hpp"
 
 namespace tc::physics {
@@ -219,7 +219,7 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
   if (kind_ == DualOperator::explicit_schur) {
     qp::SymmetricDenseOperator f(f_dense_.get());  // Σ F Σ when scaled
     // 2m² flops per product, some tens of products per QP: dsymv on a large F is a kernel
-    // that gains from threads (core/threads.hpp); a small one stays on one.
+    // that gains from threads (core/numeric/threads.hpp); a small one stays on one.
     const core::KernelThreads threads(50 * 2.0 * static_cast<double>(m) * static_cast<double>(m));
     if (rank_one) {
       qp::FunctionOperator fr(

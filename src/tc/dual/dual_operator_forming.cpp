@@ -13,9 +13,9 @@
 #include <thread>
 #include <utility>
 
-#include "tc/core/collective.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/threads.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/dual/dual_contact.hpp"
 #include "tc/linalg/dense.hpp"
@@ -246,7 +246,7 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
     w_bands_[k].resize(static_cast<size_t>(n_bands * width[k] * kBand));
     tile_of[k + 1] = tile_of[k] + (width[k] + kTile - 1) / kTile;
   }
-  // 2·nnz(B_i)·(|U| + m) flops: by the policy's kernel threads (core/threads.hpp) when large,
+  // 2·nnz(B_i)·(|U| + m) flops: by the policy's kernel threads (core/numeric/threads.hpp) when large,
   // one decision for both passes.
   double flops = 0;
   for (int i = 0; i < nb; ++i)

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tc/core/collective.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/mesh/reference_cell.hpp"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/fem/element.hpp"
 #include "tc/fem/material.hpp"
 

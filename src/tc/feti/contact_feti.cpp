@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "tc/core/collective.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/feti/subdomain.hpp"
 

@@ -11,7 +11,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::feti {
 

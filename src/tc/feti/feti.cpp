@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "tc/core/collective.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
 #include "tc/feti/subdomain.hpp"
 #include "tc/linalg/cholesky_solver.hpp"

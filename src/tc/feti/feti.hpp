@@ -37,7 +37,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/feti/dual_distribution.hpp"
 #include "tc/feti/preconditioner.hpp"
 #include "tc/mesh/partition.hpp"
@@ -189,7 +189,7 @@ class Feti {
   Eigen::MatrixXd w_, fw_;
   int first_owned_ = 0, last_owned_ = 0;  // [first, last) subdomains of this rank
   std::string package_;
-  PetscInt fail_after_ = -1;  // -tc_fail_on_rank, -tc_fail_phase solve (core/collective.hpp)
+  PetscInt fail_after_ = -1;  // -tc_fail_on_rank, -tc_fail_phase solve (core/numeric/collective.hpp)
   mutable FetiStatistics stats_;
 };
 

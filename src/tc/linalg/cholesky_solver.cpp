@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "tc/core/error.hpp"
-#include "tc/core/petsc_blocks.hpp"
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/petsc_blocks.hpp"
+#include "tc/core/numeric/threads.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/linalg/cholmod/cholmod_factor.hpp"
 #include "tc/linalg/mumps_ranks.hpp"

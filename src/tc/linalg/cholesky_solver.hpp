@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/linalg/cholmod/cholmod_factor.hpp"
 
 namespace tc::linalg {

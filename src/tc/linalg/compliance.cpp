@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "tc/core/error.hpp"
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/threads.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/linalg/dense.hpp"
@@ -63,7 +63,7 @@ PetscInt Compliance::cover(std::span<const PetscInt> dofs) {
   const auto t = static_cast<Eigen::Index>(dofs_.size());
   if (t == old) return 0;
   // A solve per new column, ~4 nnz(L) flops each, nnz(L) some tens of n for a 3D body: the
-  // level-3 solves of many columns are a kernel that gains from threads (core/threads.hpp).
+  // level-3 solves of many columns are a kernel that gains from threads (core/numeric/threads.hpp).
   const core::KernelThreads threads(40.0 * static_cast<double>(index_.size()) *
                                     static_cast<double>(t - old));
   chunks_.push_back(static_cast<PetscInt>(t - old));

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::linalg {
 

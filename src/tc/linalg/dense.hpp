@@ -3,7 +3,7 @@
 // them: RAII, zeroed on creation, assembled.
 #include <petscmat.h>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::linalg::dense {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 
 namespace tc::linalg {

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 
 namespace tc::linalg {

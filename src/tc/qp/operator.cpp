@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "tc/core/blas.hpp"
+#include "tc/core/numeric/blas.hpp"
 #include "tc/core/verify.hpp"
 
 namespace tc::qp {

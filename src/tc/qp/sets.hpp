@@ -15,7 +15,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::qp {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "tc/core/collective.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
 
 namespace tc::qp {

@@ -3,7 +3,7 @@
 // current state and the support reactions, whose work is the external work (EnergyBalance).
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/model/problem.hpp"
 #include "tc/physics/body/bodies.hpp"
 #include "tc/record/history.hpp"

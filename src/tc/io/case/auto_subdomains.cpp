@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "tc/core/heap.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/mesh/box.hpp"
 #include "tc/mesh/mesh.hpp"
 

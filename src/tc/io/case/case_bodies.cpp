@@ -5,14 +5,14 @@
 #include <cmath>
 #include <set>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/io/case/auto_subdomains.hpp"
 #include "tc/io/case/case_reader_detail.hpp"
 #include "tc/io/checks/case_checks.hpp"
 #include "tc/io/files/files.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/mesh/box.hpp"
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 #include "tc/mesh/partition.hpp"
 
 namespace tc::io::detail {

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/io/files/files.hpp"
 
 namespace tc::io {
@@ -219,7 +219,7 @@ OutputLock::OutputLock(const std::filesystem::path& directory, bool create, Earl
     directory_fd_ = -1;
   }
   if (core::PetscSession::size() > 1) share(outcome, message);
-  // Every rank throws the same error, reported once (by rank 0: core/collective.hpp).
+  // Every rank throws the same error, reported once (by rank 0: core/numeric/collective.hpp).
   if (outcome == in_use) throw CollectiveError<OutputInUse>(OutputInUse(message));
   if (outcome == failed) throw CollectiveError<Error>(Error(message));
 }

@@ -14,10 +14,10 @@
 #include <cstring>
 #include <fstream>
 
-#include "tc/core/collective.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/petsc.hpp"
+#include "tc/core/numeric/threads.hpp"
 #include "tc/io/files/files.hpp"
 
 namespace tc::io {

@@ -14,8 +14,8 @@
 #include <type_traits>
 
 #include "tc/core/bytes.hpp"
-#include "tc/core/collective.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/collective.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/io/case/case_overrides.hpp"
 #include "tc/io/files/files.hpp"
 

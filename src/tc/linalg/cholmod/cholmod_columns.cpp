@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "tc/core/blas.hpp"  // the BLAS that CHOLMOD calls: the same kernels, the same bits
+#include "tc/core/numeric/blas.hpp"  // the BLAS that CHOLMOD calls: the same kernels, the same bits
 #include "tc/core/verify.hpp"
 #include "tc/linalg/cholmod/cholmod_supernodes.hpp"
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/petsc.hpp"
+#include "tc/core/numeric/threads.hpp"
 #include "tc/core/verify.hpp"
 
 namespace tc::linalg {

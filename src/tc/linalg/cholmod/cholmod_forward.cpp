@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "tc/core/blas.hpp"  // the BLAS that CHOLMOD calls: the same kernels, the same bits
+#include "tc/core/numeric/blas.hpp"  // the BLAS that CHOLMOD calls: the same kernels, the same bits
 #include "tc/linalg/cholmod/cholmod_supernodes.hpp"
 
 namespace tc::linalg {

@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "tc/core/error.hpp"
-#include "tc/core/matrix_views.hpp"
+#include "tc/core/numeric/matrix_views.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/physics/body/time_scheme.hpp"

@@ -4,7 +4,7 @@
 // vectors of a step.
 #include <memory>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/dual/constrained_solver.hpp"
 #include "tc/model/problem.hpp"
 #include "tc/physics/body/body_system.hpp"

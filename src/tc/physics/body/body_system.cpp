@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "tc/core/matrix_views.hpp"
+#include "tc/core/numeric/matrix_views.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/physics/body/time_scheme.hpp"
 

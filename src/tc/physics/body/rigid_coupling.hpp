@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/dual/constrained_solver.hpp"
 #include "tc/physics/body/body_system.hpp"
 

@@ -4,7 +4,7 @@
 #include <functional>
 
 #include "tc/contact/contact_rows.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::physics {
 

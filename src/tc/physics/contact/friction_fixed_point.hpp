@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/model/problem.hpp"
 
 namespace tc::physics {

@@ -7,7 +7,7 @@
 
 #include "tc/contact/contact_rows.hpp"
 #include "tc/contact/mortar_pair.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::physics {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "tc/core/blas.hpp"
+#include "tc/core/numeric/blas.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/verify.hpp"
 

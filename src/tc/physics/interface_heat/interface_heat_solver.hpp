@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "tc/contact/mortar_pair.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/dual/constrained_solver.hpp"
 #include "tc/linalg/compliance.hpp"
 

@@ -9,7 +9,7 @@
 
 #include "tc/contact/contact_rows.hpp"
 #include "tc/contact/mortar_pair.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/model/problem.hpp"
 #include "tc/physics/interface_heat/contact_heat.hpp"
 

@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 #include "tc/physics/body/body_field.hpp"
 #include "tc/physics/body/body_system.hpp"
 

@@ -26,7 +26,7 @@
 #include "tc/core/bytes.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/stop.hpp"
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 
 #define TC_STRINGIFY_(x) #x
 #define TC_STRINGIFY(x) TC_STRINGIFY_(x)

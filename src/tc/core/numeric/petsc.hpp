@@ -32,7 +32,7 @@ class PetscSession {
   /// every rank holds every body (docs/choices.md, "Replicated state"), so they divide it.
   [[nodiscard]] static int node_size();
   /// BLAS threads of this rank outside large kernels: 1, or OPENBLAS_NUM_THREADS (the policy
-  /// and the kernels' threads: core/threads.hpp).
+  /// and the kernels' threads: core/numeric/threads.hpp).
   [[nodiscard]] static int blas_threads();
 
  private:

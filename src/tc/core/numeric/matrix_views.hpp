@@ -4,7 +4,7 @@
 // the index arrays of a first one assembled on the same graph.
 #include <span>
 
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::core {
 

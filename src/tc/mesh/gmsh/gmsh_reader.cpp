@@ -16,7 +16,7 @@
 //   oriented) cell, whose normal points outward by construction. This is exact and needs no
 //   geometric tolerance, unlike a comparison with the cell centroid, which can fail for
 //   strongly distorted cells. The unit tests check the normals geometrically.
-#include "tc/mesh/gmsh_reader.hpp"
+#include "tc/mesh/gmsh/gmsh_reader.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 #include <fmt/format.h>
 #include <malloc.h>
@@ -15,11 +15,11 @@
 #include <cstring>
 #include <iterator>
 
-#include "tc/core/collective.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
-#include "tc/core/matrix_views.hpp"
-#include "tc/core/petsc_blocks.hpp"
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/matrix_views.hpp"
+#include "tc/core/numeric/petsc_blocks.hpp"
+#include "tc/core/numeric/threads.hpp"
 #include "tc/core/verify.hpp"
 
 namespace tc::core {

@@ -1,9 +1,9 @@
 #pragma once
 // Helpers of core's PETSc wrappers for objects spread over the ranks in RowBlocks, shared by
-// core/petsc.cpp (SparseMatrix, jacobi_cg) and linalg's solvers (linalg/mumps_ranks.cpp: a
+// core/numeric/petsc.cpp (SparseMatrix, jacobi_cg) and linalg's solvers (linalg/mumps_ranks.cpp: a
 // factor over the ranks). For core and linalg only.
-#include "tc/core/collective.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/collective.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 #define TC_MPI(call) ::tc::core::check_mpi((call), #call)
 

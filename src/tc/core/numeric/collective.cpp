@@ -1,4 +1,4 @@
-#include "tc/core/collective.hpp"
+#include "tc/core/numeric/collective.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "tc/core/error.hpp"
-#include "tc/core/petsc.hpp"
+#include "tc/core/numeric/petsc.hpp"
 
 namespace tc::core {
 

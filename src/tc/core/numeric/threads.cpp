@@ -1,4 +1,4 @@
-#include "tc/core/threads.hpp"
+#include "tc/core/numeric/threads.hpp"
 
 #include <dlfcn.h>
 #include <sched.h>
