@@ -25,20 +25,31 @@ struct Dense {
   }
 };
 
+// A block of 4³ cells clamped at xmin, cut into 8 subdomains.
+auto clamped_block() {
+  auto p = box_problem(3, {1, 1, 1}, {4, 4, 4}, steel(), physics::Scheme::quasistatic, 1.0, 1);
+  p.bodies[0].subdomains = 8;
+  p.boundaries.push_back(hold("xmin", {0, 1, 2}));
+  return p;
+}
+
+// Its displacements by Total FETI to 1e-10 of the dual residual.
+physics::ConstrainedSolver feti_solver(const physics::BodySystem& sys) {
+  feti::FetiOptions o;
+  o.tolerance = 1e-10;
+  o.comm = PETSC_COMM_SELF;
+  return physics::ConstrainedSolver(std::make_unique<feti::Feti>(
+      sys.subdomains(), sys.body().mesh.n_nodes(), 3, sys.u_dirichlet_dofs(), feti::Kernel::rigid,
+      feti::Singular::yes, [&](int s) { return sys.subdomain_matrices(s).stiffness_u.copy(); }, o));
+}
+
 // A block clamped at xmin, cut into 8 subdomains: unit loads on every dof (64 per block solve,
 // the compliance's block size). FETI stops at 1e-10 of the dual residual; the primal error is
 // that times the dual condition number (≲ 1e2 at H/h = 2), so 1e-7 of the largest entry.
 TEST(Feti, PointLoadsGiveTheDirectSolution) {
-  auto p = box_problem(3, {1, 1, 1}, {4, 4, 4}, steel(), physics::Scheme::quasistatic, 1.0, 1);
-  p.bodies[0].subdomains = 8;
-  p.boundaries.push_back(hold("xmin", {0, 1, 2}));
+  const auto p = clamped_block();
   const physics::BodySystem sys(p, 0);
-  feti::FetiOptions o;
-  o.tolerance = 1e-10;
-  o.comm = PETSC_COMM_SELF;
-  const physics::ConstrainedSolver feti(std::make_unique<feti::Feti>(
-      sys.subdomains(), sys.body().mesh.n_nodes(), 3, sys.u_dirichlet_dofs(), feti::Kernel::rigid,
-      feti::Singular::yes, [&](int s) { return sys.subdomain_matrices(s).stiffness_u.copy(); }, o));
+  const auto feti = feti_solver(sys);
   const physics::ConstrainedSolver direct(sys.matrices().stiffness_u, sys.u_dirichlet_dofs(), "");
   const PetscInt n = sys.n_u();
   double worst = 0, largest = 0;
@@ -71,16 +82,9 @@ TEST(Feti, PointLoadsGiveTheDirectSolution) {
 // two chunks, against Eigen's inverse of the eliminated stiffness; a replay of its record gives
 // the same bits (FETI's block PCG is deterministic on one rank). Tolerance: FETI's, as above.
 TEST(Feti, ItsComplianceIsTheDenseInverse) {
-  auto p = box_problem(3, {1, 1, 1}, {4, 4, 4}, steel(), physics::Scheme::quasistatic, 1.0, 1);
-  p.bodies[0].subdomains = 8;
-  p.boundaries.push_back(hold("xmin", {0, 1, 2}));
+  const auto p = clamped_block();
   const physics::BodySystem sys(p, 0);
-  feti::FetiOptions o;
-  o.tolerance = 1e-10;
-  o.comm = PETSC_COMM_SELF;
-  const physics::ConstrainedSolver feti(std::make_unique<feti::Feti>(
-      sys.subdomains(), sys.body().mesh.n_nodes(), 3, sys.u_dirichlet_dofs(), feti::Kernel::rigid,
-      feti::Singular::yes, [&](int s) { return sys.subdomain_matrices(s).stiffness_u.copy(); }, o));
+  const auto feti = feti_solver(sys);
   const PetscInt n = sys.n_u();
   auto fixed = sys.u_dirichlet_dofs();
   std::sort(fixed.begin(), fixed.end());
