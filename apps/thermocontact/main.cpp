@@ -21,11 +21,11 @@
 #include <sstream>
 #include <string_view>
 
-#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/numeric/petsc.hpp"
-#include "tc/core/stop.hpp"
 #include "tc/core/numeric/threads.hpp"
+#include "tc/core/stop.hpp"
 #include "tc/io/case/case_reader.hpp"
 #include "tc/io/checks/data_checks.hpp"
 #include "tc/io/checks/geometry_checks.hpp"

@@ -13,8 +13,8 @@
 #include <thread>
 #include <utility>
 
-#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/numeric/threads.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/dual/dual_contact.hpp"
@@ -246,8 +246,8 @@ void DualContactSolver::form_bands(const std::vector<RowsT>& bt, double* fv, Pet
     w_bands_[k].resize(static_cast<size_t>(n_bands * width[k] * kBand));
     tile_of[k + 1] = tile_of[k] + (width[k] + kTile - 1) / kTile;
   }
-  // 2·nnz(B_i)·(|U| + m) flops: by the policy's kernel threads (core/numeric/threads.hpp) when large,
-  // one decision for both passes.
+  // 2·nnz(B_i)·(|U| + m) flops: by the policy's kernel threads (core/numeric/threads.hpp) when
+  // large, one decision for both passes.
   double flops = 0;
   for (int i = 0; i < nb; ++i)
     flops += 2.0 * static_cast<double>(bt[static_cast<size_t>(i)].value.size()) *

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/verify.hpp"
 #include "tc/mesh/reference_cell.hpp"
 

@@ -5,8 +5,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/feti/subdomain.hpp"
 
 namespace tc::feti {

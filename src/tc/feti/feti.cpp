@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 
-#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/feti/subdomain.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 

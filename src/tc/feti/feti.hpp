@@ -189,7 +189,8 @@ class Feti {
   Eigen::MatrixXd w_, fw_;
   int first_owned_ = 0, last_owned_ = 0;  // [first, last) subdomains of this rank
   std::string package_;
-  PetscInt fail_after_ = -1;  // -tc_fail_on_rank, -tc_fail_phase solve (core/numeric/collective.hpp)
+  // -tc_fail_on_rank, -tc_fail_phase solve (core/numeric/collective.hpp)
+  PetscInt fail_after_ = -1;
   mutable FetiStatistics stats_;
 };
 

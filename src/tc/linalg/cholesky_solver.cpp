@@ -28,8 +28,7 @@ namespace {
 class CholmodDirect final : public DirectFactor {
  public:
   explicit CholmodDirect(::Mat a) : f_(a) {}
-  CholmodDirect(::Mat a, const std::function<void()>& release,
-                std::span<const PetscInt> decoupled)
+  CholmodDirect(::Mat a, const std::function<void()>& release, std::span<const PetscInt> decoupled)
       : f_(a, release, decoupled) {}
   void solve(::Vec b, ::Vec x) const override {
     const double* bv = nullptr;
@@ -190,7 +189,8 @@ CholeskySolver::CholeskySolver(SparseMatrix&& a, std::span<const PetscInt> elimi
   }
   a.zero_rows_columns(eliminated, diag);
   if (package_ == MATSOLVERCHOLMOD) {
-    keep(std::make_shared<const CholmodDirect>(a.get(), [&a] { a = SparseMatrix{}; }, eliminated));
+    keep(std::make_shared<const CholmodDirect>(
+        a.get(), [&a] { a = SparseMatrix{}; }, eliminated));
     return;
   }
   *this = CholeskySolver(a, package_, FactorRanks::this_rank);

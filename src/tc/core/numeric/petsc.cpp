@@ -15,8 +15,8 @@
 #include <cstring>
 #include <iterator>
 
-#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/numeric/matrix_views.hpp"
 #include "tc/core/numeric/petsc_blocks.hpp"
 #include "tc/core/numeric/threads.hpp"

@@ -14,8 +14,8 @@
 #include <cstring>
 #include <fstream>
 
-#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/collective.hpp"
 #include "tc/core/numeric/petsc.hpp"
 #include "tc/core/numeric/threads.hpp"
 #include "tc/io/files/files.hpp"

@@ -116,8 +116,8 @@ class OutputWriter : public physics::Observer {
 /// over PETSC_COMM_WORLD; the text is rank 0's.
 [[nodiscard]] std::string peak_memory_json(const core::PhaseTimers& timers);
 
-/// summary.json's blas_threads: the policy (core/numeric/threads.hpp), this rank's budget and what its
-/// large kernels used so far.
+/// summary.json's blas_threads: the policy (core/numeric/threads.hpp), this rank's budget and what
+/// its large kernels used so far.
 [[nodiscard]] std::string blas_threads_json();
 
 /// The fields of one body written to its .vtu (exposed for tests).
