@@ -3,7 +3,7 @@
 
     bench/vs-calculix/vs_calculix.py [--binary B] [--ccx CCX] [--refinements 1,2,3] [--r4]
         [--timeout 600] [--workdir DIR] [--step 0.01] [--ccx-max-increment S]
-        [--scheme dynamic|quasistatic] [--only ours|ccx]
+        [--scheme dynamic|quasistatic] [--only ours|ccx] [--busy N] [--default-threads]
 
 Two steel blocks: the lower 2 x 1 x 0.5 mm (8r x 4r x 2r Hex8/C3D8 cells), the upper
 1 x 0.5 x 0.5 mm centred on it (6r x 3r x 2r cells). The lower block's bottom is clamped and
@@ -300,12 +300,16 @@ def single_thread_env():
     return env
 
 
-def run_ours(binary, workdir, timeout):
+def run_ours(binary, workdir, timeout, default_threads=False):
     case = os.path.join(workdir, "case.toml")
     out = os.path.join(workdir, "out")
     t0 = time.perf_counter()
+    env = single_thread_env()
+    if default_threads:
+        env.pop("OPENBLAS_NUM_THREADS")
+        env.pop("OMP_NUM_THREADS")
     p = subprocess.run([binary, "run", case, "--output", out, "--force"], capture_output=True,
-                       text=True, env=single_thread_env(), timeout=timeout)
+                       text=True, env=env, timeout=timeout)
     wall = time.perf_counter() - t0
     if p.returncode != 0:
         raise RuntimeError(f"thermocontact failed ({p.returncode}): "
@@ -404,13 +408,30 @@ def main():
     ap.add_argument("--scheme", choices=["dynamic", "quasistatic"], default="dynamic",
                     help="thermocontact's time scheme (default dynamic, as CalculiX's)")
     ap.add_argument("--only", choices=["ours", "ccx"], help="run one program only")
+    ap.add_argument("--busy", type=int, default=0,
+                    help="start N busy processes (`yes > /dev/null`) for the whole command: "
+                    "issue 39's machine with other work on it")
+    ap.add_argument("--default-threads", action="store_true",
+                    help="run thermocontact with its default BLAS thread policy "
+                    "(OPENBLAS_NUM_THREADS unset) instead of one thread")
     a = ap.parse_args()
+    busy = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(a.busy)]
+    try:
+        compare(a)
+    finally:
+        for p in busy:
+            p.kill()
+
+
+def compare(a):
     rs = [int(x) for x in a.refinements.split(",") if x]
     if a.r4 and 4 not in rs:
         rs.append(4)
     top = a.workdir or tempfile.mkdtemp(prefix="vs-calculix-")
     os.makedirs(top, exist_ok=True)
-    print(f"binary: {a.binary}\nccx: {a.ccx}\nworkdir: {top}", file=sys.stderr)
+    print(f"binary: {a.binary}\nccx: {a.ccx}\nworkdir: {top}\nbusy processes: {a.busy}, "
+          f"thermocontact threads: {'default policy' if a.default_threads else 1}",
+          file=sys.stderr)
     print("| r | nodes | thermocontact [s] | CalculiX [s] | ratio ccx/ours | T/N ours at 2 s "
           "(1.5–2 s) | T/N CalculiX RF, last (from 1.5 s) | T/N CalculiX CF, last | N ours [N] | "
           "N CalculiX [N] | ours: steps, QP it. | CalculiX: increment attempts, Newton iterations |")
@@ -426,7 +447,7 @@ def main():
                                  "it", "it_ccx")}
         ours = ccx = None
         if a.only != "ccx":
-            ours, rows = run_ours(a.binary, d, a.timeout)
+            ours, rows = run_ours(a.binary, d, a.timeout, a.default_threads)
             cols["ours"] = f"{ours:.2f}"
             cols["tn"] = fmt_ratio(slip_ratio(
                 [(float(x["time"]), (float(x["contact_tangential_force"]),

@@ -1,7 +1,9 @@
-// core/numeric/matrix_views.hpp against the copies they replace: CG on M_u with fixed dofs masked gives
-// the bits of CG on a copy with those rows and columns eliminated (zero_rows_columns), and a
-// matrix moved onto another's index arrays keeps its every product to the bit. Both claims are
-// of equal arithmetic, so the comparisons are exact (a sign of zero aside: == holds for ±0).
+// core/numeric/matrix_views.hpp against the copies they replace: CG on M_u with fixed dofs masked
+// gives the bits of CG on a copy with those rows and columns eliminated (zero_rows_columns), and a
+// matrix moved onto another's index arrays keeps its every product to the bit, and so does a
+// matrix without its zeros (drop_zeros), put back into the pattern it came from (in_pattern_of)
+// to its every entry. The claims are of equal arithmetic, so the comparisons are exact (a sign of
+// zero aside: == holds for ±0).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -104,6 +106,60 @@ TEST(MatrixViews, SharingNeedsTheSamePattern) {
   auto mass = body.mass_u.copy();
   mass.zero_rows_columns(std::vector<PetscInt>{0}, 1.0);  // values change, the pattern stays
   EXPECT_NO_THROW(tc::core::share_pattern(mass, body.stiffness_u));
+}
+
+PetscInt entries(const SparseMatrix& m) {
+  MatInfo info;
+  MatGetInfo(m.get(), MAT_LOCAL, &info);
+  return static_cast<PetscInt>(info.nz_used);
+}
+
+TEST(MatrixViews, AMassWithoutItsZerosKeepsEveryProductAndComesBackWhole) {
+  // M_u and the modified mass (a massless face: zero rows, P_eᵀM_eP_e in the cells beside it).
+  const auto mesh = tc::mesh::make_box(3, {0, 0, 0}, {0.3, 0.2, 0.1}, {4, 3, 2});
+  const auto body = tc::fem::assemble_body(mesh, steel());
+  std::vector<char> massless(static_cast<size_t>(mesh.n_nodes()), 0);
+  for (const int a : mesh.boundary_nodes("zmax")) massless[static_cast<size_t>(a)] = 1;
+  const SparseMatrix masses[] = {body.mass_u.copy(),
+                                 tc::fem::singular_mass_u(mesh, steel(), massless)};
+  for (int which = 0; which < 2; ++which) {
+    const auto& m = masses[which];
+    auto compact = m.copy();
+    tc::core::drop_zeros(compact);
+    // M_ab·I in each 3 × 3 block: one entry in three stays; fewer where the massless rows are.
+    if (which == 0)
+      EXPECT_EQ(3 * entries(compact), entries(m));
+    else
+      EXPECT_LT(3 * entries(compact), entries(m));
+    const auto x = ramp(m.rows());
+    Vector y(m.rows()), z(m.rows()), yy = ramp(m.rows()), zz = ramp(m.rows());
+    m.mult(x, y);
+    compact.mult(x, z);
+    m.mult_add(x, yy);
+    compact.mult_add(x, zz);
+    const auto yv = y.to_std(), zv = z.to_std(), yyv = yy.to_std(), zzv = zz.to_std();
+    for (size_t i = 0; i < yv.size(); ++i) {
+      ASSERT_EQ(zv[i], yv[i]) << "row " << i;
+      ASSERT_EQ(zzv[i], yyv[i]) << "row " << i;
+    }
+    Vector w(m.rows());
+    EXPECT_EQ(compact.quadratic_form(x, w), m.quadratic_form(x, w));
+    // Back in the stiffness's pattern: the assembled matrix entry for entry.
+    const auto back = tc::core::in_pattern_of(compact, body.stiffness_u);
+    EXPECT_EQ(entries(back), entries(body.stiffness_u));
+    PetscBool equal = PETSC_FALSE;
+    MatEqual(back.get(), m.get(), &equal);
+    EXPECT_TRUE(equal);
+  }
+}
+
+TEST(MatrixViews, APatternThatDoesNotHoldTheMatrixIsRefused) {
+  const auto a = tc::mesh::make_box(3, {0, 0, 0}, {0.3, 0.2, 0.1}, {4, 3, 2});
+  const auto b = tc::mesh::make_box(3, {0, 0, 0}, {0.3, 0.2, 0.1}, {3, 4, 2});
+  auto mass = tc::fem::assemble_body(a, steel()).mass_u;
+  tc::core::drop_zeros(mass);
+  EXPECT_ANY_THROW(
+      (void)tc::core::in_pattern_of(mass, tc::fem::assemble_body(b, steel()).stiffness_u));
 }
 
 }  // namespace

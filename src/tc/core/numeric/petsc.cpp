@@ -544,47 +544,4 @@ double jacobi_cg(const SparseMatrix& a, std::span<const PetscInt> fixed, double 
   return jacobi_cg_on(shell.get(), b.get(), x.get(), rtol, max_iterations, iterations);
 }
 
-void share_pattern(SparseMatrix& m, const SparseMatrix& like) {
-  TC_VERIFY(
-      !m.distributed() && !like.distributed() && m.rows() == like.rows() && m.cols() == like.cols(),
-      "share_pattern: two whole matrices of one size");
-  PetscInt n = 0, nl = 0;
-  const PetscInt *ia = nullptr, *ja = nullptr, *il = nullptr, *jl = nullptr;
-  PetscBool done = PETSC_FALSE, done_like = PETSC_FALSE;
-  TC_PETSC(MatGetRowIJ(m.get(), 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
-  TC_PETSC(MatGetRowIJ(like.get(), 0, PETSC_FALSE, PETSC_FALSE, &nl, &il, &jl, &done_like));
-  TC_VERIFY(done && done_like, "share_pattern: sequential AIJ matrices");
-  const bool same = std::equal(ia, ia + n + 1, il) && std::equal(ja, ja + ia[n], jl);
-  const PetscInt entries = ia[n];
-  auto* ip = const_cast<PetscInt*>(il);  // PETSc's type has no const; `like` keeps them
-  auto* jp = const_cast<PetscInt*>(jl);
-  TC_PETSC(MatRestoreRowIJ(like.get(), 0, PETSC_FALSE, PETSC_FALSE, &nl, &il, &jl, &done_like));
-  TC_PETSC(MatRestoreRowIJ(m.get(), 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
-  TC_VERIFY(same, "share_pattern: the two matrices have one nonzero pattern");
-  // m's values in an array of their own (its index arrays share one allocation with them),
-  // owned by a container composed with the matrix: freed with it.
-  PetscScalar* v = nullptr;
-  TC_PETSC(PetscMalloc1(std::max<PetscInt>(entries, 1), &v));
-  {
-    const PetscScalar* from = nullptr;
-    TC_PETSC(MatSeqAIJGetArrayRead(m.get(), &from));
-    std::copy(from, from + entries, v);
-    TC_PETSC(MatSeqAIJRestoreArrayRead(m.get(), &from));
-  }
-  Handle<PetscContainer, PetscContainerDestroy> values;
-  TC_PETSC(PetscContainerCreate(PETSC_COMM_SELF, values.out()));
-  TC_PETSC(PetscContainerSetPointer(values.get(), v));
-  TC_PETSC(PetscContainerSetUserDestroy(values.get(), PetscContainerUserDestroyDefault));
-  ::Mat shared = nullptr;
-  TC_PETSC(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, m.rows(), m.cols(), ip, jp, v, &shared));
-  // m's PETSc object takes the new storage (its old arrays are freed), so every owner of it
-  // sees the change.
-  TC_PETSC(MatHeaderReplace(m.get(), &shared));
-  auto* obj = reinterpret_cast<PetscObject>(m.get());
-  TC_PETSC(PetscObjectCompose(obj, "tc_values", reinterpret_cast<PetscObject>(values.get())));
-  TC_PETSC(PetscObjectCompose(obj, "tc_pattern", reinterpret_cast<PetscObject>(like.get())));
-  // A new entry would reallocate arrays this matrix does not own.
-  TC_PETSC(MatSetOption(m.get(), MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-}
-
 }  // namespace tc::core

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tc/core/error.hpp"
+#include "tc/core/verify.hpp"
 
 namespace tc::io {
 
@@ -101,6 +102,40 @@ std::filesystem::path temporary(const std::filesystem::path& file) {
 }
 
 }  // namespace
+
+StreamedFile::StreamedFile(const std::filesystem::path& file)
+    : file_(file), fd_(create_new(file, 0)) {}
+
+StreamedFile::~StreamedFile() {
+  if (fd_ >= 0) remove();
+}
+
+void StreamedFile::remove() {
+  ::close(fd_);
+  fd_ = -1;
+  const auto at = place(file_);
+  ::unlinkat(at.dir, at.name.c_str(), 0);  // a partial file must not be mistaken for a written one
+}
+
+void StreamedFile::flush() {
+  TC_VERIFY(fd_ >= 0, "StreamedFile written after it was finished or failed");
+  const int err = write_all(fd_, {buffer_.data(), buffer_.size()});
+  buffer_.clear();
+  if (err == 0) return;
+  remove();
+  fail("write", file_, err);
+}
+
+void StreamedFile::finish() {
+  flush();
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) == 0) return;  // close() reports the errors of writes it completes
+  const int err = errno;
+  const auto at = place(file_);
+  ::unlinkat(at.dir, at.name.c_str(), 0);
+  fail("write", file_, err);
+}
 
 PinnedDirectory::PinnedDirectory(const std::filesystem::path& directory)
     : key_(key_of(directory)), fd_(::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {

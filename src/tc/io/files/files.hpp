@@ -28,6 +28,35 @@ class TextBuffer {
   fmt::memory_buffer buffer_;
 };
 
+/// A new file written while it is formatted, a chunk at a time: the ASCII frame of a 10⁶-dof
+/// body is half a GiB of text, and formatting it whole put that on the run's memory peak
+/// (bench/RESULTS.md, "Issue 39's 10⁶-dof case"). The rules of write_file hold: created with
+/// O_EXCL | O_NOFOLLOW, a failed write removes the file and throws OutputError, and a file not
+/// finished (an exception while formatting) is removed by the destructor.
+class StreamedFile {
+ public:
+  explicit StreamedFile(const std::filesystem::path& file);
+  ~StreamedFile();
+  StreamedFile(const StreamedFile&) = delete;
+  StreamedFile& operator=(const StreamedFile&) = delete;
+
+  template <class... T>
+  void print(fmt::format_string<T...> format, T&&... args) {
+    fmt::format_to(std::back_inserter(buffer_), format, std::forward<T>(args)...);
+    if (buffer_.size() >= kChunk) flush();
+  }
+  /// Writes what is left and closes the file; throws OutputError (and removes it) on failure.
+  void finish();
+
+ private:
+  static constexpr size_t kChunk = size_t{1} << 20;  // few system calls, a negligible buffer
+  void flush();
+  void remove();
+  std::filesystem::path file_;
+  int fd_;
+  fmt::memory_buffer buffer_;
+};
+
 /// While it lives, every file written by the functions below into `directory` is created,
 /// renamed and removed relative to a descriptor of the directory opened here (openat,
 /// renameat): should the path come to name another directory (`rm -rf DIR` and a new run

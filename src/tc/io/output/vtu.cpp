@@ -62,13 +62,14 @@ struct Grid {
 
 /// `values`, `per_line` to a line, each in the shortest form that reads back to the same
 /// double ({} of fmt), so that an ASCII file holds the values a binary one does, bit for bit.
-template <class T>
-void ascii_values(TextBuffer& out, const std::vector<T>& values, size_t per_line) {
+template <class Out, class T>
+void ascii_values(Out& out, const std::vector<T>& values, size_t per_line) {
   for (size_t i = 0; i < values.size(); ++i)
     out.print("{}{}", values[i], (i + 1) % per_line == 0 || i + 1 == values.size() ? "\n" : " ");
 }
 
-void write_ascii(TextBuffer& out, const Grid& g) {
+/// The grid's arrays as text into `out`, a StreamedFile: never the whole text in memory.
+void write_ascii(StreamedFile& out, const Grid& g) {
   out.print(R"(        <DataArray type="Float64" NumberOfComponents="3" format="ascii">)"
             "\n");
   ascii_values(out, g.points, 3);
@@ -199,22 +200,27 @@ void write_grid(const std::filesystem::path& file, const mesh::Mesh& m,
   for (const auto& f : cell_data)
     g.cell_data.push_back(restricted(f, cells, static_cast<size_t>(m.n_cells())));
 
-  TextBuffer out;
-  out.print(R"(<?xml version="1.0"?>
+  const auto head = [&](auto& out) {
+    out.print(R"(<?xml version="1.0"?>
 <VTKFile type="UnstructuredGrid" version="1.0" byte_order="{}" header_type="UInt64"{}>
   <UnstructuredGrid>
     <Piece NumberOfPoints="{}" NumberOfCells="{}">
       <Points>
 )",
-            std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian",
-            encoding == VtuEncoding::zlib ? R"( compressor="vtkZLibDataCompressor")" : "",
-            points.size(), cells.size());
+              std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian",
+              encoding == VtuEncoding::zlib ? R"( compressor="vtkZLibDataCompressor")" : "",
+              points.size(), cells.size());
+  };
   if (encoding == VtuEncoding::ascii) {
+    StreamedFile out(file);
+    head(out);
     write_ascii(out, g);
     out.print("    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
-    write_file(file, out.view());
+    out.finish();
     return;
   }
+  TextBuffer out;
+  head(out);
   std::string data;
   if (encoding == VtuEncoding::binary) {  // its exact size: no growth by doubling, no copy
     size_t bytes = 8 * 4 + sizeof(double) * g.points.size() +

@@ -27,7 +27,9 @@ namespace {
 core::SparseMatrix mechanics_operator(const Problem& p, const core::SparseMatrix& mass_u,
                                       const core::SparseMatrix& stiffness_u) {
   const double c = body_time_scheme(p).mass_factor(p.time.step);
-  return c != 0.0 ? combine(c, mass_u, 1.0, stiffness_u) : stiffness_u.copy();
+  // M_u in K_u's pattern first (core::drop_zeros took its zeros out): the sum entry by entry.
+  return c != 0.0 ? combine(c, core::in_pattern_of(mass_u, stiffness_u), 1.0, stiffness_u)
+                  : stiffness_u.copy();
 }
 
 /// A_θ of (5.6), M_θ/τ + K_θ (backward Euler; a constant film's h∫θv is added by the caller).

@@ -78,9 +78,17 @@ BodySystem::BodySystem(const Problem& problem, int index)
         for (int k = 0; k < dim_; ++k) massless_dofs_.push_back(dim_ * a + k);
     m_.mass_u = fem::singular_mass_u(body_->mesh, body_->material, massless_, spread(u_rows_));
   }
-  // M_u on K_u's index arrays, M_θ on K_θ's (each pair assembled on one node graph): held
-  // beside the factors for the whole run, the second copy of the indices is 4 bytes an entry.
-  if (!u_rows_.spread()) core::share_pattern(m_.mass_u, m_.stiffness_u);
+  // M_u without the zeros between the displacement components (2/3 of K_u's pattern in 3D),
+  // M_θ on K_θ's index arrays (one node graph): both held beside the factors for the whole
+  // run. The contact-stabilised scheme factorises M_u itself, whose ordering follows its
+  // pattern: there M_u keeps K_u's, on K_u's indices.
+  if (!u_rows_.spread()) {
+    if (problem.time.scheme == Scheme::dynamic &&
+        problem.time.contact_scheme == ContactScheme::stabilised)
+      core::share_pattern(m_.mass_u, m_.stiffness_u);
+    else
+      core::drop_zeros(m_.mass_u);
+  }
   if (!theta_rows_.spread()) core::share_pattern(m_.mass_theta, m_.stiffness_theta);
   cell_part_ = mesh::partition_cells(body_->mesh, std::max(1, body_->subdomains));
   if (body_->subdomains > 1) subdomains_ = mesh::split(body_->mesh, cell_part_, body_->subdomains);
