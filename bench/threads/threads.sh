@@ -3,11 +3,12 @@
 # (OPENBLAS_NUM_THREADS unset), with 1 and with 2 BLAS threads (OPENBLAS_NUM_THREADS=1, 2), on
 # the machine as it is ("idle") and with two busy processes started here (`yes > /dev/null`,
 # killed at the end); then per case and load the ratio default / best of the three.
-#   bench/threads/threads.sh [large]
+#   bench/threads/threads.sh [large | million]
 # Cases: the 2D ch. 7 section (tests/cases/verification/section-2d.toml, 798 dofs, 100 dynamic
 # steps) and example 06 (examples/06-thesis-frictional-heating, 100 steps); with `large` also
 # example 06 refined ×3 (200 336 dofs, its first 10 steps, as bench/million). Fields written
-# every 1000 steps (the history only: the solver is what is timed).
+# every 1000 steps (the history only: the solver is what is timed). `million` runs issue 39's
+# 10⁶-dof case alone (example 06 ×5.5, 1 173 136 dofs, 10 steps of 0.03 s; ~16 GiB, 4 min idle).
 # REPEAT=n (default 5) runs each cell n times per mode, the modes alternating and the one that
 # goes first rotating from round to round, so that a drift of the load reaches every mode alike;
 # each cell prints the median wall time and its spread (min–max), the median CPU time
@@ -43,6 +44,11 @@ if [[ ${1:-} == large ]]; then
   sed -e 's/cells = \[8, 30, 6\]/cells = [24, 90, 18]/' -e 's/cells = \[6, 6, 6\]/cells = [18, 18, 18]/' \
     -e 's/^end = 1.0/end = 0.1/' "$work/example-06.toml" >"$work/example-06-x3.toml"
   cases+=(example-06-x3)
+fi
+if [[ ${1:-} == million ]]; then  # issue 39's 10⁶-dof case (bench/million: STEP=0.03 … 10 5.5)
+  sed -e 's/cells = \[8, 30, 6\]/cells = [44, 165, 33]/' -e 's/cells = \[6, 6, 6\]/cells = [33, 33, 33]/' \
+    -e 's/^step = 0.01/step = 0.03/' -e 's/^end = 1.0/end = 0.3/' "$work/example-06.toml" >"$work/million.toml"
+  cases=(million)
 fi
 [[ -z ${CASES:-} ]] || read -r -a cases <<<"$CASES"
 modes=(default 1 2)
