@@ -313,6 +313,15 @@ void print_warnings(const tc::physics::Problem& problem) {
   if (tc::core::PetscSession::rank() != 0) return;
   for (const auto& w : problem.warnings) fmt::print(stderr, "warning: {}\n", w);
   for (const auto& w : more) fmt::print(stderr, "warning: {}\n", w);
+  // The ranks' own start is a fraction of a second of the 1-minute average: what it says is
+  // the other work's.
+  double load = 0;
+  if (std::ifstream loadavg("/proc/loadavg"); loadavg >> load) {
+    const auto busy = tc::core::oversubscription_warning(
+        load, tc::core::ThreadPolicy::cpus().ranks_on_node,
+        static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN)));
+    if (!busy.empty()) fmt::print(stderr, "warning: {}\n", busy);
+  }
 }
 
 int run(const std::string& case_file, const std::vector<std::string>& overrides,

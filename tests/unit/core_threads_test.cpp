@@ -52,6 +52,19 @@ TEST(KernelThreads, ASmallKernelKeepsOneThreadAndTheScopeRestoresIt) {
   EXPECT_EQ(after.threads(), outside);
 }
 
+TEST(Oversubscription, IsSaidWhenRanksAndOtherWorkNeedACpuMoreThanThereAre) {
+  // One rank is never held up by a partner; 2 ranks on the 2-CPU VM beside a build (load
+  // ≥ 1) are (the 20× of docs/robustness.md), beside background noise (0.3) not.
+  EXPECT_EQ(tc::core::oversubscription_warning(12.0, 1, 2), "");
+  EXPECT_EQ(tc::core::oversubscription_warning(0.3, 2, 2), "");
+  EXPECT_EQ(tc::core::oversubscription_warning(1.0, 2, 2), "");  // exactly one CPU more: not yet
+  const auto w = tc::core::oversubscription_warning(2.2, 2, 2);
+  EXPECT_NE(w.find("2 MPI ranks on 2 CPUs"), std::string::npos) << w;
+  EXPECT_NE(w.find("load average 2.2"), std::string::npos) << w;
+  EXPECT_EQ(tc::core::oversubscription_warning(2.5, 4, 64), "");  // a cluster node's daemons
+  EXPECT_NE(tc::core::oversubscription_warning(2.5, 64, 64), "");
+}
+
 TEST(CheckpointPolicy, DueByStepsOrWallTimeNeverBelowFiftyTimesItsCost) {
   const io::CheckpointPolicy by_steps{4, 0.0};
   EXPECT_FALSE(by_steps.due(3, 1e6, 0.0));

@@ -1,6 +1,7 @@
 #include "tc/core/numeric/threads.hpp"
 
 #include <dlfcn.h>
+#include <fmt/format.h>
 #include <sched.h>
 #include <time.h>
 #include <unistd.h>
@@ -170,6 +171,15 @@ int decide() {
 }
 
 }  // namespace
+
+std::string oversubscription_warning(double others, int ranks_on_node, int cpus) {
+  if (ranks_on_node <= 1 || others + ranks_on_node <= cpus + 1.0) return "";
+  return fmt::format(
+      "{} MPI ranks on {} CPU{} that other work already uses (load average {:.1f}): the ranks "
+      "wait for each other at every collective, so one descheduled rank holds up all; fewer "
+      "ranks, or one, may be many times faster here (docs/robustness.md, \"A busy machine\")",
+      ranks_on_node, cpus, cpus == 1 ? "" : "s", others);
+}
 
 void ThreadPolicy::start(int ranks_on_node, int ranks) {
   auto& s = state();

@@ -32,6 +32,13 @@ struct CpuBudget {
 /// processes left idle, fractional), rounded to the nearest, between 1 and `budget`.
 [[nodiscard]] int threads_for(int budget, double free_cpus);
 
+/// What to tell a user whose MPI ranks share their CPUs with other work, or "": `ranks_on_node`
+/// ranks on `cpus` CPUs with the machine's load average `others` before they started. Ranks
+/// wait for each other at every collective, so a rank descheduled by another process holds
+/// up all of them (a 2-rank run on the busy 2-CPU VM took 6.5 min against 18 s on one rank:
+/// docs/robustness.md). Said when the ranks and that load need a CPU more than there are.
+[[nodiscard]] std::string oversubscription_warning(double others, int ranks_on_node, int cpus);
+
 /// The rank's thread policy; started by PetscSession.
 class ThreadPolicy {
  public:
