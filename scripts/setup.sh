@@ -13,6 +13,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libmetis-dev
   libgmsh-dev gmsh
   zlib1g-dev                              # zlib-compressed binary .vtu ([output] compression)
+  libhdf5-openmpi-dev                     # parallel HDF5: [output] format = "vtkhdf", one file per step from all ranks
   googletest libgtest-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy  # plots of history.csv and of fields
 )

@@ -32,6 +32,7 @@
 #include "tc/io/files/files.hpp"
 #include "tc/io/files/output_lock.hpp"
 #include "tc/io/output/output.hpp"
+#include "tc/io/output/vtkhdf.hpp"
 #include "tc/io/restart/checkpoint.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/linalg/cholmod/cholmod_factor.hpp"
@@ -317,9 +318,9 @@ void print_warnings(const tc::physics::Problem& problem) {
   // the other work's.
   double load = 0;
   if (std::ifstream loadavg("/proc/loadavg"); loadavg >> load) {
-    const auto busy = tc::core::oversubscription_warning(
-        load, tc::core::ThreadPolicy::cpus().ranks_on_node,
-        static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN)));
+    const auto busy =
+        tc::core::oversubscription_warning(load, tc::core::ThreadPolicy::cpus().ranks_on_node,
+                                           static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN)));
     if (!busy.empty()) fmt::print(stderr, "warning: {}\n", busy);
   }
 }
@@ -349,7 +350,8 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
   try {
     // summary.json's "startup": the process until here (loader, MPI, PETSc, the options).
     const double startup = tc::core::seconds_since_process_start();
-    auto problem = tc::io::read_case(case_file, overrides);
+    auto field_files = tc::io::FieldFiles::vtu;
+    auto problem = tc::io::read_case(case_file, overrides, field_files);
     if (!output.empty()) problem.output.directory = output;
     if (!restart.empty()) problem.output.directory = restart;  // continued where it stopped
     print_warnings(problem);
@@ -366,7 +368,7 @@ int run(const std::string& case_file, const std::vector<std::string>& overrides,
     const auto case_hash = tc::io::input_hash(problem);  // the case and mesh files read again
     reading += tc::core::seconds_since_process_start() - hashing;
     tc::io::OutputWriter writer(problem.output.directory, problem.output.every,
-                                tc::io::OutputWriter::encoding_of(problem.output));
+                                tc::io::OutputWriter::encoding_of(problem.output), field_files);
     if (tc::core::PetscSession::rank() == 0)  // held open until the process ends
       g_output_directory.store(
           ::open(problem.output.directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
@@ -520,6 +522,7 @@ int info(const char* program) {
       "flops; MUMPS's for a factor over the ranks; FETI for a decomposed body)\n",
       paths);
   fmt::print("Gmsh: {}\n", GMSH_API_VERSION);
+  fmt::print("VTKHDF output (format = \"vtkhdf\"): {}\n", tc::io::vtkhdf_library());
   return 0;
 }
 

@@ -1,9 +1,13 @@
 // The field output's encodings on a real frame (issue 43): reads an ASCII .vtu that a run wrote
-// (its points, cells and arrays), then writes it again as ASCII, raw binary and zlib-compressed
-// binary, in alternating rounds, and prints per encoding the file size and the median CPU and
-// wall seconds of a write (bench/RESULTS.md, "Field output").
+// (its points, cells and arrays), then writes it again as ASCII, raw binary, zlib-compressed
+// binary and VTKHDF (when the build has parallel HDF5), in alternating rounds, and prints per
+// encoding the file size and the median CPU and wall seconds of a write (bench/RESULTS.md,
+// "Field output"). Under `mpirun -n N` each rank writes a contiguous block of the cells, as a
+// run's ranks do: a .vtu piece each, or its piece of the one VTKHDF file, collectively; the
+// size is then the pieces' sum, the times the slowest rank's (after a barrier).
 //   build/bin/bench_output FRAME.vtu [ROUNDS] [DIR]
 #include <fmt/format.h>
+#include <mpi.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -14,6 +18,7 @@
 #include <regex>
 #include <sstream>
 
+#include "tc/io/output/vtkhdf.hpp"
 #include "tc/io/output/vtu.hpp"
 
 namespace {
@@ -97,40 +102,83 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+/// Rank `rank`'s contiguous block of the frame's cells.
+std::vector<int> block(const Frame& f, int rank, int size) {
+  std::vector<int> cells;
+  const int n = f.mesh.n_cells();
+  for (int c = n * rank / size; c < n * (rank + 1) / size; ++c) cells.push_back(c);
+  return cells;
+}
+
+double largest(double v) {
+  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return v;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
   if (argc < 2) {
-    fmt::print(stderr, "usage: {} FRAME.vtu [ROUNDS] [DIR]\n", argv[0]);
+    if (rank == 0) fmt::print(stderr, "usage: {} FRAME.vtu [ROUNDS] [DIR]\n", argv[0]);
+    MPI_Finalize();
     return 2;
   }
   const int rounds = argc > 2 ? std::atoi(argv[2]) : 5;
   const std::filesystem::path dir = argc > 3 ? argv[3] : std::filesystem::temp_directory_path();
   const auto frame = read_ascii(argv[1]);
-  fmt::print("{}: {} points, {} cells, {} point and {} cell arrays\n", argv[1],
-             frame.mesh.n_nodes(), frame.mesh.n_cells(), frame.point.size(), frame.cell.size());
+  const auto mine = block(frame, rank, size);
+  if (rank == 0)
+    fmt::print("{}: {} points, {} cells, {} point and {} cell arrays, {} rank(s)\n", argv[1],
+               frame.mesh.n_nodes(), frame.mesh.n_cells(), frame.point.size(), frame.cell.size(),
+               size);
   using E = tc::io::VtuEncoding;
-  const std::pair<E, const char*> encodings[] = {
-      {E::ascii, "ascii"}, {E::binary, "binary"}, {E::zlib, "zlib"}};
-  std::vector<double> cpu[3], wall[3];
-  std::uintmax_t size[3] = {};
+  struct Encoding {
+    E vtu;
+    const char* name;
+    bool vtkhdf;
+  };
+  std::vector<Encoding> encodings{
+      {E::ascii, "ascii", false}, {E::binary, "binary", false}, {E::zlib, "zlib", false}};
+  if (tc::io::vtkhdf_available()) encodings.push_back({E::ascii, "vtkhdf", true});
+  const size_t n = encodings.size();
+  std::vector<std::vector<double>> cpu(n), wall(n);
+  std::vector<double> size_mb(n);
   for (int r = 0; r < rounds; ++r)
-    for (int e = 0; e < 3; ++e) {  // alternating: the machine's load falls on all alike
-      const auto file = dir / fmt::format("bench_output_{}.vtu", encodings[e].second);
+    for (size_t e = 0; e < n; ++e) {  // alternating: the machine's load falls on all alike
+      const auto& enc = encodings[e];
+      const auto file = enc.vtkhdf ? dir / "bench_output.vtkhdf"
+                                   : dir / fmt::format("bench_output_{}_{}.vtu", enc.name, rank);
+      MPI_Barrier(MPI_COMM_WORLD);
       const double c0 = cpu_seconds();
       const auto w0 = std::chrono::steady_clock::now();
-      tc::io::write_vtu(file, frame.mesh, frame.point, frame.cell, encodings[e].first);
+      if (enc.vtkhdf)
+        tc::io::write_vtkhdf(file, frame.mesh, mine, frame.point, frame.cell, MPI_COMM_WORLD);
+      else if (size == 1)
+        tc::io::write_vtu(file, frame.mesh, frame.point, frame.cell, enc.vtu);
+      else
+        tc::io::write_vtu_piece(file, frame.mesh, mine, frame.point, frame.cell, enc.vtu);
       wall[e].push_back(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
-      cpu[e].push_back(cpu_seconds() - c0);
-      size[e] = std::filesystem::file_size(file);
-      std::filesystem::remove(file);
+          largest(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count()));
+      cpu[e].push_back(largest(cpu_seconds() - c0));
+      MPI_Barrier(MPI_COMM_WORLD);
+      double bytes =
+          enc.vtkhdf && rank != 0 ? 0.0 : static_cast<double>(std::filesystem::file_size(file));
+      MPI_Allreduce(MPI_IN_PLACE, &bytes, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+      size_mb[e] = bytes / 1e6;
+      MPI_Barrier(MPI_COMM_WORLD);
+      if (!enc.vtkhdf || rank == 0) std::filesystem::remove(file);
     }
-  for (int e = 0; e < 3; ++e)
-    fmt::print(
-        "{:7} {:10.3f} MB  cpu {:.3f} s  wall {:.3f} s  (size {:.3f}x, cpu {:.3f}x of ascii)\n",
-        encodings[e].second, static_cast<double>(size[e]) / 1e6, median(cpu[e]), median(wall[e]),
-        static_cast<double>(size[e]) / static_cast<double>(size[0]),
-        median(cpu[e]) / median(cpu[0]));
+  if (rank == 0)
+    for (size_t e = 0; e < n; ++e)
+      fmt::print(
+          "{:7} {:10.3f} MB  cpu {:.3f} s  wall {:.3f} s  (size {:.3f}x, cpu {:.3f}x, wall "
+          "{:.3f}x of ascii)\n",
+          encodings[e].name, size_mb[e], median(cpu[e]), median(wall[e]), size_mb[e] / size_mb[0],
+          median(cpu[e]) / median(cpu[0]), median(wall[e]) / median(wall[0]));
+  MPI_Finalize();
   return 0;
 }

@@ -14,6 +14,7 @@
 #include "tc/io/checks/case_checks.hpp"
 #include "tc/io/files/files.hpp"
 #include "tc/io/output/probes.hpp"
+#include "tc/io/output/vtkhdf.hpp"
 #include "tc/model/checks.hpp"
 
 namespace tc::io::detail {
@@ -293,13 +294,23 @@ void CaseReader::read_output(const TableReader& root) {
   const auto format = o->choice("format");
   const auto compression = o->choice("compression");
   if (format == "binary") p_.output.encoding = Encoding::binary;
+  if (format == "vtkhdf") {
+    if (vtkhdf_available())
+      field_files_ = FieldFiles::vtkhdf;
+    else  // a build option, not the case's fault: said so, with what this build can write
+      o->issue("format",
+               "found \"vtkhdf\", but this thermocontact was built without HDF5 (parallel "
+               "HDF5, Debian's libhdf5-openmpi-dev, was not found when it was configured); "
+               "expected \"ascii\" or \"binary\"");
+  }
   if (compression == "zlib") {  // binary implied when format is not given
-    if (format != "ascii")
+    if (format != "ascii" && format != "vtkhdf")
       p_.output.encoding = Encoding::zlib;
-    else  // VTK compresses the bytes of binary arrays only
+    else  // VTK compresses the bytes of binary .vtu arrays only
       o->issue("compression",
-               "found \"zlib\" with format = \"ascii\", expected \"none\" or format = "
-               "\"binary\" (or no format: zlib implies binary)");
+               fmt::format("found \"zlib\" with format = \"{}\", expected \"none\" or "
+                           "format = \"binary\" (or no format: zlib implies binary)",
+                           *format));
   }
   if (const auto e = o->integer("checkpoint_every")) p_.output.checkpoint_every = *e;
   if (const auto t = o->number("checkpoint_seconds")) p_.output.checkpoint_seconds = *t;
@@ -409,6 +420,12 @@ std::optional<std::pair<int, std::string>> stray_non_ascii(std::string_view text
 
 physics::Problem read_case(const std::filesystem::path& file,
                            std::span<const std::string> overrides) {
+  FieldFiles ignored = FieldFiles::vtu;
+  return read_case(file, overrides, ignored);
+}
+
+physics::Problem read_case(const std::filesystem::path& file,
+                           std::span<const std::string> overrides, FieldFiles& field_files) {
   if (const auto why = not_a_file(file); !why.empty())
     throw InputError({{file.string(), 1, "(file)", "cannot read the case file: it " + why}});
   std::string text;
@@ -433,7 +450,9 @@ physics::Problem read_case(const std::filesystem::path& file,
   }
   const auto applied = detail::apply_overrides(root, overrides);
   try {
-    auto problem = detail::CaseReader(file, root).read();
+    detail::CaseReader reader(file, root);
+    auto problem = reader.read();
+    field_files = reader.field_files();
     problem.overrides.assign(overrides.begin(), overrides.end());
     problem.content = detail::case_content(root, applied);
     // A warning about an overridden value names its --set, not a line of the file.

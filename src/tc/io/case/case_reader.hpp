@@ -9,6 +9,7 @@
 #include <string_view>
 #include <utility>
 
+#include "tc/io/output/vtkhdf.hpp"
 #include "tc/model/problem.hpp"
 
 namespace tc::io {
@@ -18,6 +19,10 @@ namespace tc::io {
 /// validated (case-format.md, "Overrides"); an issue they cause names `--set KEY=VALUE`.
 [[nodiscard]] physics::Problem read_case(const std::filesystem::path& file,
                                          std::span<const std::string> overrides = {});
+/// The same, with the field files `[output] format` chose (vtkhdf.hpp) in `field_files`.
+[[nodiscard]] physics::Problem read_case(const std::filesystem::path& file,
+                                         std::span<const std::string> overrides,
+                                         FieldFiles& field_files);
 
 /// The line and bytes (as \xNN) of the first non-ASCII character outside TOML strings and
 /// comments, where TOML has no use for one (read_case refuses the file: see its comment).

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tc/io/output/vtkhdf.hpp"
 #include "tc/io/schema/table_reader.hpp"
 #include "tc/model/problem.hpp"
 
@@ -25,6 +26,9 @@ class CaseReader {
       : file_(std::move(file)), issues_(file_.string()), root_(root) {}
 
   physics::Problem read();
+  /// The field files `[output] format` chose (after read()): not in physics::Problem, whose
+  /// encoding is the .vtu's (docs/choices.md, "VTKHDF: …").
+  [[nodiscard]] FieldFiles field_files() const { return field_files_; }
 
  private:
   void read_dimension(const TableReader& root);
@@ -74,6 +78,7 @@ class CaseReader {
   Issues issues_;
   const toml::table& root_;
   physics::Problem p_;
+  FieldFiles field_files_ = FieldFiles::vtu;
   int dim_ = 0;  // 0 while unknown (missing or invalid): lengths are then checked loosely
   std::map<std::string, std::optional<fem::Material>> materials_;  // nullopt: bad constants
   std::vector<bool> mesh_built_;                                   // per body

@@ -183,6 +183,15 @@ int replace_file_for_append(const std::filesystem::path& file, std::string_view 
   return fd;
 }
 
+void remove_file(const std::filesystem::path& file) {
+  const auto at = place(file);
+  (void)::unlinkat(at.dir, at.name.c_str(), 0);
+}
+
+void rename_file(const std::filesystem::path& from, const std::filesystem::path& to) {
+  rename_over(from, to);
+}
+
 std::string printable(std::string_view s) {
   std::string out;
   for (const char c : s) {

@@ -93,6 +93,14 @@ void replace_file(const std::filesystem::path& file, std::string_view bytes);
 [[nodiscard]] int replace_file_for_append(const std::filesystem::path& file,
                                           std::string_view bytes);
 
+/// For files that a library writes by their path (HDF5 through MPI-IO): removes `file`
+/// (through its pinned directory, as write_file does, and whatever it is: a stale file, a
+/// link), ignoring its absence or a failure, which the library's exclusive creation reports.
+void remove_file(const std::filesystem::path& file);
+/// Renames `from` over `to` (the rename replaces a link named `to` itself, never its target);
+/// on failure removes `from` and throws OutputError.
+void rename_file(const std::filesystem::path& from, const std::filesystem::path& to);
+
 /// `s` with control bytes (and DEL) as \xNN, for paths and names printed on a terminal: an
 /// output name with a newline or escape codes was echoed raw (issue 42).
 [[nodiscard]] std::string printable(std::string_view s);

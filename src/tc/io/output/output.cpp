@@ -19,6 +19,7 @@
 #include "tc/core/numeric/petsc.hpp"
 #include "tc/core/numeric/threads.hpp"
 #include "tc/io/files/files.hpp"
+#include "tc/io/output/vtkhdf.hpp"
 
 namespace tc::io {
 
@@ -132,10 +133,12 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-OutputWriter::OutputWriter(std::filesystem::path directory, int every, VtuEncoding encoding)
+OutputWriter::OutputWriter(std::filesystem::path directory, int every, VtuEncoding encoding,
+                           FieldFiles files)
     : dir_(std::move(directory)),
       every_(every),
       encoding_(encoding),
+      files_(files),
       root_(core::PetscSession::rank() == 0) {}
 
 VtuEncoding OutputWriter::encoding_of(const physics::OutputSettings& output) {
@@ -239,6 +242,11 @@ void OutputWriter::resume_collection(const physics::Simulation& sim) {
     struct stat st {};
     if (::lstat(f.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
     std::ifstream in(f, std::ios::binary);
+    if (f.extension() == ".vtkhdf") {  // renamed to its name once whole: HDF5's signature
+      const std::string signature = "\x89HDF\r\n\x1a\n";
+      std::string head(signature.size(), '\0');
+      return in.read(head.data(), static_cast<std::streamsize>(head.size())) && head == signature;
+    }
     const std::string tail = "</VTKFile>\n";
     if (st.st_size < static_cast<off_t>(tail.size())) return false;
     in.seekg(st.st_size - static_cast<off_t>(tail.size()));
@@ -247,7 +255,7 @@ void OutputWriter::resume_collection(const physics::Simulation& sim) {
   };
   for (int k = 0; k <= sim.step(); ++k)
     for (int b = 0; b < sim.n_bodies(); ++b)
-      for (const char* ext : {".vtu", ".pvtu"}) {
+      for (const char* ext : {".vtu", ".pvtu", ".vtkhdf"}) {
         const auto name = fmt::format("{}_{:06d}{}", sim.system(b).body().name, k, ext);
         if (!whole(dir_ / name)) continue;
         pvd_->add_existing(k * tau, b, name);
@@ -312,6 +320,53 @@ void OutputWriter::step(const physics::Simulation& sim) {
   }
 }
 
+namespace {
+
+/// The cells of body `sys` that each of `size` ranks writes: those of the subdomains it owns
+/// in FETI (the same dealing, feti::first_subdomain; an undecomposed body is one subdomain,
+/// all on one rank). The state is replicated, so every rank has the fields of its cells.
+std::vector<std::vector<int>> cells_by_rank(const physics::BodySystem& sys, int size) {
+  const int n_sub = std::max(1, static_cast<int>(sys.subdomains().size()));
+  std::vector<int> piece_of(static_cast<size_t>(n_sub));  // subdomain → rank
+  for (int r = 0; r < size; ++r)
+    for (int s = feti::first_subdomain(n_sub, r, size);
+         s < feti::first_subdomain(n_sub, r + 1, size); ++s)
+      piece_of[static_cast<size_t>(s)] = r;
+  std::vector<std::vector<int>> cells(static_cast<size_t>(size));
+  const auto& part = sys.cell_subdomain();
+  for (int c = 0; c < sys.body().mesh.n_cells(); ++c)
+    cells[static_cast<size_t>(piece_of[static_cast<size_t>(part[static_cast<size_t>(c)])])]
+        .push_back(c);
+  return cells;
+}
+
+}  // namespace
+
+void OutputWriter::write_vtkhdf_fields(const physics::Simulation& sim, int b,
+                                       const std::string& stem) {
+  const int size = core::PetscSession::size(), rank = core::PetscSession::rank();
+  const auto& sys = sim.system(b);
+  const auto name = stem + ".vtkhdf";
+  std::vector<Field> point_data, cell_data;
+  std::vector<int> mine;
+  // The fields first, each rank alone: a failure here is every rank's before any of them
+  // enters HDF5's collective calls (which a rank left out would wait in for ever).
+  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+    if (core::injected_failure("output"))
+      throw OutputError(
+          fmt::format("cannot write {} (injected by -tc_fail_on_rank)", printable(dir_ / name)));
+    body_fields(sim, b, point_data, cell_data);
+    mine = std::move(cells_by_rank(sys, size)[static_cast<size_t>(rank)]);
+  });
+  // write_vtkhdf makes a failure on one rank every rank's itself.
+  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+    write_vtkhdf(dir_ / name, sys.body().mesh, mine, point_data, cell_data, PETSC_COMM_WORLD);
+  });
+  core::collective_check(PETSC_COMM_WORLD, "output", [&] {
+    if (root_) pvd_->add(sim.time(), b, name);
+  });
+}
+
 void OutputWriter::write_fields(const physics::Simulation& sim) {
   auto scope = phases_.scope("output");
   const int size = core::PetscSession::size(), rank = core::PetscSession::rank();
@@ -325,6 +380,10 @@ void OutputWriter::write_fields(const physics::Simulation& sim) {
     const auto& mesh = sys.body().mesh;
     std::vector<Field> point_data, cell_data;
     const auto stem = fmt::format("{}_{:06d}", sys.body().name, sim.step());
+    if (files_ == FieldFiles::vtkhdf) {
+      write_vtkhdf_fields(sim, b, stem);
+      continue;
+    }
     if (size == 1) {
       core::collective_check(PETSC_COMM_WORLD, "output", [&] {
         body_fields(sim, b, point_data, cell_data);
@@ -333,21 +392,9 @@ void OutputWriter::write_fields(const physics::Simulation& sim) {
       });
       continue;
     }
-    // More ranks: each writes the cells of the subdomains it owns in FETI (the same dealing,
-    // feti::first_subdomain; an undecomposed body is one subdomain) as <stem>_<rank>.vtu, and
-    // rank 0 lists the pieces in <stem>.pvtu once all are written. The state is replicated,
-    // so every rank has the fields of its cells and points.
-    const int n_sub = std::max(1, static_cast<int>(sys.subdomains().size()));
-    std::vector<int> piece_of(static_cast<size_t>(n_sub));  // subdomain → rank
-    for (int r = 0; r < size; ++r)
-      for (int s = feti::first_subdomain(n_sub, r, size);
-           s < feti::first_subdomain(n_sub, r + 1, size); ++s)
-        piece_of[static_cast<size_t>(s)] = r;
-    std::vector<std::vector<int>> cells(static_cast<size_t>(size));
-    const auto& part = sys.cell_subdomain();
-    for (int c = 0; c < mesh.n_cells(); ++c)
-      cells[static_cast<size_t>(piece_of[static_cast<size_t>(part[static_cast<size_t>(c)])])]
-          .push_back(c);
+    // More ranks: each writes the cells of the subdomains it owns as <stem>_<rank>.vtu, and
+    // rank 0 lists the pieces in <stem>.pvtu once all are written.
+    const auto cells = cells_by_rank(sys, size);
     const auto piece = [&](int r) { return fmt::format("{}_{}.vtu", stem, r); };
     core::collective_check(PETSC_COMM_WORLD, "output", [&] {
       if (core::injected_failure("output"))

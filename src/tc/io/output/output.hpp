@@ -3,7 +3,8 @@
 // body and written step, history.csv (one row per step), summary.json (rewritten at start,
 // "running", and at the end, "completed" or "stopped"). Only MPI rank 0 writes, except the
 // fields on more than one rank: each rank writes the cells of its own subdomains as a piece
-// (<body>_<step>_<rank>.vtu) and rank 0 the .pvtu that lists them, which result.pvd names.
+// (<body>_<step>_<rank>.vtu) and rank 0 the .pvtu that lists them, which result.pvd names;
+// or, with format = "vtkhdf", every rank writes its piece into one <body>_<step>.vtkhdf.
 // Every writing phase is collective (core::collective_check): a failure on one rank stops all.
 // Every file is whole whenever the run stops, even by SIGKILL: history.csv gets one write()
 // per row (a row is there or not, never half), result.pvd and summary.json are replaced by
@@ -17,6 +18,7 @@
 
 #include "tc/io/files/files.hpp"
 #include "tc/io/output/probes.hpp"
+#include "tc/io/output/vtkhdf.hpp"
 #include "tc/io/output/vtu.hpp"
 #include "tc/run/simulation.hpp"
 
@@ -25,7 +27,8 @@ namespace tc::io {
 class OutputWriter : public physics::Observer {
  public:
   explicit OutputWriter(std::filesystem::path directory, int every = 1,
-                        VtuEncoding encoding = VtuEncoding::ascii);
+                        VtuEncoding encoding = VtuEncoding::ascii,
+                        FieldFiles files = FieldFiles::vtu);
   /// The encoding `[output]` format and compression name.
   [[nodiscard]] static VtuEncoding encoding_of(const physics::OutputSettings& output);
   /// Continue the output of a run restarted from a checkpoint (io/restart/checkpoint.hpp) instead
@@ -60,6 +63,8 @@ class OutputWriter : public physics::Observer {
 
  private:
   void write_fields(const physics::Simulation& sim);
+  /// Body b's <stem>.vtkhdf, every rank's piece written collectively (all ranks call it).
+  void write_vtkhdf_fields(const physics::Simulation& sim, int b, const std::string& stem);
   /// result.pvd of a restart: its data sets up to the restored step, or, when it is missing or
   /// not whole, a list rebuilt from the whole .vtu/.pvtu files of those steps found in dir_.
   void resume_collection(const physics::Simulation& sim);
@@ -83,6 +88,7 @@ class OutputWriter : public physics::Observer {
   std::filesystem::path dir_;
   int every_;
   VtuEncoding encoding_;
+  FieldFiles files_;
   bool root_;
   std::unique_ptr<PinnedDirectory> pin_;  // every write into dir_ goes through it
   std::unique_ptr<PvdCollection> pvd_;

@@ -8,55 +8,17 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <deque>
 #include <fstream>
 #include <regex>
 #include <sstream>
 
 #include "tc/core/error.hpp"
 #include "tc/io/files/files.hpp"
+#include "tc/io/output/vtk_grid.hpp"
 
 namespace tc::io {
 
 namespace {
-
-int vtk_type(mesh::CellType t) {
-  switch (t) {
-    case mesh::CellType::Tri3:
-      return 5;
-    case mesh::CellType::Quad4:
-      return 9;
-    case mesh::CellType::Tet4:
-      return 10;
-    case mesh::CellType::Hex8:
-      return 12;
-    // VTK's quadratic cells, whose node order mesh/ keeps (reference_cell.hpp).
-    case mesh::CellType::Tri6:
-      return 22;  // VTK_QUADRATIC_TRIANGLE
-    case mesh::CellType::Quad8:
-      return 23;  // VTK_QUADRATIC_QUAD
-    case mesh::CellType::Quad9:
-      return 28;  // VTK_BIQUADRATIC_QUAD
-    case mesh::CellType::Tet10:
-      return 24;  // VTK_QUADRATIC_TETRA
-    case mesh::CellType::Hex20:
-      return 25;  // VTK_QUADRATIC_HEXAHEDRON
-    case mesh::CellType::Hex27:
-      return 29;  // VTK_TRIQUADRATIC_HEXAHEDRON
-  }
-  return 0;
-}
-
-/// The arrays of one piece in the file's order, whatever the encoding.
-struct Grid {
-  std::vector<double> points;  // 3 per point
-  std::vector<std::int64_t> connectivity, offsets;
-  std::vector<std::uint8_t> types;
-  // The fields as given, or their rows of a piece (kept in `owned`): the whole grid's fields
-  // are not copied (at 10⁶ dofs a frame's copy was a fifth of a GiB at the run's memory peak).
-  std::vector<const Field*> point_data, cell_data;
-  std::deque<Field> owned;
-};
 
 // ---- ASCII ---------------------------------------------------------------------------------
 
@@ -69,7 +31,7 @@ void ascii_values(Out& out, const std::vector<T>& values, size_t per_line) {
 }
 
 /// The grid's arrays as text into `out`, a StreamedFile: never the whole text in memory.
-void write_ascii(StreamedFile& out, const Grid& g) {
+void write_ascii(StreamedFile& out, const VtkGrid& g) {
   out.print(R"(        <DataArray type="Float64" NumberOfComponents="3" format="ascii">)"
             "\n");
   ascii_values(out, g.points, 3);
@@ -147,7 +109,7 @@ void append_array(std::string& data, const void* bytes, size_t n, VtuEncoding en
   }
 }
 
-void write_appended(TextBuffer& out, std::string& data, const Grid& g, VtuEncoding encoding) {
+void write_appended(TextBuffer& out, std::string& data, const VtkGrid& g, VtuEncoding encoding) {
   const auto array = [&](const char* type, const std::string& attributes, const auto& values) {
     out.print(R"(        <DataArray type="{}" {}format="appended" offset="{}"/>)"
               "\n",
@@ -172,34 +134,8 @@ void write_appended(TextBuffer& out, std::string& data, const Grid& g, VtuEncodi
   out.print("      </CellData>\n");
 }
 
-/// The grid of `cells` of m with the points `points` (ascending; local[global] their new
-/// numbers, or identity when empty) and the fields restricted to them.
-void write_grid(const std::filesystem::path& file, const mesh::Mesh& m,
-                const std::vector<int>& points, const std::vector<int>& cells,
-                const std::vector<int>& local, const std::vector<Field>& point_data,
-                const std::vector<Field>& cell_data, VtuEncoding encoding) {
-  Grid g;
-  g.points.reserve(3 * points.size());
-  for (const int a : points) g.points.insert(g.points.end(), m.point(a).begin(), m.point(a).end());
-  for (const int c : cells) {
-    for (const int n : m.cell(c)) g.connectivity.push_back(local.empty() ? n : local[n]);
-    g.offsets.push_back(static_cast<std::int64_t>(g.connectivity.size()));
-    g.types.push_back(static_cast<std::uint8_t>(vtk_type(m.cell_type(c))));
-  }
-  auto restricted = [&g](const Field& f, const std::vector<int>& rows, size_t all) {
-    if (rows.size() == all) return &f;
-    Field& r = g.owned.emplace_back(Field{f.name, f.components, {}});
-    r.values.reserve(rows.size() * static_cast<size_t>(f.components));
-    for (const int i : rows)
-      for (int k = 0; k < f.components; ++k)
-        r.values.push_back(f.values[static_cast<size_t>(f.components * i + k)]);
-    return static_cast<const Field*>(&r);
-  };
-  for (const auto& f : point_data)
-    g.point_data.push_back(restricted(f, points, static_cast<size_t>(m.n_nodes())));
-  for (const auto& f : cell_data)
-    g.cell_data.push_back(restricted(f, cells, static_cast<size_t>(m.n_cells())));
-
+/// The grid `g` as a .vtu in `encoding`.
+void write_grid(const std::filesystem::path& file, const VtkGrid& g, VtuEncoding encoding) {
   const auto head = [&](auto& out) {
     out.print(R"(<?xml version="1.0"?>
 <VTKFile type="UnstructuredGrid" version="1.0" byte_order="{}" header_type="UInt64"{}>
@@ -209,7 +145,7 @@ void write_grid(const std::filesystem::path& file, const mesh::Mesh& m,
 )",
               std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian",
               encoding == VtuEncoding::zlib ? R"( compressor="vtkZLibDataCompressor")" : "",
-              points.size(), cells.size());
+              g.points.size() / 3, g.types.size());
   };
   if (encoding == VtuEncoding::ascii) {
     StreamedFile out(file);
@@ -238,12 +174,6 @@ void write_grid(const std::filesystem::path& file, const mesh::Mesh& m,
   write_file(file, {out.view(), std::string_view(data), "\n  </AppendedData>\n</VTKFile>\n"});
 }
 
-std::vector<int> iota(int n) {
-  std::vector<int> v(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) v[static_cast<size_t>(i)] = i;
-  return v;
-}
-
 void write_data_arrays(TextBuffer& out, const char* tag, const std::vector<Field>& fields) {
   out.print("    <{}>\n", tag);
   for (const auto& f : fields)
@@ -258,21 +188,13 @@ void write_data_arrays(TextBuffer& out, const char* tag, const std::vector<Field
 void write_vtu(const std::filesystem::path& file, const mesh::Mesh& m,
                const std::vector<Field>& point_data, const std::vector<Field>& cell_data,
                VtuEncoding encoding) {
-  write_grid(file, m, iota(m.n_nodes()), iota(m.n_cells()), {}, point_data, cell_data, encoding);
+  write_grid(file, whole_grid(m, point_data, cell_data), encoding);
 }
 
 void write_vtu_piece(const std::filesystem::path& file, const mesh::Mesh& m,
                      const std::vector<int>& cells, const std::vector<Field>& point_data,
                      const std::vector<Field>& cell_data, VtuEncoding encoding) {
-  std::vector<int> local(static_cast<size_t>(m.n_nodes()), -1), points;
-  for (const int c : cells)
-    for (const int n : m.cell(c)) local[static_cast<size_t>(n)] = 0;
-  for (int a = 0; a < m.n_nodes(); ++a)
-    if (local[static_cast<size_t>(a)] == 0) {
-      local[static_cast<size_t>(a)] = static_cast<int>(points.size());
-      points.push_back(a);
-    }
-  write_grid(file, m, points, cells, local, point_data, cell_data, encoding);
+  write_grid(file, piece_grid(m, cells, point_data, cell_data), encoding);
 }
 
 void write_pvtu(const std::filesystem::path& file, const std::vector<Field>& point_data,

@@ -364,7 +364,7 @@ constexpr std::string_view kFactorizations[] = {"auto", "mumps", "cholmod", "pet
 constexpr std::string_view kPreconditioners[] = {"dirichlet", "lumped", "none"};
 constexpr std::string_view kContactDuals[] = {"auto", "nested", "combined"};
 constexpr std::string_view kConductanceTreatments[] = {"implicit", "lagged"};
-constexpr std::string_view kOutputFormats[] = {"ascii", "binary"};
+constexpr std::string_view kOutputFormats[] = {"ascii", "binary", "vtkhdf"};
 constexpr std::string_view kCompressions[] = {"none", "zlib"};
 
 constexpr Key kSolver[] = {
@@ -483,7 +483,8 @@ constexpr Key kOutput[] = {
      .type = T::choice,
      .choices = kOutputFormats,
      .default_value = "\"ascii\"",
-     .doc = ".vtu arrays as text, or appended raw binary"},
+     .doc = ".vtu arrays as text, or appended raw binary; or one VTKHDF file per body and step "
+            "(parallel HDF5)"},
     {.name = "compression",
      .type = T::choice,
      .choices = kCompressions,
