@@ -3,12 +3,14 @@
 // against log(slave faces)) and the share of the stages (search, geometry + clipping,
 // integration, assembly). Prints a Markdown table.
 //
-//   build/bin/bench_mortar [slave faces per axis ...] [--standard]
+//   build/bin/bench_mortar [slave faces per axis ...] [--standard] [--element T]
 //
 // The slave is the bottom of [0, 1]² × [0, 0.05] with n × n faces, the master the top of
 // [−0.013, 1.011]² × [−0.05, 0] with about 0.77 n × 0.77 n faces; the interface nodes of both
 // are jittered in-plane by 20 % of their spacing (general quadrilaterals, no alignment), and
 // the slave is lowered by 0.1 % of a face into the master (a closed contact, every face active).
+// --element Hex20 | Hex27 | Tet10 | Tet4: both boxes of T cells on the jittered corners (issue
+// 37: mortar time per contact node of order 2 against order 1).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -23,6 +25,8 @@
 #include "tc/contact/mortar_pair.hpp"
 #include "tc/core/numeric/petsc.hpp"
 #include "tc/mesh/box.hpp"
+#include "tc/mesh/reference_cell.hpp"
+#include "tc/mesh/second_order.hpp"
 
 namespace {
 
@@ -52,6 +56,15 @@ tc::mesh::Mesh jittered(const tc::mesh::Mesh& m, const std::string& boundary, do
   return out;
 }
 
+/// The first-order box as cells of `element` on its corners.
+tc::mesh::Mesh as_element(const tc::mesh::Mesh& box, tc::mesh::CellType element) {
+  using tc::mesh::CellType;
+  if (element == CellType::Hex8) return box;
+  const CellType corners = tc::mesh::corner_type(element);
+  tc::mesh::Mesh m = corners == CellType::Tet4 ? tc::mesh::split_into_simplices(box) : box;
+  return tc::mesh::order(element) == 2 ? tc::mesh::to_second_order(m, element) : m;
+}
+
 struct Row {
   int faces = 0, contact_nodes = 0, segments = 0, repeats = 0;
   double time = 0;  // per update
@@ -73,10 +86,17 @@ int main(int argc, char** argv) {
   std::vector<int> sizes;
   tc::contact::MortarOptions options;
   std::vector<char*> petsc_args{argv[0]};
+  auto element = tc::mesh::CellType::Hex8;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--standard") == 0)
       options.basis = tc::contact::MultiplierBasis::standard;
-    else if (argv[i][0] == '-')
+    else if (std::strcmp(argv[i], "--element") == 0 && i + 1 < argc) {
+      const std::string name = argv[++i];
+      for (const auto t :
+           {tc::mesh::CellType::Hex8, tc::mesh::CellType::Hex20, tc::mesh::CellType::Hex27,
+            tc::mesh::CellType::Tet4, tc::mesh::CellType::Tet10})
+        if (name == tc::mesh::name(t)) element = t;
+    } else if (argv[i][0] == '-')
       petsc_args.push_back(argv[i]);
     else
       sizes.push_back(std::stoi(argv[i]));
@@ -90,11 +110,14 @@ int main(int argc, char** argv) {
   for (const int n : sizes) {
     const int nm = std::max(2, static_cast<int>(std::lround(0.77 * n)));
     const double h = 1.0 / n, hm = 1.024 / nm;
-    const auto slave = jittered(tc::mesh::make_box(3, {0, 0, -1e-3 * h}, {1, 1, 0.05}, {n, n, 1}),
-                                "zmin", 0.2 * h, 1);
-    const auto master =
+    const auto slave =
+        as_element(jittered(tc::mesh::make_box(3, {0, 0, -1e-3 * h}, {1, 1, 0.05}, {n, n, 1}),
+                            "zmin", 0.2 * h, 1),
+                   element);
+    const auto master = as_element(
         jittered(tc::mesh::make_box(3, {-0.013, -0.013, -0.05}, {1.011, 1.011, 0}, {nm, nm, 1}),
-                 "zmax", 0.2 * hm, 2);
+                 "zmax", 0.2 * hm, 2),
+        element);
     MortarPair pair(slave, "zmin", master, "zmax", options);
     const std::vector<double> us(3 * slave.n_nodes(), 0.0), um(3 * master.n_nodes(), 0.0);
     Row r;
@@ -115,20 +138,23 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "{} slave faces: {:.3e} s per update\n", r.faces, r.time);
   }
 
-  fmt::print("basis: {}\n\n", tc::contact::name(options.basis));
+  fmt::print("basis: {}, element: {}\n\n", tc::contact::name(options.basis),
+             tc::mesh::name(element));
   fmt::print(
       "| slave faces | master faces | segments | contact nodes | update [s] | per slave face [µs] "
-      "| search | geometry + clipping | integration | assembly |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n");
+      "| per contact node [µs] | search | geometry + clipping | integration | assembly |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
     const int nm = std::max(2, static_cast<int>(std::lround(0.77 * sizes[i])));
     const double all = r.t.search + r.t.geometry + r.t.integration + r.t.assembly;
     fmt::print(
-        "| {} | {} | {} | {} | {:.4f} | {:.2f} | {:.0f} % | {:.0f} % | {:.0f} % | {:.0f} % |\n",
+        "| {} | {} | {} | {} | {:.4f} | {:.2f} | {:.2f} | {:.0f} % | {:.0f} % | {:.0f} % | {:.0f} "
+        "% "
+        "|\n",
         r.faces, nm * nm, r.segments, r.contact_nodes, r.time, 1e6 * r.time / r.faces,
-        100 * r.t.search / all, 100 * r.t.geometry / all, 100 * r.t.integration / all,
-        100 * r.t.assembly / all);
+        1e6 * r.time / r.contact_nodes, 100 * r.t.search / all, 100 * r.t.geometry / all,
+        100 * r.t.integration / all, 100 * r.t.assembly / all);
   }
   if (rows.size() >= 2) fmt::print("\ngrowth exponent of update(): {:.3f}\n", slope(rows));
   return 0;

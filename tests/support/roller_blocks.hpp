@@ -4,6 +4,7 @@
 // displacement of one face prescribed, of another held), and the solution without contact.
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,12 +23,15 @@ struct Block {
 };
 
 /// A box on rollers with the vertical displacement of `moved_face` prescribed to `moved_by` and
-/// that of `fixed_face` held at zero (either name may be empty).
+/// that of `fixed_face` held at zero (either name may be empty); of `element` cells when given
+/// (mesh::make_box's), else Quad4 or Hex8.
 inline Block make_block(int dim, const mesh::Point& lo, const mesh::Point& hi,
                         std::array<int, 3> cells, const std::string& moved_face, double moved_by,
-                        const std::string& fixed_face) {
+                        const std::string& fixed_face,
+                        std::optional<mesh::CellType> element = std::nullopt) {
   Block b;
-  b.mesh = mesh::make_box(dim, lo, hi, cells);
+  b.mesh =
+      element ? mesh::make_box(dim, lo, hi, cells, *element) : mesh::make_box(dim, lo, hi, cells);
   b.matrices = fem::assemble_body(b.mesh, steel());
   const PetscInt n_u = dim * b.mesh.n_nodes();
   b.u_prescribed = core::Vector(n_u);

@@ -2,25 +2,91 @@
 
 #include <algorithm>
 
-#include "tc/core/verify.hpp"
 #include "tc/mesh/reference_cell.hpp"
 
 namespace tc::contact {
 
 using mesh::FacetType;
 
+namespace {
+
+/// Line3 on [0, 1]: corners at 0 and 1, the mid-edge node at ½.
+void line3_shape(double x, ShapeValues& s) {
+  s.n = 3;
+  s.phi[0] = (1 - x) * (1 - 2 * x);
+  s.phi[1] = x * (2 * x - 1);
+  s.phi[2] = 4 * x * (1 - x);
+  s.dphi[0] = {4 * x - 3, 0};
+  s.dphi[1] = {4 * x - 1, 0};
+  s.dphi[2] = {4 - 8 * x, 0};
+}
+
+/// Tri6, Quad8, Quad9: the mesh's reference functions, on the same cells as Tri3 and Quad4.
+void surface_shape(FacetType t, const Vec2& xi, ShapeValues& s) {
+  s.n = mesh::n_nodes(t);
+  double n[kFacetNodes], dn[3 * kFacetNodes];
+  mesh::shape_functions(t, {xi[0], xi[1], 0}, n, dn);
+  for (int a = 0; a < s.n; ++a) {
+    s.phi[a] = n[a];
+    s.dphi[a] = {dn[3 * a], dn[3 * a + 1]};
+  }
+}
+
+/// Reference coordinates of node a in the conventions of facet_shape.
+Vec2 reference_point(FacetType t, int a) {
+  if (t == FacetType::Line2 || t == FacetType::Line3) return {a == 0 ? 0.0 : a == 1 ? 1.0 : 0.5, 0};
+  const mesh::Point p = mesh::reference_node(t, a);
+  return {p[0], p[1]};
+}
+
+/// The reference centre: ½ on lines, (⅓, ⅓) on triangles, 0 on quadrilaterals.
+Vec2 reference_centre(FacetType t) {
+  switch (mesh::corner_type(t)) {
+    case FacetType::Line2:
+      return {0.5, 0};
+    case FacetType::Tri3:
+      return {1.0 / 3, 1.0 / 3};
+    default:
+      return {0, 0};
+  }
+}
+
+/// x_ξ and x_η of the facet at ξ.
+void tangent_vectors(const FacetPoints& f, const Vec2& xi, Vec3& dx, Vec3& dy) {
+  const ShapeValues s = facet_shape(f.type, xi);
+  dx = {0, 0, 0};
+  dy = {0, 0, 0};
+  for (int a = 0; a < f.n; ++a) {
+    dx = dx + s.dphi[a][0] * f.x[a];
+    dy = dy + s.dphi[a][1] * f.x[a];
+  }
+}
+
+/// The unit normal of a second-order facet at ξ: x_ξ × x_η, or in 2D x_ξ turned clockwise.
+Vec3 curved_normal(const FacetPoints& f, const Vec2& xi) {
+  Vec3 dx, dy;
+  tangent_vectors(f, xi, dx, dy);
+  if (f.type == FacetType::Line3) return normalized(Vec3{dx[1], -dx[0], 0});
+  return normalized(cross(dx, dy));
+}
+
+}  // namespace
+
 ShapeValues facet_shape(FacetType t, const Vec2& xi) {
   ShapeValues s;
   switch (t) {
     case FacetType::Line2:
       s.n = 2;
-      s.phi = {1 - xi[0], xi[0], 0, 0};
+      s.phi[0] = 1 - xi[0];
+      s.phi[1] = xi[0];
       s.dphi[0] = {-1, 0};
       s.dphi[1] = {1, 0};
       break;
     case FacetType::Tri3:
       s.n = 3;
-      s.phi = {1 - xi[0] - xi[1], xi[0], xi[1], 0};
+      s.phi[0] = 1 - xi[0] - xi[1];
+      s.phi[1] = xi[0];
+      s.phi[2] = xi[1];
       s.dphi[0] = {-1, -1};
       s.dphi[1] = {1, 0};
       s.dphi[2] = {0, 1};
@@ -35,18 +101,20 @@ ShapeValues facet_shape(FacetType t, const Vec2& xi) {
       }
       break;
     }
+    case FacetType::Line3:
+      line3_shape(xi[0], s);
+      break;
     default:
-      TC_VERIFY(false, "contact facets are of first order (MortarPair refuses the others)");
+      surface_shape(t, xi, s);
   }
   return s;
 }
 
 FacetPoints facet_points(const mesh::Facet& f, std::span<const Vec3> x) {
   FacetPoints p;
-  TC_VERIFY(mesh::order(f.type) == 1,
-            "contact facets are of first order (MortarPair refuses the others)");
   p.type = f.type;
   p.n = mesh::n_nodes(f.type);
+  p.corners = mesh::n_nodes(mesh::corner_type(f.type));
   for (int a = 0; a < p.n; ++a) p.x[a] = x[f.nodes[a]];
   return p;
 }
@@ -62,12 +130,12 @@ Vec3 centre_normal(const FacetPoints& f) {
     case FacetType::Quad4:
       return normalized(cross(f.x[2] - f.x[0], f.x[3] - f.x[1]));
     default:
-      TC_VERIFY(false, "contact facets are of first order (MortarPair refuses the others)");
+      return curved_normal(f, reference_centre(f.type));
   }
-  return {};
 }
 
 Vec3 vertex_normal(const FacetPoints& f, int a) {
+  if (mesh::order(f.type) == 2) return curved_normal(f, reference_point(f.type, a));
   if (f.type != FacetType::Quad4) return centre_normal(f);
   return normalized(cross(f.x[(a + 1) % 4] - f.x[a], f.x[(a + 3) % 4] - f.x[a]));
 }
@@ -114,10 +182,12 @@ FacePlane face_plane(const FacetPoints& slave, int dim) {
   if (dim == 2) {
     p.origin = slave.x[0];
     p.e1 = normalized(slave.x[1] - slave.x[0]);
+    // A curved Line3 is projected onto its chord: the chord's normal, not the arc's.
+    if (slave.type == FacetType::Line3) p.normal = {p.e1[1], -p.e1[0], 0};
     return p;  // e2 = 0: one plane coordinate
   }
   p.origin = {0, 0, 0};
-  for (int a = 0; a < slave.n; ++a) p.origin = p.origin + (1.0 / slave.n) * slave.x[a];
+  for (int a = 0; a < slave.corners; ++a) p.origin = p.origin + (1.0 / slave.corners) * slave.x[a];
   const Vec3 edge = slave.x[1] - slave.x[0];
   p.e1 = normalized(edge - dot(edge, p.normal) * p.normal);
   p.e2 = cross(p.normal, p.e1);
@@ -136,10 +206,11 @@ double signed_area(const Polygon& p) {
 
 ProjectedFacet project(const FacetPoints& f, const FacePlane& plane) {
   ProjectedFacet out;
-  for (int a = 0; a < f.n; ++a) out.polygon.push(plane.project(f.x[a]));
+  const int n = f.corners;
+  for (int a = 0; a < n; ++a) out.polygon.push(plane.project(f.x[a]));
   if (signed_area(out.polygon) < 0) {
-    std::reverse(out.polygon.v.begin(), out.polygon.v.begin() + f.n);
-    for (int a = 0; a < f.n; ++a) out.order[a] = f.n - 1 - a;
+    std::reverse(out.polygon.v.begin(), out.polygon.v.begin() + n);
+    for (int a = 0; a < n; ++a) out.order[a] = n - 1 - a;
   }
   return out;
 }
@@ -184,15 +255,16 @@ Interval overlap(double length, double a, double b) {
   return {std::max(0.0, std::min(a, b)), std::min(length, std::max(a, b))};
 }
 
-PlaneMap PlaneMap::of(FacetType t, const std::array<Vec2, 4>& q) {
+PlaneMap PlaneMap::of(FacetType t, std::span<const Vec2> q) {
   PlaneMap m;
   m.type = t;
   auto combo = [&](const double(&w)[4]) {
     Vec2 v{0, 0};
-    for (int a = 0; a < 4; ++a) v = {v[0] + w[a] * q[a][0], v[1] + w[a] * q[a][1]};
+    const int n = std::min(4, static_cast<int>(q.size()));
+    for (int a = 0; a < n; ++a) v = {v[0] + w[a] * q[a][0], v[1] + w[a] * q[a][1]};
     return v;
   };
-  switch (t) {
+  switch (mesh::corner_type(t)) {
     case FacetType::Line2:
       m.a = {q[0][0], 0};
       m.b = {q[1][0] - q[0][0], 0};
@@ -202,7 +274,7 @@ PlaneMap PlaneMap::of(FacetType t, const std::array<Vec2, 4>& q) {
       m.b = combo({-1, 1, 0, 0});
       m.c = combo({-1, 0, 1, 0});
       break;
-    case FacetType::Quad4: {
+    default: {
       // φ_a = ¼(1 + s_aξ)(1 + t_aη) with (s, t) the corners of [−1, 1]² in VTK order.
       m.a = combo({0.25, 0.25, 0.25, 0.25});
       m.b = combo({-0.25, 0.25, 0.25, -0.25});
@@ -212,14 +284,20 @@ PlaneMap PlaneMap::of(FacetType t, const std::array<Vec2, 4>& q) {
       m.affine = std::abs(m.d[0]) + std::abs(m.d[1]) <= 1e-15 * size;
       break;
     }
-    default:
-      TC_VERIFY(false, "contact facets are of first order (MortarPair refuses the others)");
+  }
+  if (mesh::order(t) == 2) {
+    m.n = mesh::n_nodes(t);
+    for (int a = 0; a < m.n; ++a) m.q[a] = q[a];
   }
   return m;
 }
 
 Vec2 PlaneMap::inverse(const Vec2& p) const {
-  if (type == FacetType::Line2) return {(p[0] - a[0]) / b[0], 0};
+  return n == 0 ? corner_inverse(p) : quadratic_inverse(p);
+}
+
+Vec2 PlaneMap::corner_inverse(const Vec2& p) const {
+  if (mesh::corner_type(type) == FacetType::Line2) return {(p[0] - a[0]) / b[0], 0};
   // The affine part: [b c] ξ = p − a.
   const double rx = p[0] - a[0], ry = p[1] - a[1];
   const double det = b[0] * c[1] - c[0] * b[1];
@@ -238,19 +316,58 @@ Vec2 PlaneMap::inverse(const Vec2& p) const {
   return xi;
 }
 
-Vec2 inverse_map(FacetType t, const std::array<Vec2, 4>& q, const Vec2& p) {
+Vec2 PlaneMap::quadratic_inverse(const Vec2& p) const {
+  const bool line = type == FacetType::Line3;
+  Vec2 xi = corner_inverse(p);
+  for (int it = 0; it < 30; ++it) {
+    const ShapeValues s = facet_shape(type, xi);
+    double fx = p[0], fy = p[1], j00 = 0, j01 = 0, j10 = 0, j11 = 0;
+    for (int k = 0; k < n; ++k) {
+      fx -= s.phi[k] * q[k][0];
+      fy -= s.phi[k] * q[k][1];
+      j00 += s.dphi[k][0] * q[k][0];
+      j01 += s.dphi[k][1] * q[k][0];
+      j10 += s.dphi[k][0] * q[k][1];
+      j11 += s.dphi[k][1] * q[k][1];
+    }
+    double d0 = 0, d1 = 0;
+    if (line) {
+      d0 = fx / j00;
+    } else {
+      const double dj = j00 * j11 - j01 * j10;
+      d0 = (j11 * fx - j01 * fy) / dj;
+      d1 = (j00 * fy - j10 * fx) / dj;
+    }
+    xi = {xi[0] + d0, xi[1] + d1};
+    if (std::abs(d0) + std::abs(d1) < 1e-14) break;  // |ξ| ≤ ~1: round-off level
+  }
+  return xi;
+}
+
+Vec2 inverse_map(FacetType t, std::span<const Vec2> q, const Vec2& p) {
   return PlaneMap::of(t, q).inverse(p);
 }
 
 double area_ratio(const FacetPoints& f, const FacePlane& plane, const Vec2& xi) {
-  const ShapeValues s = facet_shape(f.type, xi);
-  Vec3 dx{0, 0, 0}, dy{0, 0, 0};
-  for (int a = 0; a < f.n; ++a) {
-    dx = dx + s.dphi[a][0] * f.x[a];
-    dy = dy + s.dphi[a][1] * f.x[a];
-  }
+  Vec3 dx, dy;
+  tangent_vectors(f, xi, dx, dy);
+  if (f.type == FacetType::Line2 || f.type == FacetType::Line3)
+    return norm(dx) / std::abs(dot(dx, plane.e1));
   const Vec3 c = cross(dx, dy);
   return norm(c) / std::abs(dot(c, plane.normal));
+}
+
+bool warped(const FacetPoints& f, const FacePlane& plane, int dim) {
+  const double size = facet_size(f);
+  if (dim == 2) {
+    // Line3: the mid-edge node off the chord; a Line2 is its chord.
+    for (int a = 2; a < f.n; ++a)
+      if (std::abs(dot(f.x[a] - plane.origin, plane.normal)) > 1e-12 * size) return true;
+    return false;
+  }
+  for (int a = 0; a < f.n; ++a)
+    if (std::abs(dot(f.x[a] - plane.origin, plane.normal)) > 1e-12 * size) return true;
+  return false;
 }
 
 }  // namespace tc::contact

@@ -1,9 +1,11 @@
 #include "tc/contact/integration.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "tc/core/error.hpp"
+#include "tc/mesh/reference_cell.hpp"
 
 namespace tc::contact {
 
@@ -13,6 +15,31 @@ namespace {
 struct Rule1d {
   std::vector<double> x, w;
 };
+
+/// The roots of P_n by Newton from Tricomi's estimates, w = 2/((1 − x²)P_n'(x)²): converged
+/// to round-off (|δx| < 1e-16) in a few steps for n ≤ 8.
+Rule1d newton_legendre(int n) {
+  Rule1d r{std::vector<double>(n), std::vector<double>(n)};
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < n; ++i) {
+    double x = -std::cos(pi * (i + 0.75) / (n + 0.5)), dp = 1;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = x;  // P_0, P_1, then the three-term recurrence to P_n
+      for (int k = 2; k <= n; ++k) {
+        const double pk = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = pk;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1);
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    r.x[i] = x;
+    r.w[i] = 2 / ((1 - x * x) * dp * dp);
+  }
+  return r;
+}
 
 Rule1d legendre(int n) {
   switch (n) {
@@ -33,8 +60,10 @@ Rule1d legendre(int n) {
       return {{-b, -a, a, b}, {wb, wa, wa, wb}};
     }
     default:
-      throw Error("contact quadrature: 1 to 4 Gauss points per direction, asked for " +
-                  std::to_string(n));
+      if (n < 1 || n > kMaxGaussPoints)
+        throw Error("contact quadrature: 1 to " + std::to_string(kMaxGaussPoints) +
+                    " Gauss points per direction, asked for " + std::to_string(n));
+      return newton_legendre(n);
   }
 }
 
@@ -58,16 +87,73 @@ std::vector<TrianglePoint> make_triangle(int n) {
 
 std::span<const LinePoint> gauss_line(int n) {
   static const std::vector<LinePoint> rules[] = {make_line(1), make_line(2), make_line(3),
-                                                 make_line(4)};
-  if (n < 1 || n > 4) (void)legendre(n);  // throws with the reason
+                                                 make_line(4), make_line(5), make_line(6),
+                                                 make_line(7), make_line(8)};
+  if (n < 1 || n > kMaxGaussPoints) (void)legendre(n);  // throws with the reason
   return rules[n - 1];
 }
 
 std::span<const TrianglePoint> gauss_triangle(int n) {
-  static const std::vector<TrianglePoint> rules[] = {make_triangle(1), make_triangle(2),
-                                                     make_triangle(3), make_triangle(4)};
-  if (n < 1 || n > 4) (void)legendre(n);
+  static const std::vector<TrianglePoint> rules[] = {
+      make_triangle(1), make_triangle(2), make_triangle(3), make_triangle(4),
+      make_triangle(5), make_triangle(6), make_triangle(7), make_triangle(8)};
+  if (n < 1 || n > kMaxGaussPoints) (void)legendre(n);
   return rules[n - 1];
+}
+
+namespace {
+
+/// The degree of a facet's shape functions in the plane coordinates of an affine facet.
+int shape_degree(mesh::FacetType t) {
+  switch (t) {
+    case mesh::FacetType::Line2:
+    case mesh::FacetType::Tri3:
+      return 1;
+    case mesh::FacetType::Quad4:
+    case mesh::FacetType::Line3:
+    case mesh::FacetType::Tri6:
+      return 2;
+    case mesh::FacetType::Quad8:
+      return 3;
+    default:
+      return 4;
+  }
+}
+
+}  // namespace
+
+int mortar_rule(int dim, mesh::FacetType s, mesh::FacetType m, bool thermal) {
+  if (mesh::order(s) == 1 && mesh::order(m) == 1)
+    return dim == 2 ? (thermal ? thermal_points_2d : mortar_points_2d)
+                    : (thermal ? thermal_points : mortar_points);
+  const int ps = shape_degree(s), pm = shape_degree(m);
+  // D and M: φ_a^s φ_b^s (the slave's mass, which the dual basis inverts) and φ_a^s φ_c^m;
+  // L_θγ: three functions of which one or more are the slave's.
+  const int degree =
+      thermal ? std::max({3 * ps, 2 * ps + pm, ps + 2 * pm}) : std::max(2 * ps, ps + pm);
+  // A line rule is exact to 2n − 1, the collapsed triangle rule to 2n − 2.
+  return dim == 2 ? (degree + 2) / 2 : (degree + 3) / 2;
+}
+
+BasisTransformation basis_transformation(mesh::FacetType type) {
+  BasisTransformation b;
+  b.n = mesh::n_nodes(type);
+  b.alpha = type == mesh::FacetType::Tri6 || type == mesh::FacetType::Quad8 ? kVertexShare : 0.0;
+  for (int a = 0; a < b.n; ++a) b.t[a][a] = b.inv[a][a] = 1;
+  if (b.identity()) return b;
+  // Mid-edge node corners + i is on the edge from corner i to corner i + 1 (mesh::edges).
+  const int corners = mesh::n_nodes(mesh::corner_type(type));
+  const double a = b.alpha, keep = 1 - 2 * a;
+  for (int i = 0; i < corners; ++i) {
+    const int e = corners + i;
+    b.t[e][e] = keep;
+    b.inv[e][e] = 1 / keep;
+    for (const int v : {i, (i + 1) % corners}) {
+      b.t[v][e] = a;
+      b.inv[v][e] = -a / keep;
+    }
+  }
+  return b;
 }
 
 PlacedFacet place(const FacetPoints& f, const FacePlane& plane) {

@@ -22,7 +22,8 @@ double since(Clock::time_point& t0) {
 }
 
 bool facet_fits(mesh::FacetType t, int dim) {
-  return dim == 2 ? t == mesh::FacetType::Line2 : t != mesh::FacetType::Line2;
+  const bool line = t == mesh::FacetType::Line2 || t == mesh::FacetType::Line3;
+  return dim == 2 ? line : !line;
 }
 
 std::vector<mesh::Facet> checked_boundary(const mesh::Mesh& m, const std::string& name,
@@ -35,15 +36,24 @@ std::vector<mesh::Facet> checked_boundary(const mesh::Mesh& m, const std::string
   }
   auto facets = m.boundary(name);
   for (const auto& f : facets)
-    if (mesh::order(f.type) != 1)
-      throw MeshError(std::string("mortar pair: ") + side + " boundary '" + name + "' has " +
-                      mesh::name(f.type) +
-                      " faces: quadratic contact surfaces are not supported yet");
-  for (const auto& f : facets)
     if (!facet_fits(f.type, m.dim()))
       throw MeshError(std::string("mortar pair: ") + side + " boundary '" + name + "' has a " +
                       mesh::name(f.type) + " facet in a " + std::to_string(m.dim()) + "D mesh");
   return facets;
+}
+
+/// A slave surface whose Quad9 faces (T = I) meet Tri6 or Quad8 faces (α = ⅕) would have no
+/// single transformed basis along their common edges: refused.
+void check_one_transformation(std::span<const mesh::Facet> facets, const std::string& name) {
+  bool plain = false, transformed = false;
+  for (const auto& f : facets) {
+    plain = plain || f.type == mesh::FacetType::Quad9;
+    transformed = transformed || !basis_transformation(f.type).identity();
+  }
+  if (plain && transformed)
+    throw MeshError("mortar pair: slave boundary '" + name +
+                    "' mixes Quad9 faces with Tri6 or Quad8 faces; expected Quad9 faces alone, "
+                    "or Tri6 and Quad8 faces (their multiplier bases differ along common edges)");
 }
 
 /// Positions X + u of every node (u interleaved; empty = reference configuration).
@@ -93,6 +103,7 @@ MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
                 std::to_string(options_.weight_threshold));
   slave_facets_ = checked_boundary(slave, slave_name_, "slave");
   master_facets_ = checked_boundary(master, master_name_, "master");
+  check_one_transformation(slave_facets_, slave_name_);
   update();
 }
 
@@ -160,9 +171,7 @@ void MortarPair::build_segments() {
     const FacetPoints& s = slave_points_[e];
     const FacePlane plane = face_plane(s, dim_);
     planes_[e] = plane;
-    const double size = facet_size(s);
-    for (int a = 0; a < s.n && dim_ == 3; ++a)
-      if (std::abs(dot(s.x[a] - plane.origin, plane.normal)) > 1e-12 * size) warped_[e] = 1;
+    warped_[e] = warped(s, plane, dim_) ? 1 : 0;
     const Polygon own = project(s, plane).polygon;
     face_area_[e] = dim_ == 2 ? norm(s.x[1] - s.x[0]) : signed_area(own);
     for (int i = candidates_.offsets[e]; i < candidates_.offsets[e + 1]; ++i) {
@@ -199,34 +208,47 @@ void MortarPair::for_each_segment(F&& f) const {
   }
 }
 
+namespace {
+
+using Local = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kFacetNodes, kFacetNodes>;
+using LocalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kFacetNodes, 1>;
+
+Local to_local(const double (&a)[kFacetNodes][kFacetNodes], int n) {
+  Local m(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) m(i, j) = a[i][j];
+  return m;
+}
+
+}  // namespace
+
 void MortarPair::integrate() {
-  using Local = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
-  const int n_points = dim_ == 2 ? mortar_points_2d : mortar_points;
   Triplets dt(slave_->n_nodes()), mt(slave_->n_nodes());
   overlap_area_ = 0;
-  std::vector<int> mnodes;                  // master nodes seen by the current slave face
-  std::vector<std::array<double, 4>> mstd;  // ∫ φ_a^s φ_c^m per local master node c
+  std::vector<int> mnodes;                            // master nodes seen by the current slave face
+  std::vector<std::array<double, kFacetNodes>> mstd;  // ∫ φ_a^s φ_c^m per local master node c
   for (size_t e = 0; e + 1 < face_segments_.size(); ++e) {
     if (face_segments_[e] == face_segments_[e + 1]) continue;
     const int ns = slave_points_[e].n;
     Local me = Local::Zero(ns, ns);
-    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1> de = decltype(de)::Zero(ns);
+    LocalVector de = LocalVector::Zero(ns);
     mnodes.clear();
     mstd.clear();
     const PlacedFacet s = place(slave_points_[e], planes_[e]);
     for (int i = face_segments_[e]; i < face_segments_[e + 1]; ++i) {
       const MortarSegment& seg = segments_[i];
       const auto& mf = master_facets_[seg.master];
-      std::array<int, 4> col{};
+      std::array<int, kFacetNodes> col{};
       for (int b = 0; b < master_points_[seg.master].n; ++b) {
         const auto it = std::find(mnodes.begin(), mnodes.end(), mf.nodes[b]);
         col[b] = static_cast<int>(it - mnodes.begin());
         if (it == mnodes.end()) {
           mnodes.push_back(mf.nodes[b]);
-          mstd.push_back({0, 0, 0, 0});
+          mstd.push_back({});
         }
       }
       const PlacedFacet m = place(master_points_[seg.master], planes_[e]);
+      const int n_points = mortar_rule(dim_, slave_facets_[e].type, mf.type, false);
       for_each_point(dim_, planes_[e], s, warped_[e] != 0, m, seg.cell, n_points,
                      [&](const MortarPoint& q) {
                        for (int a = 0; a < ns; ++a) {
@@ -247,8 +269,29 @@ void MortarPair::integrate() {
     Eigen::MatrixXd mcov(ns, static_cast<Eigen::Index>(mnodes.size()));
     for (size_t c = 0; c < mnodes.size(); ++c)
       for (int a = 0; a < ns; ++a) mcov(a, static_cast<Eigen::Index>(c)) = mstd[c][a];
+    const BasisTransformation tr = basis_transformation(slave_facets_[e].type);
     Eigen::MatrixXd mface;
-    if (options_.basis == MultiplierBasis::dual) {
+    if (!tr.identity()) {
+      // The multipliers on φ̃ = Tφ (docs/theory.md, "Second-order slave faces"): d̃ = T d,
+      // M̃e = T Me Tᵀ, ∫φ̃_a φ_c^m = (T M_std)_ac; the dual ψ_a = Σ_b A_ab φ̃_b with
+      // A = diag(d̃) M̃e⁻¹ has ∫ψ_a φ̃_b = δ_ab d̃_a, so over the physical slave dofs
+      // D = ∫ψ φᵀ = A T Me = diag(d̃) T⁻ᵀ (vertex rows diagonal, a mid-edge row −α/(1 − 2α)
+      // d̃ at its vertices) and M = A T M_std; the standard basis ψ = φ̃: D = T Me, M = T M_std.
+      const Local t = to_local(tr.t, ns);
+      const LocalVector dtilde = t * de;
+      if (options_.basis == MultiplierBasis::dual) {
+        const Local mtilde = t * me * t.transpose();
+        mface = dtilde.asDiagonal() * mtilde.ldlt().solve(t * mcov);
+        for (int a = 0; a < ns; ++a)
+          for (int b = 0; b < ns; ++b)
+            if (tr.inv[b][a] != 0) dt.add(nodes[a], nodes[b], dtilde(a) * tr.inv[b][a]);
+      } else {
+        mface = t * mcov;
+        const Local dface = t * me;
+        for (int a = 0; a < ns; ++a)
+          for (int b = 0; b < ns; ++b) dt.add(nodes[a], nodes[b], dface(a, b));
+      }
+    } else if (options_.basis == MultiplierBasis::dual) {
       // Biorthogonality on the covered part (Popp et al. 2012): ψ_a = Σ_b A_ab φ_b with
       // A = diag(d) Me⁻¹, so ∫ψ_a φ_b = δ_ab d_a and M_face = A M_std.
       mface = de.asDiagonal() * me.ldlt().solve(mcov);
@@ -362,8 +405,40 @@ const std::vector<std::array<double, 3>>& MortarPair::tangents(int l) const {
   return tangents_[l];
 }
 
+namespace {
+
+/// The moments of one quadrature point, with N the arrays' extent (shape values beyond a
+/// facet's nodes are 0): ss[c][a][b] += w φ̃_c φ_a^s φ_b^s, sm −= w φ̃_c φ_a^s φ_b^m, mm +=
+/// w φ̃_c φ_a^m φ_b^m, φ̃ = T φ^s (basis_transformation; φ̃ = φ^s for T = I).
+template <int N>
+void add_moments(const MortarPoint& q, const BasisTransformation& tr, double* ss, double* sm,
+                 double* mm) {
+  double ps[N], pm[N], pt[N];  // local copies: the compiler cannot know the moments do not alias q
+  std::copy_n(q.slave.phi.begin(), N, ps);
+  std::copy_n(q.master.phi.begin(), N, pm);
+  std::copy_n(ps, N, pt);
+  if (!tr.identity())
+    for (int c = 0; c < q.slave.n; ++c) {
+      pt[c] = 0;
+      for (int d = 0; d < q.slave.n; ++d) pt[c] += tr.t[c][d] * ps[d];
+    }
+  for (int c = 0; c < q.slave.n; ++c) {
+    const double w = pt[c] * q.weight;
+    double ws[N], wm[N];
+    for (int a = 0; a < N; ++a) ws[a] = w * ps[a], wm[a] = w * pm[a];
+    const int base = c * N * N;
+    for (int a = 0; a < N; ++a)
+      for (int b = 0; b < N; ++b) {
+        ss[base + a * N + b] += ws[a] * ps[b];
+        sm[base + a * N + b] -= ws[a] * pm[b];
+        mm[base + a * N + b] += wm[a] * pm[b];
+      }
+  }
+}
+
+}  // namespace
+
 void MortarPair::build_conductance() const {
-  const int n_points = dim_ == 2 ? thermal_points_2d : thermal_points;
   conductance_moments_.clear();
   for_each_segment([&](const MortarSegment& seg, const FacePlane& plane, const PlacedFacet& s,
                        bool warped, const PlacedFacet& m) {
@@ -371,23 +446,20 @@ void MortarPair::build_conductance() const {
     t.segment = static_cast<int>(&seg - segments_.data());
     t.ns = s.facet->n;
     t.nm = m.facet->n;
+    const bool first = mesh::order(s.facet->type) == 1 && mesh::order(m.facet->type) == 1;
+    const int n = t.stride = first ? 4 : kFacetNodes;
+    for (auto* v : {&t.ss, &t.sm, &t.mm}) v->assign(static_cast<size_t>(n * n * n), 0.0);
+    for (auto* v : {&t.at_ss, &t.at_sm, &t.at_ms, &t.at_mm})
+      v->assign(static_cast<size_t>(n * n), 0);
+    const BasisTransformation tr = basis_transformation(s.facet->type);
+    const int n_points = mortar_rule(dim_, s.facet->type, m.facet->type, true);
     for_each_point(dim_, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
-      double ps[4], pm[4];  // local copies: the compiler cannot know t does not alias q
-      std::copy_n(q.slave.phi.begin(), 4, ps);
-      std::copy_n(q.master.phi.begin(), 4, pm);
-      for (int c = 0; c < q.slave.n; ++c) {
-        const double w = ps[c] * q.weight;
-        double ws[4], wm[4];
-        for (int a = 0; a < 4; ++a) ws[a] = w * ps[a], wm[a] = w * pm[a];
-        for (int a = 0; a < 4; ++a)
-          for (int b = 0; b < 4; ++b) {
-            t.ss[c][a][b] += ws[a] * ps[b];
-            t.sm[c][a][b] -= ws[a] * pm[b];
-            t.mm[c][a][b] += wm[a] * pm[b];
-          }
-      }
+      if (first)
+        add_moments<4>(q, tr, t.ss.data(), t.sm.data(), t.mm.data());
+      else
+        add_moments<kFacetNodes>(q, tr, t.ss.data(), t.sm.data(), t.mm.data());
     });
-    conductance_moments_.push_back(t);
+    conductance_moments_.push_back(std::move(t));
   });
   // The pattern of each block (every (a, b) of every segment), then each (a, b)'s position.
   const int n_s = slave_->n_nodes(), n_m = master_->n_nodes();
@@ -417,15 +489,16 @@ void MortarPair::build_conductance() const {
     const MortarSegment& seg = segments_[t.segment];
     const auto& sn = slave_facets_[seg.slave].nodes;
     const auto& mn = master_facets_[seg.master].nodes;
+    const int n = t.stride;
     for (int a = 0; a < t.ns; ++a)
-      for (int b = 0; b < t.ns; ++b) t.at_ss[a][b] = at(0, sn[a], sn[b]);
+      for (int b = 0; b < t.ns; ++b) t.at_ss[a * n + b] = at(0, sn[a], sn[b]);
     for (int a = 0; a < t.ns; ++a)
       for (int b = 0; b < t.nm; ++b) {
-        t.at_sm[a][b] = at(1, sn[a], mn[b]);
-        t.at_ms[a][b] = at(2, mn[b], sn[a]);
+        t.at_sm[a * n + b] = at(1, sn[a], mn[b]);
+        t.at_ms[a * n + b] = at(2, mn[b], sn[a]);
       }
     for (int a = 0; a < t.nm; ++a)
-      for (int b = 0; b < t.nm; ++b) t.at_mm[a][b] = at(3, mn[a], mn[b]);
+      for (int b = 0; b < t.nm; ++b) t.at_mm[a * n + b] = at(3, mn[a], mn[b]);
   }
   conductance_.clear();
   for (int i = 0; i < 4; ++i) conductance_.push_back(to_matrix(csr[i], i % 2 == 0 ? n_s : n_m));
@@ -443,26 +516,27 @@ ThermalContact MortarPair::thermal_conductance(std::span<const double> gamma, do
   }
   for (const auto& t : conductance_moments_) {
     const MortarSegment& seg = segments_[t.segment];
-    const int ns = t.ns, nm = t.nm;
+    const int ns = t.ns, nm = t.nm, n = t.stride;
     const auto& sn = slave_facets_[seg.slave].nodes;
-    double g[4] = {};  // β_C γ_c, γ = Σ_c γ_c φ_c^s (0 at slave nodes that are not contact nodes)
+    // β_C γ_c, γ = Σ_c γ_c φ̃_c^s (0 at slave nodes that are not contact nodes)
+    double g[kFacetNodes] = {};
     for (int c = 0; c < ns; ++c)
       if (contact_index_[sn[c]] >= 0) g[c] = beta_c * gamma[contact_index_[sn[c]]];
-    auto block = [&](const double(&m)[4][4][4], int a, int b) {
+    auto block = [&](const std::vector<double>& m, int a, int b) {
       double v = 0;
-      for (int c = 0; c < ns; ++c) v += g[c] * m[c][a][b];
+      for (int c = 0; c < ns; ++c) v += g[c] * m[(c * n + a) * n + b];
       return v;
     };
     for (int a = 0; a < ns; ++a)
-      for (int b = 0; b < ns; ++b) values[0][t.at_ss[a][b]] += block(t.ss, a, b);
+      for (int b = 0; b < ns; ++b) values[0][t.at_ss[a * n + b]] += block(t.ss, a, b);
     for (int a = 0; a < ns; ++a)
       for (int b = 0; b < nm; ++b) {
         const double v = block(t.sm, a, b);  // L_ms = L_smᵀ to the bit: the same sums
-        values[1][t.at_sm[a][b]] += v;
-        values[2][t.at_ms[a][b]] += v;
+        values[1][t.at_sm[a * n + b]] += v;
+        values[2][t.at_ms[a * n + b]] += v;
       }
     for (int a = 0; a < nm; ++a)
-      for (int b = 0; b < nm; ++b) values[3][t.at_mm[a][b]] += block(t.mm, a, b);
+      for (int b = 0; b < nm; ++b) values[3][t.at_mm[a * n + b]] += block(t.mm, a, b);
   }
   core::SparseMatrix out[4];
   for (int i = 0; i < 4; ++i) {

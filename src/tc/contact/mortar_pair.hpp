@@ -13,6 +13,13 @@
 //   g_k = n_k·(Σ_j M_kj x_j^m − Σ_j D_kj x_j^s)  (≥ 0 when open; B_n Δu ≤ g),
 // and the same with the tangents τ_l in the tangential rows.
 //
+// Second-order faces (Line3; Tri6, Quad8, Quad9), either side, against either order: the
+// multipliers of a Tri6 or Quad8 slave face are built on the transformed basis φ̃ = Tφ of
+// integration.hpp's BasisTransformation (Popp, Wohlmuth, Gee, Wall 2012, §4.4.1), and D, M
+// stay over the physical dofs: D = diag(d̃) T⁻ᵀ is then not diagonal in the mid-edge rows
+// (docs/theory.md, "Second-order slave faces"). Every slave node, vertex and mid-edge, carries
+// a multiplier.
+//
 // Contract:
 //  - Both meshes must outlive the pair (it keeps pointers to them); the pair is movable.
 //  - The constructor evaluates the reference configuration (an update() with no displacement).
@@ -72,8 +79,9 @@ struct FrictionalHeat {
 
 class MortarPair {
  public:
-  /// Throws MeshError when a boundary is missing, the dimensions differ, or a facet type does
-  /// not fit the dimension (Line2 in 2D, Tri3/Quad4 in 3D).
+  /// Throws MeshError when a boundary is missing, the dimensions differ, a facet type does
+  /// not fit the dimension (Line2, Line3 in 2D; Tri3, Quad4, Tri6, Quad8, Quad9 in 3D), or the
+  /// slave surface mixes Quad9 faces with Tri6 or Quad8 faces.
   MortarPair(const mesh::Mesh& slave, std::string slave_boundary, const mesh::Mesh& master,
              std::string master_boundary, MortarOptions options = {});
 
@@ -104,12 +112,14 @@ class MortarPair {
   [[nodiscard]] const std::vector<double>& gap() const { return gap_; }
   [[nodiscard]] const std::vector<double>& weights() const { return weights_; }
 
-  /// D (contact nodes × slave nodes; diagonal, D_kk = ∫ψ_k, with the dual basis) and
-  /// M (contact nodes × master nodes), scalar.
+  /// D (contact nodes × slave nodes; diagonal, D_kk = ∫ψ_k, with the dual basis, except the
+  /// mid-edge rows of Tri6 and Quad8 faces, whose row sum is ∫ψ_k) and M (contact nodes ×
+  /// master nodes), scalar.
   [[nodiscard]] const core::SparseMatrix& d_matrix() const { return d_; }
   [[nodiscard]] const core::SparseMatrix& m_matrix() const { return m_; }
 
-  /// L_θγ of §4.4: β_C ∫ γ [θ][χ] dS with γ = Σ_k γ_k φ_k^s (γ per contact node). The
+  /// L_θγ of §4.4: β_C ∫ γ [θ][χ] dS with γ = Σ_k γ_k φ̃_k^s (γ per contact node; φ̃ = φ but
+  /// on Tri6 and Quad8 slave faces, BasisTransformation). The
   /// matrices are the pair's own: the next call overwrites their values (update() leaves the
   /// returned ones as they are); copy them to keep them.
   [[nodiscard]] ThermalContact thermal_conductance(std::span<const double> gamma,
@@ -160,15 +170,16 @@ class MortarPair {
   MortarTimings timings_;
   // L_θγ is linear in γ and the geometry is fixed between updates, while the fixed point
   // (6.3) asks for L at every iteration. The first thermal_conductance after an update stores
-  // per segment the integrals ∫ φ_c^s φ_a φ_b dS over the slave facet's nodes c (ss, sm, mm
+  // per segment the integrals ∫ φ̃_c^s φ_a φ_b dS over the slave facet's nodes c (ss, sm, mm
   // blocks) with the positions of their (a, b) entries in L's values, and PETSc matrices
   // with L's pattern; each call then sums β_C γ_c times the integrals into the values
   // (composing and assembling L anew per call was 5 % of example 05).
   struct ConductanceMoments {
     int segment;  // index in segments_
     int ns, nm;   // nodes of the slave and the master facet
-    double ss[4][4][4], sm[4][4][4], mm[4][4][4];
-    int at_ss[4][4], at_sm[4][4], at_ms[4][4], at_mm[4][4];  // (a, b) → entry in the values
+    int stride;   // N: 4 when both facets are of first order, else 9 (kFacetNodes)
+    std::vector<double> ss, sm, mm;               // [c][a][b] at (c N + a) N + b
+    std::vector<int> at_ss, at_sm, at_ms, at_mm;  // (a, b) at a N + b → entry in the values
   };
   void build_conductance() const;
   mutable std::vector<ConductanceMoments> conductance_moments_;

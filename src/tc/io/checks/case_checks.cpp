@@ -7,7 +7,6 @@
 #include <cmath>
 #include <iterator>
 #include <map>
-#include <tuple>
 
 #include "tc/core/error.hpp"
 #include "tc/mesh/partition.hpp"
@@ -139,20 +138,6 @@ void check_contact_pairs(std::vector<physics::ContactSettings>& cs,
       return std::nullopt;
     };
     const auto& c = cs[j];
-    // Quadratic faces have no dual mortar basis yet (issue 37): refused, never run wrong.
-    for (const auto& [side, body, where] : {std::tuple{"slave", c.slave_body, &c.slave_where},
-                                            std::tuple{"master", c.master_body, &c.master_where}})
-      if (body >= 0 && bodies[static_cast<size_t>(body)].mesh.has_boundary(*where))
-        for (const auto& f : bodies[static_cast<size_t>(body)].mesh.boundary(*where))
-          if (mesh::order(f.type) == 2) {
-            t.issue(side, fmt::format("found the {} surface \"{}\" of body \"{}\" with {} faces: "
-                                      "quadratic contact surfaces are not supported yet; "
-                                      "expected first-order cells (Line2, Tri3 or Quad4 faces) "
-                                      "along a contact surface",
-                                      side, *where, bodies[static_cast<size_t>(body)].name,
-                                      mesh::name(f.type)));
-            break;
-          }
     if (!c.name.empty())
       if (const auto other = earlier([&](const auto& d) { return d.name == c.name; }))
         t.issue("name", fmt::format("found \"{}\", the name of {} too; expected a unique name "
