@@ -57,6 +57,9 @@ struct PhysicsSettings {
 
 struct Body {
   std::string name;
+  /// The held body standing for a contact pair's rigid tool (place_rigid_tools), not a body of
+  /// the case file: massless, every node held on the tool's motion and temperature.
+  bool rigid_tool = false;
   std::string material_name;
   fem::Material material;
   mesh::Mesh mesh;
@@ -105,18 +108,44 @@ struct BoundaryCondition {
   std::optional<Radiation> radiation;    // εσ(θ⁴ − θ∞⁴) out of the body
 };
 
+/// An analytic rigid master of a contact pair (`master = { rigid = "plane", … }`): the plane
+/// through `point` with the unit `normal` pointing out of the tool, towards the slave, moved
+/// rigidly by `motion`; its thermal side a prescribed temperature (with the pair's conductance
+/// law) or, without one, adiabatic. It enters the solver as a held body (rigid_tool.hpp).
+struct RigidTool {
+  std::array<double, 3> point{0, 0, 0};
+  std::array<double, 3> normal{0, 0, 1};
+  std::array<TimeTable, 3> motion{};     // the tool's displacement from t = 0 [m]
+  std::optional<TimeTable> temperature;  // θ of the tool [K]; none: adiabatic
+};
+
+/// The conductance across the gap g at a slave node, h(g) ≥ 0 [W/(m²K)] (`gap_conductance`):
+/// a table in g plus gas conduction k_gas/(g + g₀), at g⁺ = max(g, 0). It is added to the
+/// pressure-dependent β_C p_n at every node of the pair, open or closed, so that the
+/// conductance is continuous at closure (docs/choices.md, "Gap conductance").
+struct GapConductance {
+  TimeTable table{0.0};         // h_table(g), piecewise linear in g [m] (not in time)
+  double gas_conductivity = 0;  // k_gas [W/(m·K)] ≥ 0
+  double gas_offset = 0;        // g₀ [m], > 0 where k_gas > 0
+};
+
 /// One contact pair ([[contact]], or the single [contact] table): a slave surface of one body
 /// against a master surface of another, with the pair's own interface laws.
 struct ContactSettings {
   std::string name;  // unique among the pairs; the suffix of its history.csv columns
   int slave_body = 0, master_body = 1;
   std::string slave_where, master_where;
+  /// A rigid tool as the master: master_body and master_where then name the body that
+  /// place_rigid_tools made for it (−1 and "" until then).
+  std::optional<RigidTool> rigid_master;
   // The interface laws of (2.13), each a number or a table in the interface temperature
   // (physics::InterfaceLaws evaluates them per contact node).
   TemperatureTable friction = 0.0;                                     // 𝔉 ≥ 0
   TemperatureTable conductance_slave = 0.0, conductance_master = 0.0;  // γ_C^s, γ_C^m ≥ 0
   bool heat_conduction = true;
   bool frictional_heating = true;
+  /// h(g) across the gap, added to β_C p_n (with heat_conduction only); none: 0.
+  std::optional<GapConductance> gap_conductance;
 };
 
 /// Where the Tresca → Coulomb update γ = λ_n of (6.3) sits in the fixed point of a step.

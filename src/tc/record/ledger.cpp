@@ -62,11 +62,12 @@ void ContactStatistics::register_pair_history(History& h, const std::string& suf
   h.add("contact_tangential_force_sum" + suffix, History::value_of(tangential_force_sum));
 }
 
-void ContactHeat::register_history(History& h, const std::string& suffix) const {
+void ContactHeat::register_history(History& h, const std::string& suffix, bool gap) const {
   h.add("heat_generated" + suffix, History::value_of(generated));
   h.add("heat_to_slave" + suffix, History::value_of(to_slave));
   h.add("heat_to_master" + suffix, History::value_of(to_master));
   h.add("heat_conducted" + suffix, History::value_of(conducted));
+  if (gap) h.add("heat_gap_conducted" + suffix, History::value_of(gap_conducted));
 }
 
 void BoundaryHeat::account_step(double film_power, double radiation_power, double tau) {

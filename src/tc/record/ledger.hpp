@@ -53,10 +53,13 @@ struct ContactStatistics {
 ///  these sums, the conductance and the history's forces use it.
 struct ContactHeat {
   double generated = 0, to_slave = 0, to_master = 0, conducted = 0;
+  /// The part of `conducted` through the gap conductance h(g) (gap_conductance.hpp).
+  double gap_conducted = 0;
 
   /// Its history.csv columns heat_generated, heat_to_slave, heat_to_master, heat_conducted,
-  /// each name followed by `suffix` (one pair among several).
-  void register_history(History& h, const std::string& suffix = "") const;
+  /// each name followed by `suffix` (one pair among several); with `gap`, heat_gap_conducted
+  /// too (a pair with a gap conductance: the histories of the others keep their columns).
+  void register_history(History& h, const std::string& suffix = "", bool gap = false) const;
 };
 
 /// Heat lost through the film and the radiation boundaries of all bodies, cumulative from

@@ -128,6 +128,14 @@ TableReader CaseReader::read_contact(const toml::table& table, std::string path)
   auto side = [&](std::string_view key, int& body, std::string& where) -> bool {
     const auto s = t.sub_table(key);
     if (!s) return false;
+    if (key == "master" && s->has("rigid")) return read_rigid_tool(*s, c);
+    refuse_tool_keys(*s, key);
+    for (const auto* k : {"body", "where"})
+      if (!s->has(k))
+        s->issue(k, fmt::format("missing; expected {}{}",
+                                k == std::string_view("body") ? "the name of a body"
+                                                              : "a boundary of that body",
+                                key == "master" ? " (or rigid = \"plane\" for a rigid tool)" : ""));
     const auto b = body_index(*s, "body", p_.bodies);
     const auto w = s->string("where");
     if (b && w) check_boundary_name(*s, "where", p_.bodies[*b], mesh_built_[*b], *w);
@@ -147,7 +155,11 @@ TableReader CaseReader::read_contact(const toml::table& table, std::string path)
       c.friction = *f;
   if (const auto v = t.boolean("heat_conduction")) c.heat_conduction = *v;
   if (const auto v = t.boolean("frictional_heating")) c.frictional_heating = *v;
-  read_conductance(t, c);
+  read_gap_conductance(t, c);
+  if (c.rigid_master && !c.rigid_master->temperature)
+    check_adiabatic_tool(t);
+  else
+    read_conductance(t, c);
   p_.contacts.push_back(std::move(c));
   return t;
 }
@@ -185,7 +197,9 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
   } else if (contact.has("conductance")) {
     return;  // not a table: reported
   }
-  const bool needed = c.heat_conduction || (c.frictional_heating && c.friction.max_value() > 0);
+  // A gap conductance conducts on its own: β_C may be 0 then (δ_C is needed for friction).
+  const bool needed = (c.heat_conduction && !c.gap_conductance) ||
+                      (c.frictional_heating && c.friction.max_value() > 0);
   const auto zero = both_conductances_zero(c.conductance_slave, c.conductance_master);
   if (!needed || !zero) return;
   const bool constant = c.conductance_slave.is_constant() && c.conductance_master.is_constant();
@@ -198,6 +212,27 @@ void CaseReader::read_conductance(const TableReader& contact, physics::ContactSe
                                        : fmt::format("both conductances 0 at θ = {} K", *zero),
                             constant ? "" : " at every temperature",
                             c.friction.max_value() > 0 ? " and frictional_heating = false" : ""));
+}
+
+void CaseReader::read_gap_conductance(const TableReader& contact, physics::ContactSettings& c) {
+  const auto g = contact.sub_table("gap_conductance");
+  if (!g) return;
+  physics::GapConductance law;
+  if (const auto* n = g->get("table"))
+    if (const auto t = read_gap_table(*n, g->key("table"), issues_, range_of(g->spec("table"))))
+      law.table = *t;
+  if (const auto k = g->number("gas_conductivity")) law.gas_conductivity = *k;
+  if (const auto g0 = g->number("gas_offset")) law.gas_offset = *g0;
+  if (law.gas_conductivity > 0 && !g->has("gas_offset"))
+    g->issue("gas_offset",
+             "missing; expected g₀ > 0 [m] of k_gas/(g + g₀) with gas_conductivity > 0 (the "
+             "gas conducts k_gas/g₀ at closure)");
+  if (!c.heat_conduction)
+    contact.issue("gap_conductance",
+                  "found a gap conductance with heat_conduction = false; expected "
+                  "heat_conduction = true (the gap conducts through the same term) or no "
+                  "gap_conductance");
+  c.gap_conductance = law;
 }
 
 }  // namespace tc::io::detail

@@ -16,6 +16,7 @@
 #include "tc/io/output/probes.hpp"
 #include "tc/io/output/vtkhdf.hpp"
 #include "tc/model/checks.hpp"
+#include "tc/model/rigid_tool.hpp"
 
 namespace tc::io::detail {
 
@@ -58,6 +59,8 @@ Problem CaseReader::read() {
   check_across_sections(p_, root_, issues_);
   if (!issues_.empty()) issues_.raise();
   warn_unit_habits();
+  // A rigid tool's body once everything it is placed from (the slave, the time) is valid.
+  physics::place_rigid_tools(p_);
   return std::move(p_);
 }
 

@@ -58,6 +58,16 @@ class CaseReader {
   /// One pair at `path` ("contact" or "contact[i]"), appended to p_.contacts.
   TableReader read_contact(const toml::table& t, std::string path);
   void read_conductance(const TableReader& contact, physics::ContactSettings& c);
+  /// `gap_conductance = { table, gas_conductivity, gas_offset }` of pair c.
+  void read_gap_conductance(const TableReader& contact, physics::ContactSettings& c);
+  /// `master = { rigid = "plane", point, normal, velocity | displacement, temperature }` of
+  /// pair c (case_rigid_tool.cpp): c.rigid_master, or issues; false when it has issues.
+  bool read_rigid_tool(const TableReader& master, physics::ContactSettings& c);
+  /// Issues for the rigid tool's keys on a side that is a body's surface (`side`: "slave" or
+  /// "master"): a slave is always a body's surface.
+  void refuse_tool_keys(const TableReader& s, std::string_view side);
+  /// The thermal side of an adiabatic tool (no temperature): no conductance to give.
+  void check_adiabatic_tool(const TableReader& contact);
   void read_solver(const TableReader& root);
   void read_output(const TableReader& root);
   /// [[probe]] tables (after the bodies: a point is located in its body's mesh).

@@ -125,8 +125,8 @@ std::string encode_checkpoint(const physics::Simulation& sim, std::uint64_t case
     for (const double x :
          {s.normal_force, s.tangential_force, s.tangential_force_sum, s.dissipation})
       e.put(x);
-    for (const double x :
-         {pr.heat.generated, pr.heat.to_slave, pr.heat.to_master, pr.heat.conducted})
+    for (const double x : {pr.heat.generated, pr.heat.to_slave, pr.heat.to_master,
+                           pr.heat.conducted, pr.heat.gap_conducted})
       e.put(x);
   }
   for (const auto* record : {&c.compliance, &c.stabiliser_compliance, &c.heat_compliance}) {
@@ -213,8 +213,8 @@ physics::Checkpoint decode_checkpoint(const std::string& bytes, const physics::S
     for (double* x :
          {&s.normal_force, &s.tangential_force, &s.tangential_force_sum, &s.dissipation})
       *x = d.get<double>();
-    for (double* x :
-         {&pr.heat.generated, &pr.heat.to_slave, &pr.heat.to_master, &pr.heat.conducted})
+    for (double* x : {&pr.heat.generated, &pr.heat.to_slave, &pr.heat.to_master, &pr.heat.conducted,
+                      &pr.heat.gap_conducted})
       *x = d.get<double>();
   }
   for (auto* record : {&c.compliance, &c.stabiliser_compliance, &c.heat_compliance}) {

@@ -30,8 +30,9 @@ class CheckpointError : public Error {
 // (gluing and Dirichlet λ, μ) and SMALBE's outer iterations; 4: + Σ_k w_k‖λ_τ,k‖ of the last step;
 // 5: + the heat lost through film and radiation boundaries (heat_film, heat_radiation); 6: per
 // contact pair its multipliers' nodes, tangents and ledger, compliance records per contact body;
-// 7: + the interface heat solver's compliance record, the case's content after its hash
-inline constexpr std::uint32_t checkpoint_version = 7;
+// 7: + the interface heat solver's compliance record, the case's content after its hash;
+// 8: + per contact pair the heat through its gap conductance
+inline constexpr std::uint32_t checkpoint_version = 8;
 
 /// The file name of the checkpoint in an output directory.
 [[nodiscard]] std::filesystem::path checkpoint_file(const std::filesystem::path& directory);

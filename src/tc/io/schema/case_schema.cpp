@@ -313,7 +313,7 @@ constexpr Key kContact[] = {
     {.name = "master",
      .type = T::table,
      .default_value = "required",
-     .doc = "{ body, where }: the master surface"},
+     .doc = "{ body, where }: the master surface; or a rigid tool { rigid = \"plane\", … }"},
     {.name = "friction",
      .type = T::temperature_table,
      .range = from_zero("a coefficient ≥ 0"),
@@ -330,14 +330,63 @@ constexpr Key kContact[] = {
      .type = T::boolean,
      .default_value = "true",
      .doc = "the δ_C 𝔉 λ_n ‖[u̇]_τ‖ term (d_θγ)"},
+    {.name = "gap_conductance",
+     .type = T::table,
+     .doc = "{ table, gas_conductivity, gas_offset }: h(g) across the gap, added to β_C p_n"},
 };
 
+constexpr Key kGapConductance[] = {
+    {.name = "table",
+     .type = T::gap_table,
+     .range = from_zero("a conductance ≥ 0"),
+     .default_value = "0.0",
+     .unit = "W/(m²·K)",
+     .doc = "h_table(g); a number or { gap = [...] (m), value = [...] }"},
+    {.name = "gas_conductivity",
+     .type = T::number,
+     .range = from_zero("a conductivity ≥ 0"),
+     .default_value = "0.0",
+     .unit = "W/(m·K)",
+     .doc = "k_gas of the gas conduction k_gas/(g + g₀)"},
+    {.name = "gas_offset",
+     .type = T::number,
+     .range = above_zero("a length > 0"),
+     .unit = "m",
+     .doc = "g₀ of k_gas/(g + g₀); needed with k_gas > 0"},
+};
+
+constexpr std::string_view kRigidShapes[] = {"plane"};
+
+// A side of a pair: a body's surface ({ body, where }, both required), or for the master an
+// analytic rigid tool ({ rigid, point, normal, velocity or displacement, temperature }); the
+// reader says which keys go together (read_contact).
 constexpr Key kSurface[] = {
-    {.name = "body", .type = T::name, .default_value = "required", .doc = "the name of a body"},
-    {.name = "where",
-     .type = T::name,
-     .default_value = "required",
-     .doc = "a boundary of that body"},
+    {.name = "body", .type = T::name, .doc = "the name of a body (a body's surface)"},
+    {.name = "where", .type = T::name, .doc = "a boundary of that body (a body's surface)"},
+    {.name = "rigid",
+     .type = T::choice,
+     .choices = kRigidShapes,
+     .doc = "master only: an analytic rigid tool instead of a body's surface"},
+    {.name = "point",
+     .type = T::vector,
+     .unit = "m",
+     .doc = "rigid tool: a point of its plane at t = 0"},
+    {.name = "normal",
+     .type = T::vector,
+     .doc = "rigid tool: the plane's normal out of the tool, towards the slave (≠ 0)"},
+    {.name = "velocity",
+     .type = T::vector,
+     .unit = "m/s",
+     .doc = "rigid tool: its constant velocity from t = 0 (or displacement; neither: at rest)"},
+    {.name = "displacement",
+     .type = T::components,
+     .unit = "m",
+     .doc = "rigid tool: its motion per component, a number or a time table"},
+    {.name = "temperature",
+     .type = T::time_table,
+     .range = kTemperature,
+     .unit = "K",
+     .doc = "rigid tool: its temperature, a number or a time table; absent: adiabatic"},
 };
 
 constexpr Key kConductance[] = {
@@ -535,6 +584,7 @@ constexpr Section kSections[] = {
     {"contact.slave", kSurface},
     {"contact.master", kSurface},
     {"contact.conductance", kConductance},
+    {"contact.gap_conductance", kGapConductance},
     {"solver", kSolver},
     {"output", kOutput},
     {"probe", kProbe},

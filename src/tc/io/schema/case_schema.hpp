@@ -21,6 +21,7 @@ enum class Type {
   choice,             // one of `choices`
   time_table,         // a number or { t = [...], value = [...] } within `range`
   temperature_table,  // a number or { temperature = [...], value = [...] } within `range`
+  gap_table,          // a number or { gap = [...], value = [...] } within `range`
   vector,             // `dimension` numbers
   counts,             // `dimension` integers ≥ 1
   components,         // `dimension` entries, each a number, a time table or "free"

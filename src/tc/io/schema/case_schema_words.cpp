@@ -37,6 +37,8 @@ std::string type_words(const Key& k) {
       return range("number or time table");
     case T::temperature_table:
       return range("number or table in θ");
+    case T::gap_table:
+      return range("number or table in g");
     case T::vector:
       return "array of numbers";
     case T::counts:

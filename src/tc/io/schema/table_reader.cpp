@@ -101,6 +101,8 @@ std::string expected_of(const schema::Key& key) {
       return range_of(key).expected + " (a number or a time table)";
     case T::temperature_table:
       return range_of(key).expected + " (a number or a table in θ)";
+    case T::gap_table:
+      return range_of(key).expected + " (a number or a table in the gap)";
     case T::table:
       return "a table";
     case T::tables:
@@ -299,6 +301,7 @@ struct Abscissa {
 };
 constexpr Abscissa kTime{"t", "times"};
 constexpr Abscissa kInterfaceTemperature{"temperature", "temperatures"};
+constexpr Abscissa kGap{"gap", "gaps"};
 
 bool strictly_increasing(const TableReader& t, const std::vector<double>& x, Abscissa a) {
   for (size_t i = 1; i < x.size(); ++i)
@@ -361,6 +364,27 @@ std::optional<core::TimeTable> read_time_table(const toml::node& n, const std::s
   }
   const TableReader t(*table, key, issues, {"t", "value"});
   const auto points = read_points(t, kTime, {}, range);
+  if (!points) return std::nullopt;
+  return core::TimeTable(points->first, points->second);
+}
+
+std::optional<core::TimeTable> read_gap_table(const toml::node& n, const std::string& key,
+                                              Issues& issues, const Range& range) {
+  if (n.is_number()) {
+    const auto v = read_number(n, key, issues, range);
+    return v ? std::optional<core::TimeTable>(*v) : std::nullopt;
+  }
+  const auto* table = n.as_table();
+  if (!table) {
+    issues.add(line_of(n), key,
+               fmt::format("found {}, expected {} or a table in the gap {{ gap = [...] (m), "
+                           "value = [...] }}",
+                           describe(n), range.expected));
+    return std::nullopt;
+  }
+  const TableReader t(*table, key, issues, {"gap", "value"});
+  const Range gaps{[](double g) { return g >= 0; }, "a gap ≥ 0 m"};
+  const auto points = read_points(t, kGap, gaps, range);
   if (!points) return std::nullopt;
   return core::TimeTable(points->first, points->second);
 }

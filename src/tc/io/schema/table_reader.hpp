@@ -131,6 +131,11 @@ std::optional<core::TimeTable> read_time_table(const toml::node& n, const std::s
 std::optional<core::TemperatureTable> read_temperature_table(const toml::node& n,
                                                              const std::string& key, Issues& issues,
                                                              const Range& range = {});
+/// A number or a table in the gap { gap = [...], value = [...] }: gaps ≥ 0 and strictly
+/// increasing, as many values as gaps (≥ 1), every value within `range`; piecewise linear,
+/// constant beyond its ends (a TimeTable whose abscissa is the gap).
+std::optional<core::TimeTable> read_gap_table(const toml::node& n, const std::string& key,
+                                              Issues& issues, const Range& range = {});
 /// An array of `n` finite numbers (n = 0: 2 or 3 entries, the dimension being unknown).
 std::optional<std::array<double, 3>> read_vector(const toml::node& n, const std::string& key,
                                                  Issues& issues, int size);

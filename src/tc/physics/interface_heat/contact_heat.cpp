@@ -70,7 +70,8 @@ std::vector<double> conduction_flux(const contact::MortarPair& mortar,
                                     const contact::ContactRows& rows,
                                     std::span<const double> lambda, std::span<const double> scale,
                                     const core::Vector& theta_slave,
-                                    const core::Vector& theta_master) {
+                                    const core::Vector& theta_master,
+                                    std::span<const double> open) {
   const int dim = rows.dim;
   std::vector<double> flux(static_cast<size_t>(rows.n_nodes()), 0.0);
   const auto master = master_at_nodes(mortar, theta_master);
@@ -78,7 +79,8 @@ std::vector<double> conduction_flux(const contact::MortarPair& mortar,
   for (PetscInt k = 0; k < rows.n_nodes(); ++k) {
     if (master.d_sum[k] <= 0) continue;
     const double jump = ts[mortar.contact_nodes()[k]] - master.theta[k];
-    flux[k] = scale[k] * std::max(lambda[dim * k], 0.0) * jump;
+    const double h = open.empty() ? 0.0 : open[static_cast<size_t>(k)];
+    flux[k] = (scale[k] * std::max(lambda[dim * k], 0.0) + h) * jump;
   }
   return flux;
 }

@@ -67,12 +67,12 @@ struct MasterAtNodes {
 
 /// The conducted flux q_C^s = β_C λ_n [θ] per contact node of the mortar pair (W/m², out of
 /// the slave), [θ] = θ_s − θ_m with θ_m at the node (Mθ_m)_k/(D1)_k (master_at_nodes);
-/// `scale` per contact node = β_C,k times the traction per multiplier. Zero where (D1)_k ≤ 0.
-[[nodiscard]] std::vector<double> conduction_flux(const contact::MortarPair& mortar,
-                                                  const contact::ContactRows& rows,
-                                                  std::span<const double> lambda,
-                                                  std::span<const double> scale,
-                                                  const core::Vector& theta_slave,
-                                                  const core::Vector& theta_master);
+/// `scale` per contact node = β_C,k times the traction per multiplier; `open` (if not empty)
+/// h(g_k) of the gap conductance per node, added: (scale_k λ_n,k⁺ + open_k)[θ]_k. Zero where
+/// (D1)_k ≤ 0.
+[[nodiscard]] std::vector<double> conduction_flux(
+    const contact::MortarPair& mortar, const contact::ContactRows& rows,
+    std::span<const double> lambda, std::span<const double> scale, const core::Vector& theta_slave,
+    const core::Vector& theta_master, std::span<const double> open = {});
 
 }  // namespace tc::physics

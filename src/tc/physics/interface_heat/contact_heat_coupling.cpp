@@ -9,6 +9,7 @@
 #include "tc/core/verify.hpp"
 #include "tc/physics/body/boundary_heat_newton.hpp"
 #include "tc/physics/interface_heat/contact_heat.hpp"
+#include "tc/physics/interface_heat/gap_conductance.hpp"
 
 namespace tc::physics {
 
@@ -23,6 +24,8 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
   frictional_heat_.assign(n_pairs, {});
   conductance_.clear();
   conductance_.resize(n_pairs);
+  gap_weights_.clear();
+  gap_weights_.resize(n_pairs);
   bodies_.clear();
   for (const auto& it : pairs) bodies_.push_back(it.bodies);
   TC_VERIFY(heat_.size() == n_pairs, "set_pairs sized the pairs' heat");
@@ -75,11 +78,24 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
   std::vector<PairConductance> conducting;
   for (size_t q = 0; q < n_pairs; ++q) {
     const auto& it = pairs[q];
-    if (!(it.mortar && it.settings.heat_conduction && it.laws.conducting)) continue;
+    const auto& gap = it.settings.gap_conductance;
+    if (!(it.mortar && it.settings.heat_conduction && (it.laws.conducting || gap))) continue;
     // L_θγ = ∫β_Cγ[θ][χ] with β_Cγ = Σ_k β_C,k γ_k φ_k (the nodal product interpolated, as γ
-    // is); β_C,kγ_k × 1 is the β_C × γ_k of a constant β_C to the bit.
+    // is); β_C,kγ_k × 1 is the β_C × γ_k of a constant β_C to the bit. The gap conductance
+    // h(g_k) is added at every node (gap_conductance.hpp); its own L, first (the mortar pair
+    // reuses its matrices), gives the ledger its share: 1ᵀL_gap θ = (L_ss1)·θ_s + (L_ms1)·θ_m.
     auto& g = gamma[q];
-    for (size_t k = 0; k < g.size(); ++k) g[k] = it.laws.beta_c[k] * g[k];
+    std::vector<double> open(g.size(), 0.0);
+    if (gap) {
+      open = nodal_gap_conductance(*gap, it.rows);
+      const auto l = it.mortar->thermal_conductance(open, 1.0);
+      auto& w = gap_weights_[q].emplace(core::Vector(l.ss.rows()), core::Vector(l.ms.rows()));
+      core::Vector ones(l.ss.cols());  // L_ms = L_smᵀ: both row sums over the slave's nodes
+      ones.fill(1.0);
+      l.ss.mult(ones, w.first);
+      l.ms.mult(ones, w.second);
+    }
+    for (size_t k = 0; k < g.size(); ++k) g[k] = it.laws.beta_c[k] * g[k] + open[k];
     conductance_[q] = it.mortar->thermal_conductance(g, 1.0);
     conducting.push_back({&*conductance_[q], it.bodies.slave, it.bodies.master});
   }
@@ -219,6 +235,11 @@ void ContactHeatCoupling::account_step(const BodyGroup& group, double tau) {
       conductance_[q]->sm.mult_add(sm.theta_new, ss.work_theta);
       h.conducted += tau * ss.work_theta.sum();
     }
+    if (const auto& w = gap_weights_[q]) {
+      const auto& ss = *group.fields[bodies_[q].slave];
+      const auto& sm = *group.fields[bodies_[q].master];
+      h.gap_conducted += tau * (w->first.dot(ss.theta_new) + w->second.dot(sm.theta_new));
+    }
   }
   sum_heat();
 }
@@ -236,6 +257,7 @@ void ContactHeatCoupling::sum_heat() {
     total_.to_slave += h.to_slave;
     total_.to_master += h.to_master;
     total_.conducted += h.conducted;
+    total_.gap_conducted += h.gap_conducted;
   }
 }
 

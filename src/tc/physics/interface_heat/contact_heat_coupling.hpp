@@ -82,6 +82,9 @@ class ContactHeatCoupling {
   // Per pair, of the last heat step: L_θγ (none when the pair does not conduct), d_θγ.
   std::vector<std::optional<contact::ThermalContact>> conductance_;
   std::vector<contact::FrictionalHeat> frictional_heat_;
+  // Per pair with a gap conductance, of the last heat step: L_gap,ss1 and L_gap,ms1, whose dot
+  // products with θ_s and θ_m are the heat through h(g) (slave → master).
+  std::vector<std::optional<std::pair<core::Vector, core::Vector>>> gap_weights_;
   std::vector<PairBodies> bodies_;  // each pair's slave and master in the group
   std::vector<ContactHeat> heat_;   // per pair
   ContactHeat total_;

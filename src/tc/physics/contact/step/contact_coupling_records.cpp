@@ -13,6 +13,7 @@
 #include "tc/physics/body/time_scheme.hpp"
 #include "tc/physics/contact/step/contact_coupling.hpp"
 #include "tc/physics/interface_heat/contact_heat.hpp"
+#include "tc/physics/interface_heat/gap_conductance.hpp"
 
 namespace tc::physics {
 
@@ -35,7 +36,10 @@ std::array<double, 3> ContactCoupling::slave_force(int q, std::span<const double
 
 void ContactCoupling::register_history(History& h) const {
   stats_.register_history(h);
-  heat_.heat().register_history(h);
+  const auto gap = [&](const ContactPairState& pr) {
+    return pr.settings->gap_conductance.has_value();
+  };
+  heat_.heat().register_history(h, "", std::any_of(pairs_.begin(), pairs_.end(), gap));
   // The resultant contact force on the slave bodies (added after the standard columns and the
   // reactions, so that a case without contact keeps its columns).
   const char* axes = "xyz";
@@ -49,7 +53,7 @@ void ContactCoupling::register_history(History& h) const {
   for (size_t q = 0; q < pairs_.size(); ++q) {
     const std::string suffix = "_" + pairs_[q].settings->name;
     pairs_[q].stats.register_pair_history(h, suffix);
-    heat_.pair_heat()[q].register_history(h, suffix);
+    heat_.pair_heat()[q].register_history(h, suffix, gap(pairs_[q]));
     force_columns(pairs_[q].slave_force, suffix);
   }
 }
@@ -149,13 +153,15 @@ void ContactCoupling::bookkeeping() {
     if (pr.mortar) {  // q = β_C λ_n [θ] per contact node (contact_heat.hpp)
       const auto& c = *pr.settings;
       pr.heat_flux.assign(static_cast<size_t>(rows.n_nodes()), 0.0);
-      if (c.heat_conduction && pr.nodal.conducting &&
+      if (c.heat_conduction && (pr.nodal.conducting || c.gap_conductance) &&
           pr.mortar->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {
         std::vector<double> scale(pr.nodal.beta_c);
         for (double& s : scale) s *= unit;
+        const auto open = c.gap_conductance ? nodal_gap_conductance(*c.gap_conductance, rows)
+                                            : std::vector<double>{};
         pr.heat_flux =
             conduction_flux(*pr.mortar, rows, lq, scale, bodies_.states[c.slave_body].theta,
-                            bodies_.states[c.master_body].theta);
+                            bodies_.states[c.master_body].theta, open);
       }
     }
   }

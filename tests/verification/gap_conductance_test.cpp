@@ -1,0 +1,137 @@
+// Heat across an open gap (physics::GapConductance, gap_conductance.hpp) on the pressed blocks
+// of thermal_contact_test (verification.md's 4C case): lower block [0.5,1.5]²×[−0.5,0.5]
+// (3×3×3, slave, its top), upper block of height 1 (2×2×2, master), E = 4000, ν = 0, α = 0,
+// ρ = c_p = 1, κ = 52; bottom at θ_low, top at θ_high; τ = 1e4 s (each backward-Euler step
+// damps the transient below 1e-5, so a few steps are steady to round-off).
+//  - At a fixed open gap g (the upper block lifted by g, nothing pressed): the series
+//    resistance q = Δθ/(L₁/κ + 1/h(g) + L₂/κ) with h(g) = h_table(g) + k_gas/(g + g₀).
+//  - Closing the gap: the upper block lowered step by step through closure into contact; the
+//    conductance h(g⁺) + β_C p_n has no jump, so neither has the flux.
+#include "tc/physics/interface_heat/gap_conductance.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "support/problems.hpp"
+#include "tc/run/simulation.hpp"
+
+namespace tc::test {
+namespace {
+
+constexpr double kTheta0 = 293.15;
+constexpr double kLow = kTheta0 + 20, kHigh = kTheta0 + 40, kKappa = 52;
+
+/// The 4C blocks with the upper one lifted by `lift` and its top moved by `top` (a table).
+physics::Problem blocks_across_a_gap(double lift, const core::TimeTable& top, int steps,
+                                     const physics::GapConductance& law) {
+  auto p = pressed_conduction_blocks(kTheta0, kKappa, 0.0, steps);
+  p.bodies[1].mesh.transform({{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}, {0, 0, lift});
+  for (auto& bc : p.boundaries)
+    if (bc.body == 1 && bc.where == "zmax") bc.displacement[2] = top;
+  p.boundaries.push_back(temperature_bc(0, "zmin", kLow));
+  p.boundaries.push_back(temperature_bc(1, "zmax", kHigh));
+  auto c = contact_pair(0, "zmax", 1, "zmin");
+  c.conductance_slave = c.conductance_master = 10.0;  // β_C = 5 W/(m²K Pa) once pressed
+  c.gap_conductance = law;
+  p.contacts = {c};
+  return p;
+}
+
+/// The mean over the contact nodes of the conducted flux out of the slave (W/m²).
+double mean_flux(const physics::Simulation& sim) {
+  const auto f = sim.contact_heat_flux();
+  double s = 0;
+  for (const double x : f) s += x;
+  return f.empty() ? 0.0 : s / static_cast<double>(f.size());
+}
+
+TEST(GapConductance, TwoBlocksAtAFixedOpenGapReachTheSeriesResistance) {
+  // h(g) = 30 (1 − g/0.01) + 0.05/(g + 1e-3) at g = 2 mm: 24 + 16.67 = 40.67 W/(m²K), close
+  // to κ/L = 52, so that all three resistances count.
+  physics::GapConductance law;
+  law.table = core::TimeTable({0.0, 0.01}, {30.0, 0.0});
+  law.gas_conductivity = 0.05;
+  law.gas_offset = 1e-3;
+  const double gap = 2e-3;
+  const auto p = blocks_across_a_gap(gap, core::TimeTable(0.0), 3, law);
+  physics::Simulation sim(p);
+  sim.enable_mortar_contact();
+  double before = 0;
+  for (int s = 0; s < 3; ++s) {
+    before = sim.history("heat_gap_conducted");
+    sim.advance();
+  }
+  EXPECT_LE(sim.history("contact_normal_force"), 1e-12);  // open: no pressure
+  const double h = 30 * (1 - gap / 0.01) + 0.05 / (gap + 1e-3);
+  ASSERT_NEAR(physics::gap_conductance(law, gap), h, 1e-12 * h);
+  const double q = (kHigh - kLow) / (1.0 / kKappa + 1.0 / h + 1.0 / kKappa);
+  // Linear elements hold the piecewise linear profile, the nodal gap of flat parallel faces is
+  // exact (D diagonal, Σ_j M_kj = D_kk), h uniform: the solves' round-off is what is left, far
+  // below the 1e-8 asked.
+  const auto flux = sim.contact_heat_flux();
+  ASSERT_EQ(flux.size(), 16u);  // the 4×4 nodes of the slave's top
+  for (const double f : flux) EXPECT_NEAR(f, -q, 1e-8 * q);
+  for (int b = 0; b < 2; ++b) {
+    const auto theta = sim.state(b).theta.to_std();
+    const auto& m = p.bodies[b].mesh;
+    for (int a = 0; a < m.n_nodes(); ++a) {
+      const double z = m.point(a)[2];
+      const double expected =
+          b == 0 ? kLow + q * (z + 0.5) / kKappa : kHigh - q * (1.5 + gap - z) / kKappa;
+      EXPECT_NEAR(theta[a], expected, 1e-8 * (kHigh - kLow)) << "body " << b << " node " << a;
+    }
+  }
+  // The ledger: all of the conducted heat went through the gap (area 1, slave → master: −q).
+  const double step_gap = (sim.history("heat_gap_conducted") - before) / p.time.step;
+  EXPECT_NEAR(step_gap, -q, 1e-8 * q);
+  EXPECT_NEAR(sim.history("heat_gap_conducted"), sim.history("heat_conducted"),
+              1e-12 * std::abs(sim.history("heat_conducted")));
+  std::cout << "[ measure  ] fixed open gap: flux " << -flux[0] << " W/m² against " << q
+            << " (relative " << -flux[0] / q - 1 << ")\n";
+}
+
+TEST(GapConductance, ClosingTheGapChangesTheFluxWithoutAJump) {
+  // Gas only, h(g) = k/(g + g₀) with k = 0.02, g₀ = 0.5 mm: 17.4 W/(m²K) at the start, 40 at
+  // closure; the upper block lowered 0.1 mm a step from a gap of 1.05 mm: closed during step
+  // 11, then pressed 0.1 mm more a step, p = E δ/2 (β_C p grows by 1 W/(m²K) a step).
+  physics::GapConductance law;
+  law.gas_conductivity = 0.02;
+  law.gas_offset = 5e-4;
+  constexpr int kSteps = 16;
+  constexpr double kStart = 1.05e-3, kRate = 1e-4;
+  const double tau = 1e4;
+  const core::TimeTable lower({0, kSteps * tau}, {0, -kSteps * kRate});
+  const auto p = blocks_across_a_gap(kStart, lower, kSteps, law);
+  physics::Simulation sim(p);
+  sim.enable_mortar_contact();
+  std::vector<double> q, normal;
+  for (int s = 0; s < kSteps; ++s) {
+    sim.advance();
+    q.push_back(-mean_flux(sim));
+    normal.push_back(sim.history("contact_normal_force"));
+  }
+  int closed = -1;  // the first step with pressure
+  for (int s = 0; s < kSteps; ++s)
+    if (normal[s] > 0 && closed < 0) closed = s;
+  ASSERT_GT(closed, 1);
+  ASSERT_LT(closed, kSteps - 2);
+  // The change of the flux across closure against the changes on either side: the conductance
+  // grows by ≤ 6 W/(m²K) a step before (dh/dg × 0.1 mm) and by β_C E 0.1 mm/2 = 1 after, and at
+  // closure by h(0) − h(g_last) + β_C p_first, of the same order; a law that dropped the gap
+  // term on contact would jump by −h(0) = −40 W/(m²K) (flux −25 % here).
+  double largest_other = 0;
+  for (int s = 1; s < kSteps; ++s)
+    if (s != closed) largest_other = std::max(largest_other, std::abs(q[s] - q[s - 1]));
+  const double at_closure = std::abs(q[closed] - q[closed - 1]);
+  EXPECT_LE(at_closure, 1.5 * largest_other);
+  EXPECT_GT(q[closed], q[closed - 1]);  // the conductance only grows as the blocks approach
+  std::cout << "[ measure  ] closing the gap: flux per step";
+  for (const double x : q) std::cout << " " << x;
+  std::cout << "; closed in step " << closed + 1 << ", change there " << at_closure
+            << " W/m², largest elsewhere " << largest_other << "\n";
+}
+
+}  // namespace
+}  // namespace tc::test
