@@ -48,6 +48,25 @@ TEST(TemperatureTable, OnePointAndFlatTablesAreTheConstantItself) {
   EXPECT_EQ(TemperatureTable(v)(123.0), v);
 }
 
+TEST(TemperatureTable, IntegralAndSlopeOfThePiecewiseLinearLaw) {
+  // v: 2 at 300, 4 at 400, 1 at 600 K; 2 below, 1 above. Integrals by hand (trapezoids and
+  // rectangles): exact in binary up to the round-off of the sums (~1e-15 relative).
+  const TemperatureTable f({300.0, 400.0, 600.0}, {2.0, 4.0, 1.0});
+  const auto near = [](double a, double b) { EXPECT_NEAR(a, b, 1e-13 * std::abs(b)) << a; };
+  near(f.integral(300.0, 400.0), 300.0);  // ½(2 + 4)·100
+  near(f.integral(350.0, 500.0), 0.5 * (3 + 4) * 50 + 0.5 * (4 + 2.5) * 100);
+  near(f.integral(200.0, 700.0), 200.0 + 300.0 + 500.0 + 100.0);  // 2·100 + … + 1·100
+  near(f.integral(500.0, 350.0), -(0.5 * (3 + 4) * 50 + 0.5 * (4 + 2.5) * 100));
+  EXPECT_EQ(f.integral(320.0, 320.0), 0.0);
+  near(TemperatureTable(3.0).integral(10.0, 20.0), 30.0);
+  near(f.integral(350.0, 380.0), 0.5 * (3.0 + 3.6) * 30);  // inside one segment
+  EXPECT_EQ(f.slope(350.0), 0.02);
+  EXPECT_EQ(f.slope(400.0), -0.015);  // the upper segment at a table point
+  EXPECT_EQ(f.slope(299.0), 0.0);
+  EXPECT_EQ(f.slope(600.0), 0.0);
+  EXPECT_EQ(TemperatureTable(3.0).slope(350.0), 0.0);
+}
+
 TEST(Petsc, ErrorsBecomeExceptionsNamingTheCall) {
   tc::core::Vector v(3);
   tc::core::Vector w(4);

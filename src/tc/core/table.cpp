@@ -45,4 +45,27 @@ double TemperatureTable::min_value() const {
   return *std::min_element(v_.begin(), v_.end());
 }
 
+double TemperatureTable::slope(double theta) const {
+  if (theta_.empty() || theta < theta_.front() || theta >= theta_.back()) return 0.0;
+  const auto hi = std::upper_bound(theta_.begin(), theta_.end(), theta) - theta_.begin();
+  const auto lo = hi - 1;
+  return (v_[hi] - v_[lo]) / (theta_[hi] - theta_[lo]);
+}
+
+double TemperatureTable::integral(double from, double to) const {
+  if (from > to) return -integral(to, from);
+  if (theta_.empty()) return v_.front() * (to - from);
+  // Over [from, to] the law is linear between the breakpoints inside it and at its ends: the
+  // trapezoid of each piece is exact.
+  double sum = 0, x = from, fx = (*this)(from);
+  for (size_t i = 0; i < theta_.size(); ++i) {
+    if (theta_[i] <= from) continue;
+    if (theta_[i] >= to) break;
+    sum += 0.5 * (fx + v_[i]) * (theta_[i] - x);
+    x = theta_[i];
+    fx = v_[i];
+  }
+  return sum + 0.5 * (fx + (*this)(to)) * (to - x);
+}
+
 }  // namespace tc::core

@@ -49,6 +49,11 @@ class TemperatureTable {
   /// The largest and the smallest value the law takes (at a table point: it is linear between).
   [[nodiscard]] double max_value() const;
   [[nodiscard]] double min_value() const;
+  /// dv/dθ: the slope of the segment holding θ (the upper one at a table point), 0 beyond the
+  /// ends and for a constant.
+  [[nodiscard]] double slope(double theta) const;
+  /// ∫_from^to v(θ) dθ, exact for the piecewise-linear law (trapezoids on whole segments).
+  [[nodiscard]] double integral(double from, double to) const;
 
  private:
   std::vector<double> theta_;   // empty for a constant

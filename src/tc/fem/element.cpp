@@ -363,6 +363,12 @@ void shape(FacetType t, const std::array<double, 3>& xi, Eigen::VectorXd& n, Eig
   shape_any(t, xi, n, dn);
 }
 
+std::vector<CellPoint> cell_points(CellType t, const Coords& x) {
+  std::vector<CellPoint> out;
+  for_each_point(t, x, [&](const PointData& p) { out.push_back({*p.n, p.grad, p.jxw}); });
+  return out;
+}
+
 // ---- Kernels ------------------------------------------------------------------------------
 
 Eigen::MatrixXd mass_u(CellType t, const Coords& x, double rho) {

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include "tc/mesh/mesh.hpp"
 
@@ -54,6 +55,16 @@ using Func = std::function<double(const mesh::Point&)>;
 [[nodiscard]] Eigen::VectorXd facet_load(FacetType t, const Coords& x, const Func& f = {});
 /// ∫ N_a N_b over a boundary facet, n²: the film (Robin) matrix of one facet per unit h.
 [[nodiscard]] Eigen::MatrixXd facet_mass(FacetType t, const Coords& x);
+
+/// One point of quadrature(t) mapped onto a cell: N_a, the physical gradients ∇N_a (n × dim)
+/// and weight · det J. For kernels evaluated many times with fields that change (the heat
+/// residual with κ(θ), c_p(θ): nonlinear_heat.hpp).
+struct CellPoint {
+  Eigen::VectorXd n;
+  Eigen::MatrixXd grad;
+  double jxw = 0;
+};
+[[nodiscard]] std::vector<CellPoint> cell_points(CellType t, const Coords& x);
 
 // ---- Post-processing at the cell centre (the reference cell's centroid). -----------------
 

@@ -1,15 +1,33 @@
 #pragma once
 // Material constants of one body (case-format.md [materials.*]) and the moduli derived
-// from them (thesis 2.5, 2.8; docs/choices.md for the thermal stress modulus β).
+// from them (thesis 2.5, 2.8; docs/choices.md for the thermal stress modulus β), with the
+// properties the case gives as tables in θ (docs/theory.md, "Temperature-dependent materials").
+#include "tc/core/table.hpp"
+
 namespace tc::fem {
 
+/// The properties given as tables in the body's temperature θ. A law that is constant (the
+/// default, or a flat table: core::TemperatureTable) is not used: the number in Material is
+/// the property, and the run takes the constant-property code path bit for bit.
+struct MaterialLaws {
+  core::TemperatureTable thermal_conductivity;  // κ(θ) [W/(m K)]
+  core::TemperatureTable specific_heat;         // c_p(θ) [J/(kg K)]
+  /// α(θ) [1/K], the instantaneous (tangent) coefficient dε/dθ; the strain is its integral
+  /// from θ₀ (docs/choices.md, "Thermal expansion as a table").
+  core::TemperatureTable thermal_expansion;
+};
+
 struct Material {
+  // When a property is a table (`laws`), its number here is the table at the body's initial
+  // temperature: what the constant matrices (and the preconditioner of the heat step's Newton)
+  // are assembled with.
   double density = 0;               // ρ [kg/m³]
   double young_modulus = 0;         // E [Pa]
   double poisson_ratio = 0;         // ν
   double thermal_expansion = 0;     // α [1/K]
   double specific_heat = 0;         // c_p [J/(kg K)]
   double thermal_conductivity = 0;  // κ [W/(m K)]
+  MaterialLaws laws;
 
   [[nodiscard]] double lame_lambda() const {
     return young_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
@@ -22,6 +40,34 @@ struct Material {
   }
   /// c of (2.8) = ρ c_p [J/(m³ K)] (docs/choices.md).
   [[nodiscard]] double heat_capacity() const { return density * specific_heat; }
+  /// κ or c_p depends on θ: the heat step is nonlinear (fem::NonlinearHeat).
+  [[nodiscard]] bool nonlinear_heat() const {
+    return !laws.thermal_conductivity.is_constant() || !laws.specific_heat.is_constant();
+  }
+  /// α depends on θ: the thermal strain is ∫_{θ₀}^{θ} α dθ, not α(θ − θ₀).
+  [[nodiscard]] bool nonlinear_expansion() const { return !laws.thermal_expansion.is_constant(); }
+  /// ϑ_α(θ) with α ϑ_α = ε_th(θ) = ∫_{θ₀}^{θ} α(s) ds, α the number: the temperature change
+  /// that K_uθ (assembled with α) turns into the thermal strain of the law; θ − θ₀ for a
+  /// constant α, where the secant α_s(θ) = ε_th(θ)/(θ − θ₀) is α itself.
+  [[nodiscard]] double expansion_deviation(double theta, double theta0) const {
+    if (!nonlinear_expansion()) return theta - theta0;
+    return laws.thermal_expansion.integral(theta0, theta) / thermal_expansion;
+  }
+  /// dϑ_α/dθ = α(θ)/α: the factor of the thermoelastic heating at θ (docs/theory.md).
+  [[nodiscard]] double expansion_rate(double theta) const {
+    return nonlinear_expansion() ? laws.thermal_expansion(theta) / thermal_expansion : 1.0;
+  }
+  /// Sets the numbers of the table laws: κ and c_p at θ (the body's initial temperature: the
+  /// heat operator factorised with them is the Newton's preconditioner), α at its largest
+  /// value (the modulus K_uθ is assembled with; the secant strain rescales it, and a table
+  /// with α = 0 at θ would make the rescaling 0/0).
+  void evaluate_laws_at(double theta) {
+    if (!laws.thermal_conductivity.is_constant())
+      thermal_conductivity = laws.thermal_conductivity(theta);
+    if (!laws.specific_heat.is_constant()) specific_heat = laws.specific_heat(theta);
+    if (!laws.thermal_expansion.is_constant())
+      thermal_expansion = laws.thermal_expansion.max_value();
+  }
 };
 
 }  // namespace tc::fem

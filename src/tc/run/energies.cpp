@@ -29,6 +29,10 @@ double thermal_energy(const Problem& p, const Bodies& bodies) {
   const double theta0 = p.physics.reference_temperature;
   double e = 0;
   for (int b = 0; b < bodies.size(); ++b) {
+    if (const auto* heat = bodies.systems[b]->nonlinear_heat()) {  // ∫ρ∫c_p dθ: the enthalpy
+      e += heat->total_enthalpy(bodies.states[b].theta);
+      continue;
+    }
     const auto& vol = bodies.systems[b]->node_volumes();
     const auto theta = bodies.states[b].theta.to_std();
     const double c = bodies.systems[b]->body().material.heat_capacity();
@@ -76,8 +80,7 @@ void support_forces(const Problem& p, const Bodies& bodies, int b, double t, cor
   m.stiffness_u.mult(st.u, r);
   if (body_time_scheme(p).inertia()) m.mass_u.mult_add(st.a, r);
   if (p.physics.thermal_expansion) {
-    s.dtheta.copy_from(st.theta);
-    s.dtheta.shift(-p.physics.reference_temperature);
+    thermal_deviation(p, sys, st.theta, s.dtheta);
     m.coupling_u_theta.mult_add(s.dtheta, r);
   }
   // A u + B_bᵀλ = f holds on the free dofs; on a constrained dof the support takes what the

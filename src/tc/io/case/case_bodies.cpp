@@ -127,6 +127,7 @@ void CaseReader::read_body(const toml::table& t, size_t index) {
   }
   read_mesh(b, body);
   read_body_loads(b, body);
+  body.material.evaluate_laws_at(body.initial_temperature);
   body.subdomains = 0;  // "auto", resolved by read_bodies once every body is known
   if (const auto* n = b.get("subdomains");
       n && !(n->is_string() && n->as_string()->get() == "auto")) {

@@ -194,17 +194,52 @@ void CaseReader::read_materials(const TableReader& root) {
       continue;
     }
     const TableReader m(*t, path, issues_, schema::section("materials.*"));
-    const auto rho = m.number("density");
-    const auto e = m.number("young_modulus");
-    const auto nu = m.number("poisson_ratio");
-    const auto alpha = m.number("thermal_expansion");
-    const auto cp = m.number("specific_heat");
-    const auto kappa = m.number("thermal_conductivity");
-    if (rho && e && nu && alpha && cp && kappa)
-      materials_[name] = fem::Material{*rho, *e, *nu, *alpha, *cp, *kappa};
-    else
+    const auto rho = mechanical_constant(m, "density");
+    const auto e = mechanical_constant(m, "young_modulus");
+    const auto nu = mechanical_constant(m, "poisson_ratio");
+    const auto alpha = material_law(m, "thermal_expansion");
+    const auto cp = material_law(m, "specific_heat");
+    const auto kappa = material_law(m, "thermal_conductivity");
+    if (!(rho && e && nu && alpha && cp && kappa)) {
       materials_[name] = std::nullopt;  // the name exists; its constants were reported
+      continue;
+    }
+    fem::Material mat;
+    mat.density = *rho;
+    mat.young_modulus = *e;
+    mat.poisson_ratio = *nu;
+    mat.laws = {*kappa, *cp, *alpha};
+    // A constant law is its number; a table's number is set at each body's initial
+    // temperature (read_body), here at θ₀ for the checks that read materials alone.
+    mat.thermal_expansion = alpha->values().front();
+    mat.specific_heat = cp->values().front();
+    mat.thermal_conductivity = kappa->values().front();
+    mat.evaluate_laws_at(p_.physics.reference_temperature);
+    materials_[name] = mat;
   }
+}
+
+std::optional<core::TemperatureTable> CaseReader::material_law(const TableReader& m,
+                                                               std::string_view k) {
+  const auto* n = m.get(k);
+  return n ? read_temperature_table(*n, m.key(k), issues_, range_of(m.spec(k)),
+                                    "the body's temperature")
+           : std::nullopt;
+}
+
+std::optional<double> CaseReader::mechanical_constant(const TableReader& m, std::string_view k) {
+  // E, ν and ρ are constants: they form A_u = 4/τ²M_u + K_u, factorised once per run
+  // (docs/choices.md, "Temperature-dependent materials"). A table is refused by name, not as
+  // a mistyped number.
+  if (const auto* n = m.get(k, Need::optional, ""); n && n->is_table()) {
+    m.issue(k, fmt::format("found a table, expected a number: {} cannot depend on the "
+                           "temperature (the mechanical operator is factorised once per run; "
+                           "only thermal_conductivity, specific_heat and thermal_expansion "
+                           "take a table in θ)",
+                           k));
+    return std::nullopt;
+  }
+  return m.number(k);
 }
 
 const toml::array* CaseReader::tables(const TableReader& root, std::string_view key) {

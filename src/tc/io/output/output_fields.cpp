@@ -112,7 +112,7 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
     for (size_t a = 0; a < nodes.size(); ++a) {
       for (int k = 0; k < dim; ++k) ue[dim * a + k] = u[dim * nodes[a] + k];
       te[a] = theta[nodes[a]];
-      dte[a] = te[a] - theta0;
+      dte[a] = mat.expansion_deviation(te[a], theta0);
     }
     const auto type = m.cell_type(c);
     const auto sigma = fem::cell_stress(type, x, ue, dte, mat.lame_lambda(), mat.lame_mu(), beta);
@@ -124,7 +124,11 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
         strain.values.push_back(eps(i, j));
       }
     group.values.push_back(m.cell_group(c));
-    const auto q = fem::cell_heat_flux(type, x, te, mat.thermal_conductivity);
+    // κ(θ) at the cell centre's temperature (the mean of the nodes' on a linear cell)
+    const double kappa = mat.laws.thermal_conductivity.is_constant()
+                             ? mat.thermal_conductivity
+                             : mat.laws.thermal_conductivity(te.mean());
+    const auto q = fem::cell_heat_flux(type, x, te, kappa);
     flux.values.insert(flux.values.end(), {q[0], q[1], q[2]});
     sub.values.push_back(sys.cell_subdomain()[static_cast<size_t>(c)]);
   }

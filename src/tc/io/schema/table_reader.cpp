@@ -391,7 +391,8 @@ std::optional<core::TimeTable> read_gap_table(const toml::node& n, const std::st
 
 std::optional<core::TemperatureTable> read_temperature_table(const toml::node& n,
                                                              const std::string& key, Issues& issues,
-                                                             const Range& range) {
+                                                             const Range& range,
+                                                             std::string_view argument) {
   if (n.is_number()) {
     const auto v = read_number(n, key, issues, range);
     return v ? std::optional<core::TemperatureTable>(*v) : std::nullopt;
@@ -399,18 +400,18 @@ std::optional<core::TemperatureTable> read_temperature_table(const toml::node& n
   const auto* table = n.as_table();
   if (!table) {
     issues.add(line_of(n), key,
-               fmt::format("found {}, expected {} or a table in the interface temperature "
+               fmt::format("found {}, expected {} or a table in {} "
                            "{{ temperature = [...], value = [...] }}",
-                           describe(n), range.expected));
+                           describe(n), range.expected, argument));
     return std::nullopt;
   }
   // `t` is accepted by the schema only to say what is wrong with it: a law of the interface
-  // is a function of its temperature, never of time.
+  // or of a material is a function of the temperature, never of time.
   const TableReader t(*table, key, issues, {"temperature", "value", "t"});
   if (t.has("t")) {
-    t.issue("t",
-            "found a table in time, expected a table in the interface temperature "
-            "{ temperature = [...] (K), value = [...] }");
+    t.issue("t", fmt::format("found a table in time, expected a table in {} "
+                             "{{ temperature = [...] (K), value = [...] }}",
+                             argument));
     return std::nullopt;
   }
   const auto points = read_points(t, kInterfaceTemperature, temperature(), range);

@@ -125,12 +125,14 @@ std::optional<double> read_number(const toml::node& n, const std::string& key, I
 /// times (≥ 1), every value within `range`.
 std::optional<core::TimeTable> read_time_table(const toml::node& n, const std::string& key,
                                                Issues& issues, const Range& range = {});
-/// A number or a table in the interface temperature { temperature = [...], value = [...] }:
-/// temperatures > 0 K and strictly increasing, as many values as temperatures (≥ 1), every
-/// value within `range`; a table in time ({ t = ... }) is an issue of its own.
-std::optional<core::TemperatureTable> read_temperature_table(const toml::node& n,
-                                                             const std::string& key, Issues& issues,
-                                                             const Range& range = {});
+/// A number or a table in a temperature { temperature = [...], value = [...] }: temperatures
+/// > 0 K and strictly increasing, as many values as temperatures (≥ 1), every value within
+/// `range`; a table in time ({ t = ... }) is an issue of its own. `argument` names the
+/// temperature in the messages (the interface's for the contact laws, the body's for a
+/// material).
+std::optional<core::TemperatureTable> read_temperature_table(
+    const toml::node& n, const std::string& key, Issues& issues, const Range& range = {},
+    std::string_view argument = "the interface temperature");
 /// A number or a table in the gap { gap = [...], value = [...] }: gaps ≥ 0 and strictly
 /// increasing, as many values as gaps (≥ 1), every value within `range`; piecewise linear,
 /// constant beyond its ends (a TimeTable whose abscissa is the gap).

@@ -222,11 +222,25 @@ void solve_initial_acceleration(const BodySystem& sys, const core::Vector& r, co
   a.scale(scale);
 }
 
+void thermal_deviation(const Problem& p, const BodySystem& sys, const core::Vector& theta,
+                       core::Vector& out) {
+  const double theta0 = p.physics.reference_temperature;
+  const auto& mat = sys.body().material;
+  out.copy_from(theta);
+  if (!mat.nonlinear_expansion()) {
+    out.shift(-theta0);
+    return;
+  }
+  // The strain interpolated from its nodal values, ε_h = Σ N_a ε_th(θ_a): exact for a uniform
+  // temperature, and of the interpolation's order otherwise (docs/choices.md).
+  auto v = out.view();
+  for (PetscInt a = 0; a < out.size(); ++a) v[a] = mat.expansion_deviation(v[a], theta0);
+}
+
 void subtract_thermal_force(const Problem& p, const BodySystem& sys, BodyField& s,
                             const core::Vector& theta, core::Vector& f) {
-  // f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with the body's scratch vectors.
-  s.dtheta.copy_from(theta);
-  s.dtheta.shift(-p.physics.reference_temperature);
+  // f ← f − K_uθ ϑ_α(θ), the thermal stress's load of (2.5), with the body's scratch vectors.
+  thermal_deviation(p, sys, theta, s.dtheta);
   sys.matrices().coupling_u_theta.mult(s.dtheta, s.work_u);
   f.axpy(-1.0, s.work_u);
 }

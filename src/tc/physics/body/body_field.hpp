@@ -80,7 +80,12 @@ void solve_initial_acceleration(const BodySystem& sys, const core::Vector& r, co
 void heat_to_deviation(double theta0, BodyField& s);
 void heat_from_deviation(double theta0, const BodySystem& sys, double t, BodyField& s);
 
-/// f ← f − K_uθ(θ − θ₀), the thermal stress's load of (2.5), with s's scratch vectors.
+/// out = θ − θ₀ per node, or with α(θ) a table ϑ_α(θ_a) = ∫_{θ₀}^{θ_a} α dθ / α
+/// (fem::Material::expansion_deviation): what K_uθ multiplies in the thermal force.
+void thermal_deviation(const Problem& p, const BodySystem& sys, const core::Vector& theta,
+                       core::Vector& out);
+/// f ← f − K_uθ ϑ_α(θ) (ϑ_α = θ − θ₀ for a constant α), the thermal stress's load of (2.5),
+/// with s's scratch vectors.
 void subtract_thermal_force(const Problem& p, const BodySystem& sys, BodyField& s,
                             const core::Vector& theta, core::Vector& f);
 

@@ -90,6 +90,9 @@ BodySystem::BodySystem(const Problem& problem, int index)
       core::drop_zeros(m_.mass_u);
   }
   if (!theta_rows_.spread()) core::share_pattern(m_.mass_theta, m_.stiffness_theta);
+  if (body_->material.nonlinear_heat())
+    nonlinear_heat_ = std::make_unique<fem::NonlinearHeat>(
+        body_->mesh, body_->material, problem.physics.reference_temperature, lumped_);
   cell_part_ = mesh::partition_cells(body_->mesh, std::max(1, body_->subdomains));
   if (body_->subdomains > 1) subdomains_ = mesh::split(body_->mesh, cell_part_, body_->subdomains);
 }

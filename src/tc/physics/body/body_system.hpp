@@ -4,10 +4,12 @@
 // Displacement dofs are interleaved (dim·a + k), temperature dofs one per node.
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "tc/fem/assembler.hpp"
+#include "tc/fem/nonlinear_heat.hpp"
 #include "tc/mesh/partition.hpp"
 #include "tc/model/problem.hpp"
 
@@ -103,6 +105,9 @@ class BodySystem {
   /// The displacement dofs without inertia (contact_scheme = "modified_mass": the body's
   /// contact boundary), sorted; empty otherwise. M_u is zero on their rows and columns.
   [[nodiscard]] const std::vector<PetscInt>& massless_dofs() const { return massless_dofs_; }
+  /// The material part of the heat step when κ or c_p is a table in θ (fem::NonlinearHeat,
+  /// with the heat capacity lumped as M_θ is); null for constant properties.
+  [[nodiscard]] const fem::NonlinearHeat* nonlinear_heat() const { return nonlinear_heat_.get(); }
 
  private:
   // y += h(t) H x over the films whose h changes in time (H = ∫N_aN_b dS of each)
@@ -153,6 +158,7 @@ class BodySystem {
   std::vector<RadiationBoundary> radiation_;
   std::vector<fem::WeightedFacet> constant_film_facets_;  // body numbering, weight h
   core::SparseMatrix constant_film_;
+  std::unique_ptr<fem::NonlinearHeat> nonlinear_heat_;
 };
 
 }  // namespace tc::physics

@@ -16,6 +16,7 @@
 // they cancel at equilibrium).
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tc/dual/constrained_solver.hpp"
@@ -31,9 +32,14 @@ struct NewtonOutcome {
 };
 
 /// Throws NumericalError when the Newton of a heat step did not converge; `what` names the
-/// body or the contact pair, `step` and `iteration` (of the staggered loop) place it.
+/// body or the contact pair, `step` and `iteration` (of the staggered loop) place it, `terms`
+/// the nonlinear terms the Newton was for.
 void require_converged(const NewtonOutcome& o, const std::string& what, double tolerance, int step,
-                       int iteration);
+                       int iteration, std::string_view terms = "the radiation and film boundaries");
+/// The words of require_converged for a step with κ(θ) or c_p(θ).
+inline constexpr std::string_view kMaterialLawTerms =
+    "the temperature-dependent conductivity or specific heat (and the radiation and film "
+    "boundaries, if any)";
 
 /// The linear part A of one or more bodies' heat step (one block per body, numbered like
 /// `systems`): `apply` sets y = A x with every row (as assembled), `solve` sets z = A⁻¹ r with
@@ -46,6 +52,8 @@ struct HeatOperator {
   std::function<void(const std::vector<const core::Vector*>& r,
                      const std::vector<core::Vector*>& z)>
       solve;
+  /// 1/τ of the step: the scale of the enthalpy in the material term (solve_nonlinear_heat).
+  double inv_tau = 0;
 };
 
 /// Solves A θ + N(t, θ) = b for the blocks θ. On entry θ holds the starting guess and the
@@ -59,5 +67,21 @@ NewtonOutcome solve_boundary_heat(const HeatOperator& a, double t,
 NewtonOutcome solve_boundary_heat(const BodySystem& sys, const core::SparseMatrix& a,
                                   const ConstrainedSolver& solver, double t, const core::Vector& b,
                                   core::Vector& theta, double tolerance, int max_iterations);
+
+/// The heat step of bodies with κ(θ) or c_p(θ) (BodySystem::nonlinear_heat), with their
+/// boundary terms N(t, θ) if any: A θ + N(t, θ) + Σ N_m(θ) = b, N_m the material part
+/// (fem::NonlinearHeat, b holding H(θ^k)/τ), solved by Newton's method as above but each
+/// correction by GMRES (the Jacobian A + N' + N_m' is not symmetric when κ' ≠ 0), right-
+/// preconditioned by the solve with A: the factorised operator of the reference properties,
+/// so that the iteration count depends on the properties' spread, not on the mesh. Same
+/// convergence test, same contract.
+NewtonOutcome solve_nonlinear_heat(const HeatOperator& a, double t,
+                                   const std::vector<const core::Vector*>& b,
+                                   const std::vector<core::Vector*>& theta, double tolerance,
+                                   int max_iterations);
+NewtonOutcome solve_nonlinear_heat(const BodySystem& sys, const core::SparseMatrix& a,
+                                   const ConstrainedSolver& solver, double tau, double t,
+                                   const core::Vector& b, core::Vector& theta, double tolerance,
+                                   int max_iterations);
 
 }  // namespace tc::physics

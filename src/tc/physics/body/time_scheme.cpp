@@ -41,14 +41,19 @@ void BodyTimeScheme::begin_step(const Problem& p, const BodySystem& sys, const B
   const double tau = p.time.step;
   const auto& m = sys.matrices();
   // Right-hand sides that do not change within the fixed point: f_u^{k+1} of (5.3) (with the
-  // inertia's part, predict), f_θ^{k+1} of (5.6) + M_θ θ/τ.
+  // inertia's part, predict), f_θ^{k+1} of (5.6) + M_θ θ/τ
+  // (+ H(θ)/τ, the enthalpy, when κ or c_p depends on θ).
   sys.mechanical_load(t, s.f_u);
   s.rhs_u_base.copy_from(s.f_u);
   sys.thermal_load(t, s.f_theta);
   s.rhs_theta_base.copy_from(s.f_theta);
-  s.work_theta.copy_from(st.theta);
-  s.work_theta.scale(1.0 / tau);
-  m.mass_theta.mult_add(s.work_theta, s.rhs_theta_base);
+  if (const auto* heat = sys.nonlinear_heat()) {
+    heat->add_enthalpy(st.theta, 1.0 / tau, s.rhs_theta_base);  // H(θ^k)/τ (nonlinear_heat.hpp)
+  } else {
+    s.work_theta.copy_from(st.theta);
+    s.work_theta.scale(1.0 / tau);
+    m.mass_theta.mult_add(s.work_theta, s.rhs_theta_base);
+  }
   predict(p, sys, st, s);
   s.theta_new.copy_from(st.theta);
 }

@@ -120,9 +120,13 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
     interface_heat_->set_conductance(conducting, iteration > 1);
   }
   bool boundary_term = false;
-  for (const auto* sys : group.systems) boundary_term = boundary_term || sys->has_boundary_term();
-  if (boundary_term) {
-    group_boundary_heat(p, group, implicit, t, step, iteration);
+  bool material_laws = false;
+  for (const auto* sys : group.systems) {
+    boundary_term = boundary_term || sys->has_boundary_term();
+    material_laws = material_laws || sys->nonlinear_heat();
+  }
+  if (boundary_term || material_laws) {
+    group_boundary_heat(p, group, implicit, material_laws, t, step, iteration);
   } else {
     // Linear: for θ − θ₀ where every body's heat is factorised (heat_to_deviation). L_Γ adds
     // nothing to θ₀A1: L_Γ1 = 0, each segment's integrand holding both sides' partitions of
@@ -183,7 +187,8 @@ void ContactHeatCoupling::restore(const Checkpoint& c, const Problem& p, const B
 }
 
 void ContactHeatCoupling::group_boundary_heat(const Problem& p, const BodyGroup& group,
-                                              bool implicit, double t, int step, int iteration) {
+                                              bool implicit, bool material_laws, double t, int step,
+                                              int iteration) {
   // The heat step with radiation or an h(t) film on any body of the group: Newton over its
   // bodies (boundary_heat_newton.hpp) on A = diag(A_i) (+ Σ_pairs L_θγ when implicit), each
   // correction preconditioned by the group's exact linear solve.
@@ -210,15 +215,25 @@ void ContactHeatCoupling::group_boundary_heat(const Problem& p, const BodyGroup&
     }
   };
   const auto& settings = p.solver;
-  const auto o = solve_boundary_heat(op, t, group.field_in(&BodyField::rhs_theta),
-                                     group.field(&BodyField::theta_new), settings.newton_tolerance,
-                                     settings.max_newton_iterations);
+  op.inv_tau = 1.0 / p.time.step;
+  const auto o =
+      material_laws
+          ? solve_nonlinear_heat(op, t, group.field_in(&BodyField::rhs_theta),
+                                 group.field(&BodyField::theta_new), settings.newton_tolerance,
+                                 settings.max_newton_iterations)
+          : solve_boundary_heat(op, t, group.field_in(&BodyField::rhs_theta),
+                                group.field(&BodyField::theta_new), settings.newton_tolerance,
+                                settings.max_newton_iterations);
   newton_ += o.iterations;
   newton_inner_ += o.inner_iterations;
   std::string names;
   for (const int b : group.index)
     names += fmt::format("{}'{}'", names.empty() ? "" : "–", p.bodies[b].name);
-  require_converged(o, "the contact bodies " + names, settings.newton_tolerance, step, iteration);
+  if (material_laws)
+    require_converged(o, "the contact bodies " + names, settings.newton_tolerance, step, iteration,
+                      kMaterialLawTerms);
+  else
+    require_converged(o, "the contact bodies " + names, settings.newton_tolerance, step, iteration);
 }
 
 void ContactHeatCoupling::account_step(const BodyGroup& group, double tau) {

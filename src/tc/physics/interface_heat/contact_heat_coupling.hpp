@@ -70,9 +70,10 @@ class ContactHeatCoupling {
   void restore(const Checkpoint& c, const Problem& p, const BodyGroup& group);
 
  private:
-  // The heat step with radiation or an h(t) film on any body of the group.
-  void group_boundary_heat(const Problem& p, const BodyGroup& group, bool implicit, double t,
-                           int step, int iteration);
+  // The heat step with radiation or an h(t) film on any body of the group, or κ(θ), c_p(θ)
+  // (`material_laws`: solve_nonlinear_heat).
+  void group_boundary_heat(const Problem& p, const BodyGroup& group, bool implicit,
+                           bool material_laws, double t, int step, int iteration);
   void sum_heat();
   // The interface heat solver of the group's bodies (Γ: every pair's contact surfaces).
   void make_interface_solver(const Problem& p, const BodyGroup& group);

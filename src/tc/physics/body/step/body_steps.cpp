@@ -20,6 +20,13 @@ void BodySteps::heat_rhs(int b) {
     body_time_scheme(problem_).iterate_velocity(problem_, sys, bodies_.states[b], s);
     s.work_theta.zero();
     sys.matrices().coupling_u_theta.mult_transpose(s.velocity, s.work_theta);
+    if (const auto& mat = sys.body().material; mat.nonlinear_expansion()) {
+      // θ₀ β(θ) div u̇ with α(θ): row a by dϑ_α/dθ = α(θ_a)/α at the current iterate, the
+      // derivative of the thermal force's ϑ_α (docs/theory.md)
+      const auto th = s.theta_new.read();
+      auto w = s.work_theta.view();
+      for (PetscInt a = 0; a < sys.n_theta(); ++a) w[a] *= mat.expansion_rate(th[a]);
+    }
     s.rhs_theta.axpy(problem_.physics.reference_temperature, s.work_theta);
   }
 }
@@ -32,7 +39,16 @@ void BodySteps::heat_step(int b, int step, int iteration) {
   heat_rhs(b);
   const double t = step * problem_.time.step;
   sys.prescribe_theta(t, s.theta_new);
-  if (!sys.has_boundary_term()) {
+  if (sys.nonlinear_heat()) {  // κ(θ) or c_p(θ), with the boundary terms if any
+    const auto& settings = problem_.solver;
+    const auto o = solve_nonlinear_heat(sys, s.a_theta, *s.heat, problem_.time.step, t, s.rhs_theta,
+                                        s.theta_new, settings.newton_tolerance,
+                                        settings.max_newton_iterations);
+    newton_ += o.iterations;
+    newton_inner_ += o.inner_iterations;
+    require_converged(o, fmt::format("body '{}'", sys.body().name), settings.newton_tolerance, step,
+                      iteration, kMaterialLawTerms);
+  } else if (!sys.has_boundary_term()) {
     const double theta0 = problem_.physics.reference_temperature;
     const bool deviation = deviation_applies(s);
     if (deviation) heat_to_deviation(theta0, s);
