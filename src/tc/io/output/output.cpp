@@ -25,10 +25,6 @@ namespace tc::io {
 
 namespace {
 
-double now_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";  // JSON has no NaN/Inf
   return fmt::format("{:.17g}", v);
@@ -605,42 +601,6 @@ std::string OutputWriter::phases_json(const core::PhaseTimers& t) const {
   out += fmt::format("    \"unaccounted\": {},\n", json_number(total - sum));
   out += fmt::format("    \"total\": {}\n", json_number(total));
   return out;
-}
-
-ProgressLine::ProgressLine(bool terminal)
-    : terminal_(terminal), root_(core::PetscSession::rank() == 0), start_(now_seconds()) {}
-
-void ProgressLine::step(const physics::Simulation& sim) {
-  if (!root_) return;
-  const int n = sim.problem().time.n_steps();
-  const int k = sim.step();
-  if (k == 0) {
-    start_ = now_seconds();
-    return;
-  }
-  const double elapsed = now_seconds() - start_;
-  const double eta = elapsed / k * (n - k);
-  const auto text =
-      fmt::format("step {}/{}  t = {:.4g} s  coupling {}  qp {}  elapsed {:.1f} s  ETA {:.1f} s", k,
-                  n, sim.time(), static_cast<int>(sim.history("coupling_iterations")),
-                  static_cast<int>(sim.history("qp_iterations")), elapsed, eta);
-  if (terminal_) {
-    fmt::print(stderr, "\r{:<100}", text);
-    std::fflush(stderr);
-  } else if (k == n || k % std::max(1, n / 20) == 0) {
-    fmt::print("{}\n", text);
-    std::fflush(stdout);
-  }
-}
-
-void ProgressLine::warning(const physics::Simulation&, const std::string& message) {
-  if (!root_) return;
-  fmt::print(stderr, "{}warning: {}\n", terminal_ ? "\n" : "", message);
-  std::fflush(stderr);
-}
-
-void ProgressLine::finish(const physics::Simulation&, const physics::RunStatus&) {
-  if (root_ && terminal_) fmt::print(stderr, "\n");
 }
 
 }  // namespace tc::io
