@@ -36,6 +36,28 @@ struct Blocks {
   }
 };
 
+/// θ + sδ, s halved while the residual grows (far from the solution θ⁴ overshoots, and so
+/// can κ(θ)); θ and r take the accepted step's values. Returns the new residual norm.
+template <class Residual>
+double damped_step(const std::vector<core::Vector*>& theta, const Blocks& delta, double current,
+                   Residual& residual, Blocks& trial, Blocks& r_trial, Blocks& r) {
+  const size_t n = theta.size();
+  double s = 1.0, next = 0;
+  for (int h = 0; h <= kMaxHalvings; ++h, s *= 0.5) {
+    for (size_t i = 0; i < n; ++i) {
+      trial.v[i].copy_from(*theta[i]);
+      trial.v[i].axpy(s, delta.v[i]);
+    }
+    next = residual(trial.in(), r_trial);
+    if (next < current || h == kMaxHalvings) break;
+  }
+  for (size_t i = 0; i < n; ++i) {
+    theta[i]->copy_from(trial.v[i]);
+    r.v[i].copy_from(r_trial.v[i]);
+  }
+  return next;
+}
+
 double dot(const std::vector<const core::Vector*>& x, const std::vector<const core::Vector*>& y) {
   double s = 0;
   for (size_t i = 0; i < x.size(); ++i) s += x[i]->dot(*y[i]);
@@ -236,21 +258,7 @@ NewtonOutcome solve_boundary_heat(const HeatOperator& a, double t,
       }
       rz = rz_new;
     }
-    // θ + sδ, s halved while the residual grows (far from the solution θ⁴ overshoots).
-    double s = 1.0, next = 0;
-    for (int h = 0; h <= kMaxHalvings; ++h, s *= 0.5) {
-      for (size_t i = 0; i < n; ++i) {
-        trial.v[i].copy_from(*theta[i]);
-        trial.v[i].axpy(s, delta.v[i]);
-      }
-      next = residual(trial.in(), r_trial);
-      if (next < current || h == kMaxHalvings) break;
-    }
-    for (size_t i = 0; i < n; ++i) {
-      theta[i]->copy_from(trial.v[i]);
-      r.v[i].copy_from(r_trial.v[i]);
-    }
-    current = next;
+    current = damped_step(theta, delta, current, residual, trial, r_trial, r);
     o.residual = relative(current);
   }
   o.converged = true;
@@ -324,21 +332,7 @@ NewtonOutcome solve_nonlinear_heat(const HeatOperator& a, double t,
       res.v[i].scale(-1.0);
     }
     o.inner_iterations += gmres(a, t, theta, res, delta);
-    // θ + sδ, s halved while the residual grows.
-    double s = 1.0, next = 0;
-    for (int h = 0; h <= kMaxHalvings; ++h, s *= 0.5) {
-      for (size_t i = 0; i < n; ++i) {
-        trial.v[i].copy_from(*theta[i]);
-        trial.v[i].axpy(s, delta.v[i]);
-      }
-      next = residual(trial.in(), r_trial);
-      if (next < current || h == kMaxHalvings) break;
-    }
-    for (size_t i = 0; i < n; ++i) {
-      theta[i]->copy_from(trial.v[i]);
-      r.v[i].copy_from(r_trial.v[i]);
-    }
-    current = next;
+    current = damped_step(theta, delta, current, residual, trial, r_trial, r);
     o.residual = relative(current);
   }
   o.converged = true;
