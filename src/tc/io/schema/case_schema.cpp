@@ -596,20 +596,4 @@ std::span<const Section> sections() {
   return kSections;
 }
 
-const Section& section(std::string_view path) {
-  for (const auto& s : kSections)
-    if (s.path == path) return s;
-  throw std::logic_error(fmt::format("case schema: no section \"{}\"", path));
-}
-
-const Key& key(const Section& s, std::string_view name) {
-  for (const auto& k : s.keys)
-    if (k.name == name) return k;
-  throw std::logic_error(fmt::format("case schema: no key \"{}\" in \"{}\"", name, s.path));
-}
-
-std::string full_name(const Section& s, const Key& k) {
-  return s.path.empty() ? std::string(k.name) : fmt::format("{}.{}", s.path, k.name);
-}
-
 }  // namespace tc::io::schema
