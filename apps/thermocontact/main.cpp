@@ -32,7 +32,7 @@
 #include "tc/io/files/files.hpp"
 #include "tc/io/files/output_lock.hpp"
 #include "tc/io/output/output.hpp"
-#include "tc/io/output/vtkhdf.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
 #include "tc/io/restart/checkpoint.hpp"
 #include "tc/linalg/cholesky_solver.hpp"
 #include "tc/linalg/cholmod/cholmod_factor.hpp"

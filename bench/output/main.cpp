@@ -18,8 +18,8 @@
 #include <regex>
 #include <sstream>
 
-#include "tc/io/output/vtkhdf.hpp"
-#include "tc/io/output/vtu.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
+#include "tc/io/vtk/vtu.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The VTKHDF writer (io/output/vtkhdf.hpp) on every rank at once (label mpi, 1 and 2 ranks):
+// The VTKHDF writer (io/vtk/vtkhdf.hpp) on every rank at once (label mpi, 1 and 2 ranks):
 // each rank writes its block of a mesh's cells into one file collectively; read back (HDF5's C
 // API, serially, tests/support/vtk_files.hpp), the file has one piece per rank with cells,
 // in rank order, and every piece's points, cells and point and cell values are those of the
@@ -16,7 +16,7 @@
 #include "support/vtk_files.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/numeric/petsc.hpp"
-#include "tc/io/output/vtkhdf.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
 #include "tc/mesh/box.hpp"
 
 namespace tc::test {

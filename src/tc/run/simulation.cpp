@@ -233,7 +233,6 @@ void Simulation::advance_once() {
     for (int b = 0; b < n_bodies(); ++b)  // the bodies in no pair
       if (std::find(members.begin(), members.end(), b) == members.end())
         scheme.step(problem_, bodies_, {b}, t, [&] { return steps_.couple(b, next); });
-    contact_.bookkeeping();
   } else {
     for (int b = 0; b < n_bodies(); ++b)
       coupling = std::max(

@@ -14,7 +14,7 @@
 #include "tc/io/checks/case_checks.hpp"
 #include "tc/io/files/files.hpp"
 #include "tc/io/output/probes.hpp"
-#include "tc/io/output/vtkhdf.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
 #include "tc/model/checks.hpp"
 #include "tc/model/rigid_tool.hpp"
 

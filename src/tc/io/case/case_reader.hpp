@@ -9,7 +9,7 @@
 #include <string_view>
 #include <utility>
 
-#include "tc/io/output/vtkhdf.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
 #include "tc/model/problem.hpp"
 
 namespace tc::io {

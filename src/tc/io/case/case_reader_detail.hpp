@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/io/output/vtkhdf.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
 #include "tc/io/schema/table_reader.hpp"
 #include "tc/model/problem.hpp"
 

@@ -19,7 +19,7 @@
 #include "tc/core/numeric/petsc.hpp"
 #include "tc/core/numeric/threads.hpp"
 #include "tc/io/files/files.hpp"
-#include "tc/io/output/vtkhdf.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
 
 namespace tc::io {
 

@@ -18,8 +18,8 @@
 
 #include "tc/io/files/files.hpp"
 #include "tc/io/output/probes.hpp"
-#include "tc/io/output/vtkhdf.hpp"
-#include "tc/io/output/vtu.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
+#include "tc/io/vtk/vtu.hpp"
 #include "tc/run/simulation.hpp"
 
 namespace tc::io {

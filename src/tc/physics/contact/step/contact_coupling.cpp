@@ -494,31 +494,8 @@ int ContactCoupling::couple(int step) {
                     tol, problem_.solver.max_coupling_iterations,
                     problem_.solver.max_coupling_iterations),
         step, result.iterations, result.change);
-  const int iteration = result.iterations;
-  iterate_slip_.clear();
-  qp_bound_ = std::move(tresca.qp_bound);  // empty without friction
-  // A coupling tolerance looser than the cone's leaves nodes outside their Coulomb cone by up
-  // to 𝔉 tol ‖λ‖ (history's T/N above 𝔉): scale them onto it, u to match (docs/choices.md).
-  if (tol > ContactLaws::cone_tolerance && !enforcement.qp_gives_displacements())
-    scale_into_cones(g, !tresca.defer);
-  if (tresca.defer) {  // u_new holds u_free of the last iteration
-    auto scope = timers_.scope("qp");
-    dual.recover(lambda_, g.field(&BodyField::u_new));
-    shift_loaded_face(g);
-  }
-  for (const auto* f : g.fields) require_finite(f->u_new, "displacement", step, iteration);
-  check_laws(g, targets, step);
-
-  // The slip increment B_τ(u^{k+1} − u^k) for the dissipation, before the state moves on.
-  for (int i = 0; i < g.size(); ++i) {
-    g.fields[i]->work_u.copy_from(g.fields[i]->u_new);
-    g.fields[i]->work_u.axpy(-1.0, g.states[i]->u);
-  }
-  slip_ = dual.row_values(g.field_in(&BodyField::work_u));
-  // Heat through the interface in this step, with the L and d of the last heat step (those
-  // that produced θ^{k+1}): then the thermal energy balance of the bodies closes to round-off.
-  heat_.account_step(g, problem_.time.step);
-  return iteration;
+  finish_step(g, tresca, targets, step, result.iterations);
+  return result.iterations;
 }
 
 }  // namespace tc::physics

@@ -66,8 +66,6 @@ class ContactCoupling {
   /// BodyTimeScheme::step, which moves their states on after it); returns its heat–mechanics
   /// iterations.
   int couple(int step);
-  /// The step's contact statistics and heat flux, from the state after couple().
-  void bookkeeping();
 
   /// The bodies of the pairs (Problem::bodies indices).
   [[nodiscard]] const std::vector<int>& members() const { return group_.members; }
@@ -151,6 +149,12 @@ class ContactCoupling {
   // Non-penetration and the friction cone at every contact node of u_new and λ (ContactLaws):
   // throws NumericalError beyond the solvers' bounds.
   void check_laws(const BodyGroup& g, std::span<const double> targets, int step);
+  // After the staggered loop of `couple`: the cones, u recovered from λ when deferred, the laws
+  // checked, the slip B_τΔu, the interface's heat of the step and the bookkeeping.
+  void finish_step(const BodyGroup& g, TrescaIteration& tresca, std::span<const double> targets,
+                   int step, int iteration);
+  // The step's contact statistics and heat flux at u^{k+1}, θ^{k+1} of the fields.
+  void bookkeeping();
 
   const Problem& problem_;
   Bodies& bodies_;

@@ -1,7 +1,7 @@
 // What a coupled contact step leaves behind (ContactCoupling, contact_coupling.hpp): the
 // tangential multipliers scaled into their cones after a loose fixed point, the contact laws
 // checked at every node, the step's statistics, its history columns and values (the resultant
-// force on the slave), and the checkpoint part.
+// force on the slave), and the checkpoint part: everything of the step after its staggered loop.
 // contact_coupling.cpp holds the pairs, the rows and the staggered loop (6.3).
 #include <fmt/format.h>
 
@@ -134,6 +134,37 @@ void ContactCoupling::check_laws(const BodyGroup& g, std::span<const double> tar
   }
 }
 
+void ContactCoupling::finish_step(const BodyGroup& g, TrescaIteration& tresca,
+                                  std::span<const double> targets, int step, int iteration) {
+  auto& enforcement = *method_.enforcement;
+  auto& dual = enforcement.dual();
+  iterate_slip_.clear();
+  qp_bound_ = std::move(tresca.qp_bound);  // empty without friction
+  // A coupling tolerance looser than the cone's leaves nodes outside their Coulomb cone by up
+  // to 𝔉 tol ‖λ‖ (history's T/N above 𝔉): scale them onto it, u to match (docs/choices.md).
+  if (problem_.solver.coupling_tolerance > ContactLaws::cone_tolerance &&
+      !enforcement.qp_gives_displacements())
+    scale_into_cones(g, !tresca.defer);
+  if (tresca.defer) {  // u_new holds u_free of the last iteration
+    auto scope = timers_.scope("qp");
+    dual.recover(lambda_, g.field(&BodyField::u_new));
+    shift_loaded_face(g);
+  }
+  for (const auto* f : g.fields) require_finite(f->u_new, "displacement", step, iteration);
+  check_laws(g, targets, step);
+
+  // The slip increment B_τ(u^{k+1} − u^k) for the dissipation, before the state moves on.
+  for (int i = 0; i < g.size(); ++i) {
+    g.fields[i]->work_u.copy_from(g.fields[i]->u_new);
+    g.fields[i]->work_u.axpy(-1.0, g.states[i]->u);
+  }
+  slip_ = dual.row_values(g.field_in(&BodyField::work_u));
+  // Heat through the interface in this step, with the L and d of the last heat step (those
+  // that produced θ^{k+1}): then the thermal energy balance of the bodies closes to round-off.
+  heat_.account_step(g, problem_.time.step);
+  bookkeeping();
+}
+
 void ContactCoupling::bookkeeping() {
   const auto& dual = method_.enforcement->dual();
   const auto l = lambda_.to_std();
@@ -160,8 +191,8 @@ void ContactCoupling::bookkeeping() {
         const auto open = c.gap_conductance ? nodal_gap_conductance(*c.gap_conductance, rows)
                                             : std::vector<double>{};
         pr.heat_flux =
-            conduction_flux(*pr.mortar, rows, lq, scale, bodies_.states[c.slave_body].theta,
-                            bodies_.states[c.master_body].theta, open);
+            conduction_flux(*pr.mortar, rows, lq, scale, bodies_.fields[c.slave_body]->theta_new,
+                            bodies_.fields[c.master_body]->theta_new, open);
       }
     }
   }

@@ -1,4 +1,4 @@
-// The VTKHDF writer (io/output/vtkhdf.hpp) on one rank: the file read back through HDF5's C API
+// The VTKHDF writer (io/vtk/vtkhdf.hpp) on one rank: the file read back through HDF5's C API
 // (tests/support/vtk_files.hpp) holds the arrays of the ASCII .vtu of the same mesh and fields
 // bit for bit (points, connectivity, offsets, types, every point and cell array), in the
 // layout VTK's reader expects (Version, Type, the pieces' sizes); a piece as the .vtu piece;
@@ -14,8 +14,8 @@
 #include "support/cli.hpp"
 #include "support/vtk_files.hpp"
 #include "tc/core/error.hpp"
-#include "tc/io/output/vtkhdf.hpp"
-#include "tc/io/output/vtu.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
+#include "tc/io/vtk/vtu.hpp"
 
 using namespace tc;
 

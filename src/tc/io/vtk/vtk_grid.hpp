@@ -7,7 +7,7 @@
 #include <deque>
 #include <vector>
 
-#include "tc/io/output/vtu.hpp"
+#include "tc/io/vtk/vtu.hpp"
 #include "tc/mesh/mesh.hpp"
 
 namespace tc::io {

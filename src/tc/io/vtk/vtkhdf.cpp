@@ -1,4 +1,4 @@
-#include "tc/io/output/vtkhdf.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 
 #include "tc/core/error.hpp"
 #include "tc/io/files/files.hpp"
-#include "tc/io/output/vtk_grid.hpp"
+#include "tc/io/vtk/vtk_grid.hpp"
 
 #if TC_HAVE_HDF5
 #include <hdf5.h>

@@ -1,4 +1,4 @@
-// The binary .vtu encodings (io/output/vtu.hpp): appended raw data and zlib-compressed blocks hold
+// The binary .vtu encodings (io/vtk/vtu.hpp): appended raw data and zlib-compressed blocks hold
 // the same bytes as the ASCII file's numbers, bit for bit, read back by a reader written here from
 // VTK's description of the format (offsets from the byte after '_', a UInt64 byte count before
 // each raw array; [blocks, block size, last partial size, compressed sizes] before compressed
@@ -17,7 +17,7 @@
 #include <regex>
 
 #include "support/cli.hpp"
-#include "tc/io/output/vtu.hpp"
+#include "tc/io/vtk/vtu.hpp"
 
 using namespace tc;
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "tc/io/output/vtu.hpp"
+#include "tc/io/vtk/vtu.hpp"
 #include "tc/mesh/mesh.hpp"
 
 namespace tc::io {

@@ -1,4 +1,4 @@
-#include "tc/io/output/vtu.hpp"
+#include "tc/io/vtk/vtu.hpp"
 
 #include <fmt/format.h>
 #include <zlib.h>
@@ -14,7 +14,7 @@
 
 #include "tc/core/error.hpp"
 #include "tc/io/files/files.hpp"
-#include "tc/io/output/vtk_grid.hpp"
+#include "tc/io/vtk/vtk_grid.hpp"
 
 namespace tc::io {
 

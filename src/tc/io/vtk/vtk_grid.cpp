@@ -1,4 +1,4 @@
-#include "tc/io/output/vtk_grid.hpp"
+#include "tc/io/vtk/vtk_grid.hpp"
 
 namespace tc::io {
 
