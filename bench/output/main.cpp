@@ -129,6 +129,9 @@ int main(int argc, char** argv) {
   }
   const int rounds = argc > 2 ? std::atoi(argv[2]) : 5;
   const std::filesystem::path dir = argc > 3 ? argv[3] : std::filesystem::temp_directory_path();
+  std::error_code made;  // the writers take an existing folder
+  if (rank == 0) std::filesystem::create_directories(dir, made);
+  MPI_Barrier(MPI_COMM_WORLD);
   const auto frame = read_ascii(argv[1]);
   const auto mine = block(frame, rank, size);
   if (rank == 0)

@@ -2,9 +2,9 @@
 // binary as a user meets it (docs/robustness.md, "Bad input, issue 20").
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <sched.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>

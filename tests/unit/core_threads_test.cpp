@@ -1,6 +1,7 @@
-// The BLAS thread policy (core/numeric/threads.hpp) and the checkpoint policy (io/restart/checkpoint.hpp):
-// the budget from the affinity mask, the cgroup quota and the ranks of a node; the threads a
-// large kernel gets from the CPUs other processes left free; when a checkpoint is due.
+// The BLAS thread policy (core/numeric/threads.hpp) and the checkpoint policy
+// (io/restart/checkpoint.hpp): the budget from the affinity mask, the cgroup quota and the ranks of
+// a node; the threads a large kernel gets from the CPUs other processes left free; when a
+// checkpoint is due.
 #include <gtest/gtest.h>
 
 #include "tc/core/numeric/threads.hpp"

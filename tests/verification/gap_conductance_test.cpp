@@ -7,6 +7,9 @@
 //    resistance q = Δθ/(L₁/κ + 1/h(g) + L₂/κ) with h(g) = h_table(g) + k_gas/(g + g₀).
 //  - Closing the gap: the upper block lowered step by step through closure into contact; the
 //    conductance h(g⁺) + β_C p_n has no jump, so neither has the flux.
+//  - Radiation across a fixed open gap (grey parallel faces, ε = 1/(1/ε_s + 1/ε_m − 1)), bottom
+//    at 300 K, top at 900 K: the steady flux q solves κ(θ_s − θ_low)/L₁ = q = κ(θ_high − θ_m)/L₂
+//    = σε(θ_m⁴ − θ_s⁴) + h(g)(θ_m − θ_s), two equations in the faces' θ_s, θ_m (Newton here).
 #include "tc/physics/interface_heat/gap_conductance.hpp"
 
 #include <gtest/gtest.h>
@@ -25,13 +28,14 @@ constexpr double kLow = kTheta0 + 20, kHigh = kTheta0 + 40, kKappa = 52;
 
 /// The 4C blocks with the upper one lifted by `lift` and its top moved by `top` (a table).
 physics::Problem blocks_across_a_gap(double lift, const core::TimeTable& top, int steps,
-                                     const physics::GapConductance& law) {
+                                     const physics::GapConductance& law, double low = kLow,
+                                     double high = kHigh) {
   auto p = pressed_conduction_blocks(kTheta0, kKappa, 0.0, steps);
   p.bodies[1].mesh.transform({{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}, {0, 0, lift});
   for (auto& bc : p.boundaries)
     if (bc.body == 1 && bc.where == "zmax") bc.displacement[2] = top;
-  p.boundaries.push_back(temperature_bc(0, "zmin", kLow));
-  p.boundaries.push_back(temperature_bc(1, "zmax", kHigh));
+  p.boundaries.push_back(temperature_bc(0, "zmin", low));
+  p.boundaries.push_back(temperature_bc(1, "zmax", high));
   auto c = contact_pair(0, "zmax", 1, "zmin");
   c.conductance_slave = c.conductance_master = 10.0;  // β_C = 5 W/(m²K Pa) once pressed
   c.gap_conductance = law;
@@ -131,6 +135,84 @@ TEST(GapConductance, ClosingTheGapChangesTheFluxWithoutAJump) {
   for (const double x : q) std::cout << " " << x;
   std::cout << "; closed in step " << closed + 1 << ", change there " << at_closure
             << " W/m², largest elsewhere " << largest_other << "\n";
+}
+
+TEST(GapConductance, RadiationIsTheSecantOfTheFourthPower) {
+  // h_rad[θ] = σε(θ_s⁴ − θ_m⁴) is an identity ((a² + b²)(a + b)(a − b) = a⁴ − b⁴): only
+  // round-off of a few operations on numbers of 1e11 separates the two sides.
+  for (const auto& [ts, tm] : {std::pair{300.0, 900.0}, {1200.0, 400.0}, {500.0, 500.0 + 1e-6}}) {
+    const double q = physics::gap_radiation(0.5, ts, tm) * (ts - tm);
+    const double exact = physics::kStefanBoltzmann * 0.5 * (std::pow(ts, 4) - std::pow(tm, 4));
+    EXPECT_NEAR(q, exact, 1e-12 * physics::kStefanBoltzmann * std::pow(std::max(ts, tm), 4));
+  }
+  physics::GapConductance law;
+  law.emissivity_slave = 0.8;
+  law.emissivity_master = 0.5;
+  EXPECT_NEAR(law.effective_emissivity(), 1 / (1 / 0.8 + 1 / 0.5 - 1), 1e-15);
+  law.emissivity_master = 0;
+  EXPECT_EQ(law.effective_emissivity(), 0.0);
+}
+
+TEST(GapConductance, RadiationAndGasAcrossAFixedOpenGapReachTheNonlinearSeriesState) {
+  // ε_s = ε_m = 0.8 (ε = 2/3) with gas k = 0.02, g₀ = 1 mm at g = 2 mm (h_gas = 6.7 W/(m²K));
+  // at ~450 K / ~750 K h_rad ≈ 35 W/(m²K), both comparable to κ/L = 52: each term counts.
+  physics::GapConductance law;
+  law.gas_conductivity = 0.02;
+  law.gas_offset = 1e-3;
+  law.emissivity_slave = law.emissivity_master = 0.8;
+  const double gap = 2e-3, low = 300, high = 900;
+  auto p = blocks_across_a_gap(gap, core::TimeTable(0.0), 1, law, low, high);
+  // One step long enough to be steady (τ = 1e12 s against the blocks' L²c/κ ≈ 0.02 s), from
+  // 293 K everywhere: only the fixed point iterating θ with h_rad(θ) until θ settles reaches
+  // the state (stopped by the rules of a θ-independent conductance, the flux was 2.7 % high).
+  // It contracts (|d(h_rad[θ])/dθ| is below the series' conductance); to 1e-12 so that what it
+  // leaves is far below the 1e-8 asked.
+  p.time.step = p.time.end = 1e12;
+  p.solver.coupling_tolerance = 1e-12;
+  p.solver.max_coupling_iterations = 200;
+  physics::Simulation sim(p);
+  sim.enable_mortar_contact();
+  const double before = sim.history("heat_gap_conducted");
+  sim.advance();
+  EXPECT_LE(sim.history("contact_normal_force"), 1e-12);  // open: no pressure
+  // The closed form: F(θ_s, θ_m) = 0 by Newton (quadratic convergence to round-off).
+  const double eps = law.effective_emissivity(), sigma = physics::kStefanBoltzmann;
+  const double hg = law.gas_conductivity / (gap + law.gas_offset);
+  double ts = low + (high - low) / 3, tm = high - (high - low) / 3;
+  for (int it = 0; it < 50; ++it) {
+    const double across = sigma * eps * (std::pow(tm, 4) - std::pow(ts, 4)) + hg * (tm - ts);
+    const double f1 = kKappa * (ts - low) - across, f2 = kKappa * (high - tm) - across;
+    const double da_ts = -4 * sigma * eps * std::pow(ts, 3) - hg;
+    const double da_tm = 4 * sigma * eps * std::pow(tm, 3) + hg;
+    // J = [[κ − da_ts, −da_tm], [−da_ts, −κ − da_tm]]
+    const double j11 = kKappa - da_ts, j12 = -da_tm, j21 = -da_ts, j22 = -kKappa - da_tm;
+    const double det = j11 * j22 - j12 * j21;
+    ts -= (f1 * j22 - f2 * j12) / det;
+    tm -= (j11 * f2 - j21 * f1) / det;
+  }
+  const double q = kKappa * (ts - low);
+  // As in the series test: linear elements hold the linear profiles, the nodal gap is exact,
+  // θ_s and θ_m uniform over the faces; left are the solves' round-off and the fixed point's
+  // 1e-12, far below the 1e-8 asked.
+  const auto flux = sim.contact_heat_flux();
+  ASSERT_EQ(flux.size(), 16u);
+  for (const double f : flux) EXPECT_NEAR(f, -q, 1e-8 * q);
+  for (int b = 0; b < 2; ++b) {
+    const auto theta = sim.state(b).theta.to_std();
+    const auto& m = p.bodies[b].mesh;
+    for (int a = 0; a < m.n_nodes(); ++a) {
+      const double z = m.point(a)[2];
+      const double expected =
+          b == 0 ? low + q * (z + 0.5) / kKappa : high - q * (1.5 + gap - z) / kKappa;
+      EXPECT_NEAR(theta[a], expected, 1e-8 * (high - low)) << "body " << b << " node " << a;
+    }
+  }
+  const double step_gap = (sim.history("heat_gap_conducted") - before) / p.time.step;
+  EXPECT_NEAR(step_gap, -q, 1e-8 * q);
+  std::cout << "[ measure  ] radiation + gas across a fixed gap: faces " << ts << " K / " << tm
+            << " K, flux " << -flux[0] << " W/m² against " << q << " (relative " << -flux[0] / q - 1
+            << "); h_rad = " << physics::gap_radiation(eps, ts, tm) << " W/(m²K), h_gas = " << hg
+            << "\n";
 }
 
 }  // namespace

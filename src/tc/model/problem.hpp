@@ -120,13 +120,21 @@ struct RigidTool {
 };
 
 /// The conductance across the gap g at a slave node, h(g) ≥ 0 [W/(m²K)] (`gap_conductance`):
-/// a table in g plus gas conduction k_gas/(g + g₀), at g⁺ = max(g, 0). It is added to the
-/// pressure-dependent β_C p_n at every node of the pair, open or closed, so that the
-/// conductance is continuous at closure (docs/choices.md, "Gap conductance").
+/// a table in g plus gas conduction k_gas/(g + g₀), at g⁺ = max(g, 0), plus radiation between
+/// the two grey faces. It is added to the pressure-dependent β_C p_n at every node of the pair,
+/// open or closed, so that the conductance is continuous at closure (docs/choices.md, "Gap
+/// conductance", "Radiation across the gap").
 struct GapConductance {
   TimeTable table{0.0};         // h_table(g), piecewise linear in g [m] (not in time)
   double gas_conductivity = 0;  // k_gas [W/(m·K)] ≥ 0
   double gas_offset = 0;        // g₀ [m], > 0 where k_gas > 0
+  double emissivity_slave = 0, emissivity_master = 0;  // ε_s, ε_m ∈ [0, 1] of the two faces
+  /// ε of two parallel grey faces, 1/(1/ε_s + 1/ε_m − 1); 0 when either face is 0 (no
+  /// radiation).
+  [[nodiscard]] double effective_emissivity() const {
+    if (!(emissivity_slave > 0 && emissivity_master > 0)) return 0.0;
+    return 1.0 / (1.0 / emissivity_slave + 1.0 / emissivity_master - 1.0);
+  }
 };
 
 /// One contact pair ([[contact]], or the single [contact] table): a slave surface of one body

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "tc/core/numeric/collective.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/collective.hpp"
 
 namespace tc::qp {
 

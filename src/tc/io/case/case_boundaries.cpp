@@ -223,6 +223,8 @@ void CaseReader::read_gap_conductance(const TableReader& contact, physics::Conta
       law.table = *t;
   if (const auto k = g->number("gas_conductivity")) law.gas_conductivity = *k;
   if (const auto g0 = g->number("gas_offset")) law.gas_offset = *g0;
+  if (const auto e = g->number("emissivity_slave")) law.emissivity_slave = *e;
+  if (const auto e = g->number("emissivity_master")) law.emissivity_master = *e;
   if (law.gas_conductivity > 0 && !g->has("gas_offset"))
     g->issue("gas_offset",
              "missing; expected g₀ > 0 [m] of k_gas/(g + g₀) with gas_conductivity > 0 (the "

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "tc/io/vtk/vtkhdf.hpp"
 #include "tc/io/schema/table_reader.hpp"
+#include "tc/io/vtk/vtkhdf.hpp"
 #include "tc/model/problem.hpp"
 
 namespace tc::io::detail {
@@ -61,7 +61,8 @@ class CaseReader {
   /// One pair at `path` ("contact" or "contact[i]"), appended to p_.contacts.
   TableReader read_contact(const toml::table& t, std::string path);
   void read_conductance(const TableReader& contact, physics::ContactSettings& c);
-  /// `gap_conductance = { table, gas_conductivity, gas_offset }` of pair c.
+  /// `gap_conductance = { table, gas_conductivity, gas_offset, emissivity_slave,
+  /// emissivity_master }` of pair c.
   void read_gap_conductance(const TableReader& contact, physics::ContactSettings& c);
   /// `master = { rigid = "plane", point, normal, velocity | displacement, temperature }` of
   /// pair c (case_rigid_tool.cpp): c.rigid_master, or issues; false when it has issues.

@@ -5,21 +5,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tc/io/schema/case_schema_parts.hpp"
+
 namespace tc::io::schema {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Ranges, with the words of the messages ("found 0.0, expected a time step > 0").
-constexpr Range above_zero(std::string_view words) {
-  return {0, kInf, false, false, words};
-}
-constexpr Range from_zero(std::string_view words) {
-  return {0, kInf, true, false, words};
-}
 constexpr Range kTemperature = above_zero("a temperature > 0 K");
 constexpr Range kFraction{0, 1, false, false, "a number in (0, 1)"};
+constexpr Range kEmissivity{0, 1, true, true, "an emissivity in [0, 1]"};
 
 using T = Type;
 
@@ -332,7 +326,8 @@ constexpr Key kContact[] = {
      .doc = "the δ_C 𝔉 λ_n ‖[u̇]_τ‖ term (d_θγ)"},
     {.name = "gap_conductance",
      .type = T::table,
-     .doc = "{ table, gas_conductivity, gas_offset }: h(g) across the gap, added to β_C p_n"},
+     .doc = "{ table, gas_conductivity, gas_offset, emissivity_slave, emissivity_master }: h "
+            "across the gap, added to β_C p_n"},
 };
 
 constexpr Key kGapConductance[] = {
@@ -353,6 +348,16 @@ constexpr Key kGapConductance[] = {
      .range = above_zero("a length > 0"),
      .unit = "m",
      .doc = "g₀ of k_gas/(g + g₀); needed with k_gas > 0"},
+    {.name = "emissivity_slave",
+     .type = T::number,
+     .range = kEmissivity,
+     .default_value = "0.0",
+     .doc = "ε_s of the slave face, for radiation σε(θ_s⁴ − θ_m⁴) across the gap"},
+    {.name = "emissivity_master",
+     .type = T::number,
+     .range = kEmissivity,
+     .default_value = "0.0",
+     .doc = "ε_m of the master face; ε = 1/(1/ε_s + 1/ε_m − 1), none if either is 0"},
 };
 
 constexpr std::string_view kRigidShapes[] = {"plane"};
@@ -413,8 +418,6 @@ constexpr std::string_view kFactorizations[] = {"auto", "mumps", "cholmod", "pet
 constexpr std::string_view kPreconditioners[] = {"dirichlet", "lumped", "none"};
 constexpr std::string_view kContactDuals[] = {"auto", "nested", "combined"};
 constexpr std::string_view kConductanceTreatments[] = {"implicit", "lagged"};
-constexpr std::string_view kOutputFormats[] = {"ascii", "binary", "vtkhdf"};
-constexpr std::string_view kCompressions[] = {"none", "zlib"};
 
 constexpr Key kSolver[] = {
     {.name = "coupling_tolerance",
@@ -519,80 +522,30 @@ constexpr Key kSolver[] = {
      .doc = "halvings of a failed step"},
 };
 
-constexpr Key kOutput[] = {
-    {.name = "directory",
-     .type = T::string,
-     .default_value = "\"out\"",
-     .doc = "relative to the case file unless absolute"},
-    {.name = "every",
-     .type = T::integer,
-     .default_value = "1",
-     .doc = "fields every n steps (history.csv gets every step)"},
-    {.name = "format",
-     .type = T::choice,
-     .choices = kOutputFormats,
-     .default_value = "\"ascii\"",
-     .doc = ".vtu arrays as text, or appended raw binary; or one VTKHDF file per body and step "
-            "(parallel HDF5)"},
-    {.name = "compression",
-     .type = T::choice,
-     .choices = kCompressions,
-     .default_value = "\"none\"",
-     .doc = "zlib-compressed binary arrays (implies format = \"binary\")"},
-    {.name = "contact_csv",
-     .type = T::boolean,
-     .default_value = "false",
-     .doc = "contact_<step>.csv of the contact nodes at each written step"},
-    {.name = "checkpoint_every",
-     .type = T::integer,
-     .min = 0,
-     .default_value = "0",
-     .doc = "checkpoint.bin after every n steps (0: not by count)"},
-    {.name = "checkpoint_seconds",
-     .type = T::number,
-     .range = from_zero("checkpoint_seconds (s) ≥ 0"),
-     .default_value = "10.0",
-     .unit = "s",
-     .doc = "checkpoint.bin every s of wall time (0: not by time)"},
-};
-
-constexpr Key kProbe[] = {
-    {.name = "name",
-     .type = T::string,
-     .default_value = "required",
-     .doc = "prefix of its probes.csv columns: letters, digits, '_'"},
-    {.name = "body", .type = T::name, .default_value = "required", .doc = "the body it is in"},
-    {.name = "point",
-     .type = T::vector,
-     .unit = "m",
-     .doc = "where, in the reference configuration (or where)"},
-    {.name = "where", .type = T::name, .doc = "a boundary of the body: the mean over its nodes"},
-};
-
-constexpr Section kSections[] = {
-    {"", kRoot},
-    {"time", kTime},
-    {"physics", kPhysics},
-    {"materials.*", kMaterial},
-    {"bodies", kBody},
-    {"bodies.mesh", kMesh},
-    {"bodies.mesh.box", kBox},
-    {"boundary", kBoundary},
-    {"boundary.film", kFilm},
-    {"boundary.radiation", kRadiation},
-    {"contact", kContact},
-    {"contact.slave", kSurface},
-    {"contact.master", kSurface},
-    {"contact.conductance", kConductance},
-    {"contact.gap_conductance", kGapConductance},
-    {"solver", kSolver},
-    {"output", kOutput},
-    {"probe", kProbe},
-};
-
 }  // namespace
 
 std::span<const Section> sections() {
+  // [output] and [[probe]]: case_schema_output.cpp.
+  static const Section kSections[] = {
+      {"", kRoot},
+      {"time", kTime},
+      {"physics", kPhysics},
+      {"materials.*", kMaterial},
+      {"bodies", kBody},
+      {"bodies.mesh", kMesh},
+      {"bodies.mesh.box", kBox},
+      {"boundary", kBoundary},
+      {"boundary.film", kFilm},
+      {"boundary.radiation", kRadiation},
+      {"contact", kContact},
+      {"contact.slave", kSurface},
+      {"contact.master", kSurface},
+      {"contact.conductance", kConductance},
+      {"contact.gap_conductance", kGapConductance},
+      {"solver", kSolver},
+      {"output", output_keys()},
+      {"probe", probe_keys()},
+  };
   return kSections;
 }
 

@@ -26,6 +26,7 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
   conductance_.resize(n_pairs);
   gap_weights_.clear();
   gap_weights_.resize(n_pairs);
+  gap_open_.assign(n_pairs, {});
   bodies_.clear();
   for (const auto& it : pairs) bodies_.push_back(it.bodies);
   TC_VERIFY(heat_.size() == n_pairs, "set_pairs sized the pairs' heat");
@@ -87,7 +88,15 @@ void ContactHeatCoupling::heat_step(const Problem& p, const BodyGroup& group,
     auto& g = gamma[q];
     std::vector<double> open(g.size(), 0.0);
     if (gap) {
-      open = nodal_gap_conductance(*gap, it.rows);
+      // Radiation at the faces' θ of the last iterate: the fixed point iterates θ with it
+      // (InterfaceLaws::gap_radiates), so the secant h_rad[θ] converges to σε(θ_s⁴ − θ_m⁴).
+      const auto faces =
+          gap->effective_emissivity() > 0
+              ? std::optional(gap_faces(*it.mortar, group.fields[it.bodies.slave]->theta_new,
+                                        group.fields[it.bodies.master]->theta_new))
+              : std::nullopt;
+      open = nodal_gap_conductance(*gap, it.rows, faces ? &*faces : nullptr);
+      gap_open_[q] = open;
       const auto l = it.mortar->thermal_conductance(open, 1.0);
       auto& w = gap_weights_[q].emplace(core::Vector(l.ss.rows()), core::Vector(l.ms.rows()));
       core::Vector ones(l.ss.cols());  // L_ms = L_smᵀ: both row sums over the slave's nodes

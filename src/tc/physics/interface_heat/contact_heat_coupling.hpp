@@ -49,6 +49,10 @@ class ContactHeatCoupling {
   /// last heat step (those that produced θ^{k+1}); the fields' work_theta is scratch.
   void account_step(const BodyGroup& group, double tau);
 
+  /// The gap conductance h per contact node of pair q in the last heat step (empty: none).
+  [[nodiscard]] std::span<const double> gap_conductance(size_t q) const {
+    return q < gap_open_.size() ? std::span<const double>(gap_open_[q]) : std::span<const double>();
+  }
   /// The heat through the interface of each pair, and summed over the pairs.
   [[nodiscard]] const std::vector<ContactHeat>& pair_heat() const { return heat_; }
   [[nodiscard]] std::vector<ContactHeat>& pair_heat() { return heat_; }
@@ -86,8 +90,9 @@ class ContactHeatCoupling {
   // Per pair with a gap conductance, of the last heat step: L_gap,ss1 and L_gap,ms1, whose dot
   // products with θ_s and θ_m are the heat through h(g) (slave → master).
   std::vector<std::optional<std::pair<core::Vector, core::Vector>>> gap_weights_;
-  std::vector<PairBodies> bodies_;  // each pair's slave and master in the group
-  std::vector<ContactHeat> heat_;   // per pair
+  std::vector<std::vector<double>> gap_open_;  // h per contact node of each pair's last heat step
+  std::vector<PairBodies> bodies_;             // each pair's slave and master in the group
+  std::vector<ContactHeat> heat_;              // per pair
   ContactHeat total_;
   long newton_ = 0, newton_inner_ = 0;
 };

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <limits>
 
-#include "tc/core/numeric/blas.hpp"
 #include "tc/core/error.hpp"
+#include "tc/core/numeric/blas.hpp"
 #include "tc/core/verify.hpp"
 
 namespace tc::physics {

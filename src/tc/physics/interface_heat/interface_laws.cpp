@@ -11,7 +11,9 @@ InterfaceLaws::InterfaceLaws(const ContactSettings& c)
     : friction_(c.friction),
       gamma_slave_(c.conductance_slave),
       gamma_master_(c.conductance_master),
-      conducting_(conducts_somewhere()) {}
+      conducting_(conducts_somewhere()),
+      radiates_(c.heat_conduction && c.gap_conductance &&
+                c.gap_conductance->effective_emissivity() > 0) {}
 
 double InterfaceLaws::beta_c(double theta) const {
   const double gs = gamma_slave_(theta), gm = gamma_master_(theta);

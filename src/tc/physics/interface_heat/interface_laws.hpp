@@ -41,6 +41,9 @@ class InterfaceLaws {
   [[nodiscard]] bool conductance_varies() const {
     return !gamma_slave_.is_constant() || !gamma_master_.is_constant();
   }
+  /// Radiation across the gap (GapConductance with both emissivities > 0): its conductance
+  /// depends on the faces' temperatures, so the fixed point iterates θ.
+  [[nodiscard]] bool gap_radiates() const { return radiates_; }
 
   /// The laws at the temperatures θ_k of the contact nodes.
   [[nodiscard]] NodalLaws at(std::span<const double> theta) const;
@@ -57,6 +60,7 @@ class InterfaceLaws {
 
   core::TemperatureTable friction_, gamma_slave_, gamma_master_;
   bool conducting_ = false;  // conducts_somewhere(), fixed with the tables
+  bool radiates_ = false;
 };
 
 /// θ_Γ,k = ½(θ_s,k + θ_m,k) at contact node k: θ_s at the slave node, θ_m =

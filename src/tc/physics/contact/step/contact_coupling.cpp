@@ -412,7 +412,8 @@ int ContactCoupling::couple(int step) {
                              // θ iterates itself when the conductance is lagged or depends on θ
                              // (then the heat step with the final λ is not the last one needed).
                              .theta_iterates = heat_.treatment() == ConductanceTreatment::lagged ||
-                                               any_pair(&InterfaceLaws::conductance_varies)};
+                                               any_pair(&InterfaceLaws::conductance_varies) ||
+                                               any_pair(&InterfaceLaws::gap_radiates)};
   for (const auto* f : g.fields) {
     physics.heating = physics.heating || f->heating;
     physics.expansion = physics.expansion || f->expansion;

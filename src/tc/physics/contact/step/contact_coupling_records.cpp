@@ -188,8 +188,11 @@ void ContactCoupling::bookkeeping() {
           pr.mortar->contact_nodes().size() == static_cast<size_t>(rows.n_nodes())) {
         std::vector<double> scale(pr.nodal.beta_c);
         for (double& s : scale) s *= unit;
-        const auto open = c.gap_conductance ? nodal_gap_conductance(*c.gap_conductance, rows)
-                                            : std::vector<double>{};
+        // h of the last heat step (its radiation at that iterate's θ), as the ledger has it.
+        const auto last = heat_.gap_conductance(static_cast<size_t>(q));
+        const auto open = !c.gap_conductance ? std::vector<double>{}
+                          : last.empty()     ? nodal_gap_conductance(*c.gap_conductance, rows)
+                                             : std::vector<double>(last.begin(), last.end());
         pr.heat_flux =
             conduction_flux(*pr.mortar, rows, lq, scale, bodies_.fields[c.slave_body]->theta_new,
                             bodies_.fields[c.master_body]->theta_new, open);
