@@ -260,6 +260,61 @@ void lump_rows(core::SparseMatrix& m) {
   TC_PETSC(MatDiagonalSet(m.get(), sums.get(), INSERT_VALUES));
 }
 
+namespace {
+
+/// Row-sum lumping of the cell's mass gives every node a positive share (∫N_a > 0).
+bool row_sums_positive(CellType t) {
+  return t != CellType::Tri6 && t != CellType::Quad8 && t != CellType::Tet10 &&
+         t != CellType::Hex20;
+}
+
+bool all_row_sums_positive(const mesh::Mesh& m) {
+  for (int c = 0; c < m.n_cells(); ++c)
+    if (!row_sums_positive(m.cell_type(c))) return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<double> lumped_volumes(const mesh::Mesh& m) {
+  if (all_row_sums_positive(m)) return volume_integrals(m);
+  std::vector<double> out(m.n_nodes(), 0.0);
+  for (int c = 0; c < m.n_cells(); ++c) {
+    const auto t = m.cell_type(c);
+    const auto x = cell_coords(m, c);
+    const auto nodes = m.cell(c);
+    if (row_sums_positive(t)) {
+      const auto v = cell_load(t, x);
+      for (size_t a = 0; a < nodes.size(); ++a) out[nodes[a]] += v[static_cast<Eigen::Index>(a)];
+      continue;
+    }
+    // HRZ: the consistent diagonal, scaled to the cell's volume Σ_ab (M_e)_ab (M_e of ρc = 1).
+    const auto me = mass_theta(t, x, 1.0);
+    const double scale = me.sum() / me.trace();
+    for (size_t a = 0; a < nodes.size(); ++a) {
+      const auto i = static_cast<Eigen::Index>(a);
+      out[nodes[a]] += scale * me(i, i);
+    }
+  }
+  return out;
+}
+
+void lump_heat_capacity(core::SparseMatrix& mass_theta, const mesh::Mesh& m, double heat_capacity) {
+  if (all_row_sums_positive(m)) return lump_rows(mass_theta);
+  const auto v = lumped_volumes(m);
+  core::Handle<::Vec, VecDestroy> diagonal;
+  TC_PETSC(MatCreateVecs(mass_theta.get(), nullptr, diagonal.out()));
+  PetscInt first = 0, end = 0;  // this rank's rows (all of them when whole)
+  TC_PETSC(VecGetOwnershipRange(diagonal.get(), &first, &end));
+  for (PetscInt row = first; row < end; ++row)
+    TC_PETSC(VecSetValue(diagonal.get(), row, heat_capacity * v[static_cast<size_t>(row)],
+                         INSERT_VALUES));
+  TC_PETSC(VecAssemblyBegin(diagonal.get()));
+  TC_PETSC(VecAssemblyEnd(diagonal.get()));
+  TC_PETSC(MatZeroEntries(mass_theta.get()));
+  TC_PETSC(MatDiagonalSet(mass_theta.get(), diagonal.get(), INSERT_VALUES));
+}
+
 std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f) {
   std::vector<double> out(m.n_nodes(), 0.0);
   for (int c = 0; c < m.n_cells(); ++c) {

@@ -71,6 +71,17 @@ struct WeightedFacet {
 /// in the pattern (so a·M + b·K still shares it with K); whole or spread over the ranks.
 void lump_rows(core::SparseMatrix& m);
 
+/// The lumped heat capacity per unit ρc at each node (length n_nodes): ∫N_a over the cells whose
+/// row sums are positive (first order, Quad9, Hex27: row-sum lumping), and Hinton, Rock &
+/// Zienkiewicz's diagonal scaling V_e (M_e)_aa / tr M_e over Tri6, Quad8, Tet10 and Hex20 cells,
+/// whose row sums ∫N_a are zero or negative at the corners (docs/choices.md, "Mass of
+/// second-order cells"). Both keep each cell's volume; a mesh without HRZ cells gets
+/// volume_integrals to the bit.
+[[nodiscard]] std::vector<double> lumped_volumes(const mesh::Mesh& m);
+/// M_θ (of heat capacity ρc) lumped in place to ρc·lumped_volumes: lump_rows itself, to the bit,
+/// on a mesh whose cells all have positive row sums; whole or spread over the ranks.
+void lump_heat_capacity(core::SparseMatrix& mass_theta, const mesh::Mesh& m, double heat_capacity);
+
 /// ∫ f N_a dx per node (length n_nodes); f = 1 when empty.
 [[nodiscard]] std::vector<double> volume_integrals(const mesh::Mesh& m, const Func& f = {});
 /// ∫ f N_a dS over the facets of a boundary, per node of the mesh (length n_nodes).

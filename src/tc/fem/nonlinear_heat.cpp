@@ -13,7 +13,7 @@ double law_or(const core::TemperatureTable& law, double constant, double theta) 
 }  // namespace
 
 NonlinearHeat::NonlinearHeat(const mesh::Mesh& m, const Material& mat, double theta0, bool lumped)
-    : mat_(mat), theta0_(theta0), lumped_(lumped), dim_(m.dim()), volumes_(volume_integrals(m)) {
+    : mat_(mat), theta0_(theta0), lumped_(lumped), dim_(m.dim()), volumes_(lumped_volumes(m)) {
   cells_.reserve(static_cast<size_t>(m.n_cells()));
   for (int c = 0; c < m.n_cells(); ++c) {
     const auto nodes = m.cell(c);

@@ -25,7 +25,8 @@ namespace tc::fem {
 
 class NonlinearHeat {
  public:
-  /// `lumped`: the heat capacity lumped to nodes as M_θ's row sums ([physics] heat_capacity).
+  /// `lumped`: the heat capacity lumped to nodes as M_θ is (lumped_volumes: row sums, HRZ on
+  /// Tri6, Quad8, Tet10, Hex20; [physics] heat_capacity).
   NonlinearHeat(const mesh::Mesh& m, const Material& mat, double theta0, bool lumped);
 
   /// h(θ) = ρ ∫_{θ₀}^{θ} c_p dθ [J/m³].

@@ -33,7 +33,7 @@ double thermal_energy(const Problem& p, const Bodies& bodies) {
       e += heat->total_enthalpy(bodies.states[b].theta);
       continue;
     }
-    const auto& vol = bodies.systems[b]->node_volumes();
+    const auto& vol = bodies.systems[b]->capacity_volumes();
     const auto theta = bodies.states[b].theta.to_std();
     const double c = bodies.systems[b]->body().material.heat_capacity();
     for (size_t a = 0; a < vol.size(); ++a) e += c * vol[a] * (theta[a] - theta0);

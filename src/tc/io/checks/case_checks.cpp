@@ -455,30 +455,9 @@ void check_quasistatic_bodies_held(const Problem& p, const toml::table& root, Is
   }
 }
 
-/// Row-sum lumping of M_θ gives Tri6 corners no heat capacity and Quad8, Tet10 and Hex20
-/// corners a negative one (∫N_a ≤ 0 there): refused (docs/choices.md, "Second-order mass").
-void check_lumped_second_order(const Problem& p, const toml::table& root, Issues& issues) {
-  if (!p.physics.lumped_heat_capacity) return;
-  for (const auto& b : p.bodies)
-    for (int c = 0; c < b.mesh.n_cells(); ++c) {
-      const auto t = b.mesh.cell_type(c);
-      if (t != mesh::CellType::Tri6 && t != mesh::CellType::Quad8 && t != mesh::CellType::Tet10 &&
-          t != mesh::CellType::Hex20)
-        continue;
-      issues.add(line_of(*root.get("physics")), "physics.heat_capacity",
-                 fmt::format("found heat_capacity = \"lumped\" with body \"{}\" of {} cells, "
-                             "whose row sums of M_θ are zero or negative at the corners; "
-                             "expected heat_capacity = \"consistent\" (or Quad9, Hex27 cells, "
-                             "whose row sums are positive)",
-                             b.name, mesh::name(t)));
-      return;
-    }
-}
-
 }  // namespace
 
 void check_across_sections(const Problem& p, const toml::table& root, Issues& issues) {
-  if (issues.empty()) check_lumped_second_order(p, root, issues);
   if (issues.empty()) check_boundary_conflicts(p, root, issues);
   if (issues.empty()) check_load_control(p, root, issues);
   if (issues.empty()) check_reaction_columns(p, root, issues);

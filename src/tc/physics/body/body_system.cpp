@@ -62,7 +62,10 @@ BodySystem::BodySystem(const Problem& problem, int index)
   u_dofs_.erase(std::unique(u_dofs_.begin(), u_dofs_.end()), u_dofs_.end());
   th_dofs_ = keys(th_prescribed_);
   lumped_ = problem.physics.lumped_heat_capacity;
-  if (lumped_) fem::lump_rows(m_.mass_theta);
+  if (lumped_) {
+    fem::lump_heat_capacity(m_.mass_theta, body_->mesh, body_->material.heat_capacity());
+    if (auto w = fem::lumped_volumes(body_->mesh); w != volumes_) capacity_volumes_ = std::move(w);
+  }
   if (body_time_scheme(problem).massless_contact_faces(problem))
     for (const auto& c : problem.contacts)  // every contact surface of the body, of any pair
       for (const auto& [b, where] :
@@ -99,9 +102,10 @@ BodySystem::BodySystem(const Problem& problem, int index)
 
 fem::BodyMatrices BodySystem::subdomain_matrices(int s) const {
   auto m = fem::assemble_body(subdomains_.at(static_cast<size_t>(s)).mesh, body_->material);
-  if (lumped_)
-    fem::lump_rows(m.mass_theta);  // row sums are additive over cells: Σ_s lumped = lumped
-  if (!massless_.empty()) {        // cell by cell, so Σ_s of the subdomains' is the body's
+  if (lumped_)  // cell by cell: Σ_s of the subdomains' lumped M_θ is the body's
+    fem::lump_heat_capacity(m.mass_theta, subdomains_.at(static_cast<size_t>(s)).mesh,
+                            body_->material.heat_capacity());
+  if (!massless_.empty()) {  // cell by cell, so Σ_s of the subdomains' is the body's
     const auto& sub = subdomains_.at(static_cast<size_t>(s));
     std::vector<char> local(sub.global_node.size());
     for (size_t a = 0; a < local.size(); ++a)

@@ -94,6 +94,12 @@ class BodySystem {
   [[nodiscard]] const std::vector<CoupledFace>& coupled_faces() const { return coupled_; }
   /// ∫ N_a dx per node: turns nodal fields into integrals (e.g. thermal energy).
   [[nodiscard]] const std::vector<double>& node_volumes() const { return volumes_; }
+  /// The weights of the heat capacity ρc·w_a that the heat step's M_θ holds on the diagonal
+  /// sum 1ᵀM_θ(θ − θ₀) = Σ_a ρc w_a(θ_a − θ₀): ∫N_a, or fem::lumped_volumes when M_θ is lumped
+  /// by HRZ somewhere (then the thermal energy is what the scheme conserves).
+  [[nodiscard]] const std::vector<double>& capacity_volumes() const {
+    return capacity_volumes_.empty() ? volumes_ : capacity_volumes_;
+  }
 
   /// The FETI subdomains of the body (6.2; empty unless body().subdomains > 1) and the
   /// subdomain of every cell (all 0 when not decomposed).
@@ -143,6 +149,7 @@ class BodySystem {
   core::RowBlocks theta_rows_;
   fem::BodyMatrices m_;
   std::vector<double> volumes_;
+  std::vector<double> capacity_volumes_;  // lumped_volumes where they differ from volumes_
   std::map<PetscInt, TimeTable> u_prescribed_, th_prescribed_;  // a later [[boundary]] wins
   std::vector<PetscInt> u_dofs_, th_dofs_;
   std::vector<NodalLoad> u_loads_, th_loads_;
