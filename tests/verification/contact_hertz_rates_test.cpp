@@ -10,9 +10,10 @@
 // at the edge bounds the whole zone's L2 rate by about 1 at any order; inside, p is analytic
 // and the order shows, up to the pollution from the edge and the discrete edge of contact
 // falling between nodes. Measured (docs/theory.md, "Hertz under refinement"): the inner rate
-// is ~1.4–1.7 at second order against ~1.1–1.4 at first, with 3–5 times smaller errors at the
-// same h; the whole zone converges at ~1 at either order and the quadratic is not more
-// accurate there (a finding: the edge dominates that norm).
+// is ~1.4–1.7 at second order against ~1.1–1.4 at first, with 1.7–9 times smaller errors at the
+// same h; the whole zone converges at ~1 at either order and the quadratic is not
+// consistently more accurate there (a finding: Quad8/Quad9 are above Quad4, the nodal
+// λ_k ≥ 0 against the negative p̄_k of a Line3 vertex just outside the zone).
 //
 // What is asserted, on the least-squares slope over the three levels (the unstructured meshes
 // make a single pair of levels move by ±0.5 with where the nodes fall relative to ±a):

@@ -15,8 +15,8 @@
 // the run transmits, from which a and p₀ are computed): only the profile's shape is measured.
 // It is taken over the whole slave surface (e_all) and over the nodes with |x_k| < 0.8a
 // (e_in), where p is smooth: the pressure ~ √(a − |x|) at the edge of contact limits the whole
-// zone's L2 rate to ~1 (the best approximation of x^½ on a uniform mesh is O(h^{1/2+½}) in L2
-// for any polynomial degree), while inside the zone the rate is what the edge pollutes.
+// zone's L2 rate to ~1 (the best approximation of x^½ on a uniform mesh is O(h^{1/2 + 1/2}) = O(h)
+// in L2 for any polynomial degree), while inside the zone the rate is what the edge pollutes.
 #include <cmath>
 #include <cstdio>
 #include <functional>
