@@ -6,16 +6,27 @@ namespace tc::physics {
 
 ConstrainedSolver::ConstrainedSolver(const core::SparseMatrix& a, std::vector<PetscInt> dofs,
                                      const std::string& package, linalg::FactorRanks ranks)
-    : direct_(std::make_unique<linalg::EliminatedCholesky>(a, std::move(dofs), package, ranks)) {}
+    : direct_(std::make_unique<linalg::EliminatedCholesky>(a, std::move(dofs), package, ranks)),
+      ranks_(ranks) {}
 
 ConstrainedSolver::ConstrainedSolver(core::SparseMatrix&& a, std::vector<PetscInt> dofs,
                                      const std::string& package, linalg::FactorRanks ranks)
     : direct_(std::make_unique<linalg::EliminatedCholesky>(std::move(a), std::move(dofs), package,
-                                                           ranks)) {}
+                                                           ranks)),
+      ranks_(ranks) {}
 
 ConstrainedSolver::ConstrainedSolver(std::unique_ptr<feti::Feti> feti) : feti_(std::move(feti)) {}
 ConstrainedSolver::~ConstrainedSolver() = default;
 ConstrainedSolver::ConstrainedSolver(ConstrainedSolver&&) noexcept = default;
+
+void ConstrainedSolver::refactorise(core::SparseMatrix&& a) {
+  TC_VERIFY(!feti_, "refactorise: a direct factor (FETI bodies keep constant moduli)");
+  auto dofs = direct_->dofs();
+  const auto package = direct_->factor().package();
+  direct_.reset();  // the old factor freed before the new one is computed: one at the peak
+  direct_ =
+      std::make_unique<linalg::EliminatedCholesky>(std::move(a), std::move(dofs), package, ranks_);
+}
 
 void ConstrainedSolver::solve_homogeneous_many(::Mat b, ::Mat x) const {
   if (feti_)

@@ -31,6 +31,10 @@ class ConstrainedSolver {
   ~ConstrainedSolver();
   ConstrainedSolver(ConstrainedSolver&&) noexcept;
 
+  /// Replaces the direct factor by one of `a` (same constrained dofs, package and ranks):
+  /// A_u after E(θ), ν(θ) moved K_u. Every compliance of this solver is then stale
+  /// (DualContactSolver::refactorised). Not for FETI (refused by `check`).
+  void refactorise(core::SparseMatrix&& a);
   /// On entry x holds the prescribed values at the constrained dofs (other entries are
   /// ignored); on exit x solves the equations of the free dofs.
   void solve(const core::Vector& b, core::Vector& x) const;
@@ -54,6 +58,7 @@ class ConstrainedSolver {
 
  private:
   std::unique_ptr<linalg::EliminatedCholesky> direct_;
+  linalg::FactorRanks ranks_ = linalg::FactorRanks::this_rank;  // of direct_
   std::unique_ptr<feti::Feti> feti_;
 };
 

@@ -38,6 +38,16 @@ DualContactSolver::DualContactSolver(const ConstrainedSolver& slave,
                                      PetscInt n_u_master, DualContactSettings settings)
     : DualContactSolver({&slave, &master}, {n_u_slave, n_u_master}, std::move(settings)) {}
 
+void DualContactSolver::refactorised(int i) {
+  const bool over_ranks = std::all_of(bodies_.begin(), bodies_.end(),
+                                      [](const auto* b) { return b->unit_rows_at_once(); });
+  const auto k = static_cast<size_t>(i);
+  const PetscInt n = compliance_[k]->n_dofs();
+  compliance_[k].reset();
+  compliance_[k] = bodies_[k]->compliance(n, over_ranks);
+  corrected_[k] = {};
+}
+
 void DualContactSolver::apply_f(const core::Vector& x, core::Vector& y) const {
   for (int i = 0; i < n_bodies(); ++i) {
     b_[i].mult_transpose(x, w_in_[i]);

@@ -72,6 +72,10 @@ class DualContactSolver {
   DualContactSolver(const ConstrainedSolver& slave, const ConstrainedSolver& master,
                     PetscInt n_u_slave, PetscInt n_u_master, DualContactSettings settings);
 
+  /// Body i's solver was refactorised (ConstrainedSolver::refactorise): its compliance is
+  /// formed anew from the new factor, the records of the old one dropped. The next set_rows
+  /// forms F from it.
+  void refactorised(int i);
   /// New constraint rows (each step, from the mortar pairs in the current configuration): the
   /// rows of every pair, stacked in this order (pair p's contact nodes follow pair p − 1's),
   /// with the bodies each pair's slave and master columns belong to.

@@ -82,6 +82,43 @@ NodeGraph node_graph(const mesh::Mesh& m) {
   return g;
 }
 
+namespace {
+
+/// Adds every cell's kernel into `out` (this rank's cells when spread) and assembles it.
+void add_cell_values(const mesh::Mesh& m, int row_block, int col_block, const CellKernel& kernel,
+                     const core::RowBlocks* spread, core::SparseMatrix& out) {
+  const auto add_cells = [&] {
+    std::vector<PetscInt> rows, cols;
+    RowMajor ke;
+    for (int c = 0; c < m.n_cells(); ++c) {
+      const auto nodes = m.cell(c);
+      rows.clear();
+      cols.clear();
+      for (const int a : nodes) {
+        for (int k = 0; k < row_block; ++k) rows.push_back(row_block * a + k);
+        for (int k = 0; k < col_block; ++k) cols.push_back(col_block * a + k);
+      }
+      if (spread &&
+          std::none_of(rows.begin(), rows.end(), [&](PetscInt r) { return spread->owns(r); }))
+        continue;  // another rank's cell
+      ke = kernel(c, m.cell_type(c), cell_coords(m, c));
+      TC_VERIFY(ke.rows() == static_cast<Eigen::Index>(rows.size()) &&
+                    ke.cols() == static_cast<Eigen::Index>(cols.size()),
+                "the cell kernel's matrix matches the cell's dofs");
+      out.add_values(rows, cols, ke.data());
+    }
+  };
+  // Spread, a kernel that throws on one rank's cells (a bad cell) must stop every rank, not
+  // leave the others in the assembly's communication.
+  if (spread)
+    core::collective_check(spread->comm, "assembly", add_cells);
+  else
+    add_cells();
+  out.assemble();
+}
+
+}  // namespace
+
 core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_block, int col_block,
                             const CellKernel& kernel, const core::RowBlocks* spread,
                             const core::RowBlocks* spread_cols) {
@@ -112,35 +149,33 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
       for (int k = 0; k < row_block; ++k) nnz[row_block * a + k] = col_block * g.degree(a);
     out = core::SparseMatrix(row_block * m.n_nodes(), col_block * m.n_nodes(), nnz);
   }
-  const auto add_cells = [&] {
-    std::vector<PetscInt> rows, cols;
-    RowMajor ke;
-    for (int c = 0; c < m.n_cells(); ++c) {
-      const auto nodes = m.cell(c);
-      rows.clear();
-      cols.clear();
-      for (const int a : nodes) {
-        for (int k = 0; k < row_block; ++k) rows.push_back(row_block * a + k);
-        for (int k = 0; k < col_block; ++k) cols.push_back(col_block * a + k);
-      }
-      if (spread &&
-          std::none_of(rows.begin(), rows.end(), [&](PetscInt r) { return spread->owns(r); }))
-        continue;  // another rank's cell
-      ke = kernel(c, m.cell_type(c), cell_coords(m, c));
-      TC_VERIFY(ke.rows() == static_cast<Eigen::Index>(rows.size()) &&
-                    ke.cols() == static_cast<Eigen::Index>(cols.size()),
-                "the cell kernel's matrix matches the cell's dofs");
-      out.add_values(rows, cols, ke.data());
-    }
-  };
-  // Spread, a kernel that throws on one rank's cells (a bad cell) must stop every rank, not
-  // leave the others in the assembly's communication.
-  if (spread)
-    core::collective_check(spread->comm, "assembly", add_cells);
-  else
-    add_cells();
-  out.assemble();
+  add_cell_values(m, row_block, col_block, kernel, spread, out);
   return out;
+}
+
+void reassemble(const mesh::Mesh& m, int row_block, int col_block, const CellKernel& kernel,
+                core::SparseMatrix& out, const core::RowBlocks* spread) {
+  TC_PETSC(MatZeroEntries(out.get()));
+  add_cell_values(m, row_block, col_block, kernel, spread, out);
+}
+
+void reassemble_mechanics(const mesh::Mesh& m, const CellModuli& cells, BodyMatrices& b,
+                          const core::RowBlocks* spread, const core::RowBlocks* spread_theta) {
+  // K_u and K_uθ with the same λ_c, μ_c of each cell: β_c = (3λ_c + 2μ_c)α is the
+  // temperature derivative of the thermal stress C(θ)ε_th (2.5), so the thermoelastic
+  // heating K_uθᵀu̇ stays the transpose of the thermal force's operator.
+  const int d = m.dim();
+  const auto at = [](const std::vector<double>& v, int c) { return v[static_cast<size_t>(c)]; };
+  reassemble(
+      m, d, d,
+      [&](int c, CellType t, const Coords& x) {
+        return stiffness_u(t, x, at(cells.lambda, c), at(cells.mu, c));
+      },
+      b.stiffness_u, spread);
+  reassemble(
+      m, d, 1,
+      [&](int c, CellType t, const Coords& x) { return coupling_u_theta(t, x, at(cells.beta, c)); },
+      b.coupling_u_theta, spread && spread_theta ? spread : nullptr);
 }
 
 BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat, const core::RowBlocks* spread,

@@ -31,6 +31,11 @@ using CellKernel = std::function<Eigen::MatrixXd(int cell, CellType, const Coord
                                           const core::RowBlocks* spread = nullptr,
                                           const core::RowBlocks* spread_cols = nullptr);
 
+/// Replaces the values of `out` (its pattern and rows kept) by Σ_cells kernel, as assemble does;
+/// `spread` as there (the rows this rank holds).
+void reassemble(const mesh::Mesh& m, int row_block, int col_block, const CellKernel& kernel,
+                core::SparseMatrix& out, const core::RowBlocks* spread = nullptr);
+
 /// The constant matrices of one body (ch. 4): M_u, K_u, K_uθ, M_θ, K_θ.
 struct BodyMatrices {
   core::SparseMatrix mass_u, stiffness_u, coupling_u_theta, mass_theta, stiffness_theta;
@@ -41,6 +46,17 @@ struct BodyMatrices {
 [[nodiscard]] BodyMatrices assemble_body(const mesh::Mesh& m, const Material& mat,
                                          const core::RowBlocks* spread = nullptr,
                                          const core::RowBlocks* spread_theta = nullptr);
+
+/// The moduli of every cell: λ, μ of E(θ_c), ν(θ_c) and β = (3λ + 2μ)α, α the material's number
+/// (fem::Material::thermal_stress_modulus per cell).
+struct CellModuli {
+  std::vector<double> lambda, mu, beta;
+};
+/// K_u and K_uθ of `b` re-assembled in place with the cells' moduli (E(θ), ν(θ) tables:
+/// physics::BodySystem::update_moduli); `spread`, `spread_theta` as for assemble_body.
+void reassemble_mechanics(const mesh::Mesh& m, const CellModuli& cells, BodyMatrices& b,
+                          const core::RowBlocks* spread = nullptr,
+                          const core::RowBlocks* spread_theta = nullptr);
 
 /// M_u without inertia on the nodes flagged in `massless` (the potential contact boundary):
 /// the modified mass matrix of Hager, Hüeber & Wohlmuth (IJNME 73, 2008), built cell by cell

@@ -15,7 +15,19 @@ struct MaterialLaws {
   /// α(θ) [1/K], the instantaneous (tangent) coefficient dε/dθ; the strain is its integral
   /// from θ₀ (docs/choices.md, "Thermal expansion as a table").
   core::TemperatureTable thermal_expansion;
+  /// E(θ) [Pa] and ν(θ): the moduli of σ = C(θ)(ε − ε_th(θ)), per cell at the cell's mean
+  /// nodal temperature, lagged to the step start (docs/choices.md, "E(θ), ν(θ)").
+  core::TemperatureTable young_modulus;
+  core::TemperatureTable poisson_ratio;
 };
+
+/// λ and μ of (E, ν) (thesis 2.5).
+[[nodiscard]] inline double lame_lambda(double e, double nu) {
+  return e * nu / ((1 + nu) * (1 - 2 * nu));
+}
+[[nodiscard]] inline double lame_mu(double e, double nu) {
+  return e / (2 * (1 + nu));
+}
 
 struct Material {
   // When a property is a table (`laws`), its number here is the table at the body's initial
@@ -30,9 +42,9 @@ struct Material {
   MaterialLaws laws;
 
   [[nodiscard]] double lame_lambda() const {
-    return young_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
+    return fem::lame_lambda(young_modulus, poisson_ratio);
   }
-  [[nodiscard]] double lame_mu() const { return young_modulus / (2 * (1 + poisson_ratio)); }
+  [[nodiscard]] double lame_mu() const { return fem::lame_mu(young_modulus, poisson_ratio); }
   /// β = (3λ + 2μ)α = 3Kα of the 3D material: the thesis' dKα in 3D. In 2D plane strain the
   /// material stays 3D, so β keeps this value (not 2(λ+μ)α): docs/choices.md.
   [[nodiscard]] double thermal_stress_modulus() const {
@@ -46,6 +58,18 @@ struct Material {
   }
   /// α depends on θ: the thermal strain is ∫_{θ₀}^{θ} α dθ, not α(θ − θ₀).
   [[nodiscard]] bool nonlinear_expansion() const { return !laws.thermal_expansion.is_constant(); }
+  /// E or ν depends on θ: K_u and K_uθ are re-assembled (and A_u refactorised) when the
+  /// temperature moved them beyond [solver] modulus_tolerance (physics::BodySystem).
+  [[nodiscard]] bool nonlinear_moduli() const {
+    return !laws.young_modulus.is_constant() || !laws.poisson_ratio.is_constant();
+  }
+  /// E(θ), ν(θ): the law, or the number when it is constant.
+  [[nodiscard]] double young_modulus_at(double theta) const {
+    return laws.young_modulus.is_constant() ? young_modulus : laws.young_modulus(theta);
+  }
+  [[nodiscard]] double poisson_ratio_at(double theta) const {
+    return laws.poisson_ratio.is_constant() ? poisson_ratio : laws.poisson_ratio(theta);
+  }
   /// ϑ_α(θ) with α ϑ_α = ε_th(θ) = ∫_{θ₀}^{θ} α(s) ds, α the number: the temperature change
   /// that K_uθ (assembled with α) turns into the thermal strain of the law; θ − θ₀ for a
   /// constant α, where the secant α_s(θ) = ε_th(θ)/(θ − θ₀) is α itself.
@@ -57,8 +81,9 @@ struct Material {
   [[nodiscard]] double expansion_rate(double theta) const {
     return nonlinear_expansion() ? laws.thermal_expansion(theta) / thermal_expansion : 1.0;
   }
-  /// Sets the numbers of the table laws: κ and c_p at θ (the body's initial temperature: the
-  /// heat operator factorised with them is the Newton's preconditioner), α at its largest
+  /// Sets the numbers of the table laws: κ, c_p, E and ν at θ (the body's initial temperature:
+  /// the heat operator factorised with them is the Newton's preconditioner, the mechanical
+  /// operator the first factorisation), α at its largest
   /// value (the modulus K_uθ is assembled with; the secant strain rescales it, and a table
   /// with α = 0 at θ would make the rescaling 0/0).
   void evaluate_laws_at(double theta) {
@@ -67,6 +92,8 @@ struct Material {
     if (!laws.specific_heat.is_constant()) specific_heat = laws.specific_heat(theta);
     if (!laws.thermal_expansion.is_constant())
       thermal_expansion = laws.thermal_expansion.max_value();
+    if (!laws.young_modulus.is_constant()) young_modulus = laws.young_modulus(theta);
+    if (!laws.poisson_ratio.is_constant()) poisson_ratio = laws.poisson_ratio(theta);
   }
 };
 

@@ -15,11 +15,15 @@ double law_or(const core::TemperatureTable& law, double constant, double theta) 
 NonlinearHeat::NonlinearHeat(const mesh::Mesh& m, const Material& mat, double theta0, bool lumped)
     : mat_(mat), theta0_(theta0), lumped_(lumped), dim_(m.dim()), volumes_(lumped_volumes(m)) {
   cells_.reserve(static_cast<size_t>(m.n_cells()));
+  Eigen::Index largest = 0;
   for (int c = 0; c < m.n_cells(); ++c) {
     const auto nodes = m.cell(c);
     cells_.push_back({std::vector<int>(nodes.begin(), nodes.end()),
                       cell_points(m.cell_type(c), cell_coords(m, c))});
+    largest = std::max(largest, static_cast<Eigen::Index>(nodes.size()));
   }
+  for (auto* v : {&te_, &xe_, &flux_}) v->resize(largest);
+  for (auto* v : {&grad_, &gx_, &kg_}) v->resize(dim_);
 }
 
 double NonlinearHeat::enthalpy_density(double theta) const {
@@ -30,15 +34,14 @@ double NonlinearHeat::enthalpy_density(double theta) const {
 
 template <class Visit>
 void NonlinearHeat::for_each_point(std::span<const double> theta, Visit&& visit) const {
-  Eigen::VectorXd te;
-  Eigen::VectorXd grad(dim_);
   for (const auto& cell : cells_) {
-    te.resize(static_cast<Eigen::Index>(cell.nodes.size()));
-    for (size_t a = 0; a < cell.nodes.size(); ++a)
-      te[static_cast<Eigen::Index>(a)] = theta[static_cast<size_t>(cell.nodes[a])];
+    const auto nn = static_cast<Eigen::Index>(cell.nodes.size());
+    auto te = te_.head(nn);  // a view of the buffer: no allocation per cell or point
+    for (Eigen::Index a = 0; a < nn; ++a)
+      te[a] = theta[static_cast<size_t>(cell.nodes[static_cast<size_t>(a)])];
     for (const auto& p : cell.points) {
-      grad.noalias() = p.grad.transpose() * te;
-      visit(cell, p, p.n.dot(te), grad);
+      grad_.noalias() = p.grad.transpose() * te;
+      visit(cell, p, p.n.dot(te), grad_);
     }
   }
 }
@@ -88,7 +91,8 @@ void NonlinearHeat::add_nonlinear_part(const core::Vector& theta, double inv_tau
     const double e = lumped_ ? 0.0 : inv_tau * p.jxw * (enthalpy_density(t) - c_ref * t);
     const double k =
         p.jxw * (law_or(mat_.laws.thermal_conductivity, mat_.thermal_conductivity, t) - k_ref);
-    const Eigen::VectorXd flux = p.grad * g;  // ∇N_a·∇θ_h per node a
+    auto flux = flux_.head(p.grad.rows());
+    flux.noalias() = p.grad * g;  // ∇N_a·∇θ_h per node a
     for (size_t a = 0; a < cell.nodes.size(); ++a) {
       const auto i = static_cast<Eigen::Index>(a);
       yv[cell.nodes[a]] += e * p.n[i] + k * flux[i];
@@ -112,17 +116,18 @@ void NonlinearHeat::add_nonlinear_derivative(const core::Vector& theta, const co
       const auto i = static_cast<PetscInt>(a);
       yv[i] += inv_tau * volumes_[a] * capacity(th[i]) * xv[i];
     }
-  Eigen::VectorXd xe;
   for_each_point(th.span(), [&](const Cell& cell, const CellPoint& p, double t, const auto& g) {
     const auto nn = static_cast<Eigen::Index>(cell.nodes.size());
-    xe.resize(nn);
+    auto xe = xe_.head(nn);
     for (Eigen::Index a = 0; a < nn; ++a) xe[a] = xv[cell.nodes[static_cast<size_t>(a)]];
     const double xq = p.n.dot(xe);
-    const Eigen::VectorXd gx = p.grad.transpose() * xe;
+    gx_.noalias() = p.grad.transpose() * xe;
     const double e = lumped_ ? 0.0 : inv_tau * p.jxw * capacity(t) * xq;
     const double k = p.jxw * (law_or(kappa, mat_.thermal_conductivity, t) - k_ref);
     const double dk = p.jxw * (kappa.is_constant() ? 0.0 : kappa.slope(t)) * xq;
-    const Eigen::VectorXd flux = p.grad * (k * gx + dk * g);
+    kg_.noalias() = k * gx_ + dk * g;
+    auto flux = flux_.head(nn);
+    flux.noalias() = p.grad * kg_;
     for (Eigen::Index a = 0; a < nn; ++a)
       yv[cell.nodes[static_cast<size_t>(a)]] += e * p.n[a] + flux[a];
   });

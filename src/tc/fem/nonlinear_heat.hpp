@@ -58,6 +58,12 @@ class NonlinearHeat {
   int dim_;
   std::vector<Cell> cells_;
   std::vector<double> volumes_;  // V_a = ∫ N_a (lumped)
+  // Work of the cell loops, sized once for the largest cell: GMRES applies the derivative
+  // several times per Newton correction, at every quadrature point of the mesh, and an Eigen
+  // temporary there is a heap allocation per point (example 06 tabulated: most of its
+  // heat_solve). The same Eigen kernels write into them, so the results are those of the
+  // temporaries to the bit.
+  mutable Eigen::VectorXd te_, grad_, xe_, gx_, kg_, flux_;
 };
 
 }  // namespace tc::fem

@@ -44,6 +44,8 @@ class EliminatedCholesky {
   [[nodiscard]] std::unique_ptr<Compliance> compliance(bool rows_over_ranks) const;
   [[nodiscard]] const CholeskySolver& factor() const { return factor_; }
   [[nodiscard]] PetscInt size() const { return n_; }
+  /// The constrained dofs, sorted.
+  [[nodiscard]] const std::vector<PetscInt>& dofs() const { return dofs_; }
 
  private:
   // Sorts dofs_ and keeps A(:, D) on the free rows (the lifting).

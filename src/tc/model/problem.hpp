@@ -231,6 +231,10 @@ struct SolverSettings {
   // time): ‖residual‖ ≤ newton_tolerance × the scale of the equation, iteration cap.
   double newton_tolerance = 1e-10;
   int max_newton_iterations = 50;
+  /// E(θ) or ν(θ) a table: K_u, K_uθ are re-assembled and A_u refactorised at the start of a
+  /// step once some cell's E or ν at θ^k differs from the factorised one by more than this,
+  /// relatively (0: at every change; physics::BodySystem::update_moduli).
+  double modulus_tolerance = 1e-3;
   /// A step that fails (a QP, the friction loop or the staggered loop not converged, a
   /// contact law violated) is retried from its start as two steps of τ/2, each of which may be
   /// cut back again: at most this many halvings deep (Simulation::advance; 0 = stop at once).

@@ -39,6 +39,14 @@ void Simulation::set_up() {
   // The set-up outside assembly and factorisation (the initial state's bookkeeping, the
   // history's columns): a phase of its own, so that summary.json's phases add up.
   auto setup = timers_.scope("setup");
+  if (int ranks = 1; MPI_Comm_size(PETSC_COMM_WORLD, &ranks) == MPI_SUCCESS && ranks > 1)
+    for (const auto& b : problem_.bodies)
+      if (b.material.nonlinear_moduli())
+        throw Error(fmt::format(
+            "body \"{}\": young_modulus or poisson_ratio is a table in θ, which runs on one "
+            "rank only (its refactorisation is not collective); run it without mpirun, or "
+            "give E and ν as numbers",
+            b.name));
   for (int b = 0; b < static_cast<int>(problem_.bodies.size()); ++b) {
     {
       auto t = timers_.scope("assembly");
@@ -198,6 +206,7 @@ void Simulation::advance_by_halves(const Checkpoint& start, const NumericalError
     restore(end);
     contact_.merge_laws(sub->contact_.laws_checked(), step_);
     cut_back_steps_ += 1 + sub->cut_back_steps_;
+    refactorisations_ += sub->refactorisations_;
     smallest_step_ = std::min(smallest_step_, sub->smallest_step_);
     last_coupling_ = static_cast<int>(history_["coupling_iterations"]);
     last_wall_ = history_["wall_seconds"];
@@ -212,8 +221,24 @@ void Simulation::advance_by_halves(const Checkpoint& start, const NumericalError
   }
 }
 
+void Simulation::refresh_moduli() {
+  for (int b = 0; b < n_bodies(); ++b) {
+    auto& sys = *bodies_.systems[b];
+    if (!sys.moduli_follow_temperature()) continue;
+    {
+      auto t = timers_.scope("assembly");
+      if (!sys.update_moduli(bodies_.states[b].theta, problem_.solver.modulus_tolerance)) continue;
+    }
+    auto t = timers_.scope("factorization");
+    bodies_.fields[b]->refactorise_mechanics(problem_, sys);
+    contact_.refactorised(b);
+    ++refactorisations_;
+  }
+}
+
 void Simulation::advance_once() {
   const auto t0 = Clock::now();
+  refresh_moduli();
   // What a step does outside the solver phases (predictor, right-hand sides, energies,
   // reactions, the history row): the phases opened inside take their own time.
   auto scope = timers_.scope("step_other");

@@ -132,6 +132,9 @@ class Simulation {
   /// Steps cut back so far ([solver] max_cutbacks): how many steps of τ were taken as
   /// sub-steps, and the smallest sub-step used (τ when none).
   [[nodiscard]] int cut_back_steps() const { return cut_back_steps_; }
+  /// Re-assemblies of K_u, K_uθ and refactorisations of A_u so far, summed over the bodies whose
+  /// E or ν is a table in θ ([solver] modulus_tolerance; refresh_moduli).
+  [[nodiscard]] int mechanical_refactorisations() const { return refactorisations_; }
   [[nodiscard]] double smallest_step() const { return smallest_step_; }
 
   /// Advances one step (public for tests); throws NumericalError on failure. A step that
@@ -183,6 +186,10 @@ class Simulation {
   void check_temperature_range(int step, int iteration);
 
   void advance_once();  // the step k → k + 1 at τ
+  /// At a step's start: the bodies whose moduli at θ^k moved beyond [solver] modulus_tolerance
+  /// from those factorised get K_u, K_uθ re-assembled and A_u refactorised, the contact's
+  /// compliance with it (lagged: the moduli of θ^k for the step to t^{k+1}).
+  void refresh_moduli();
   /// The step from `start` (its state, step k) as two steps of τ/2 on a copy of the problem
   /// with that step, whose own cut-backs go one level less deep; then this simulation takes
   /// the copy's state at t^{k+1} (docs/choices.md, "Step cut-back").
@@ -209,6 +216,7 @@ class Simulation {
   std::function<void(Simulation&)> enable_contact_again_;
   int cutback_depth_ = 0;
   int cut_back_steps_ = 0;
+  int refactorisations_ = 0;
   double smallest_step_ = 0;
 };
 

@@ -65,6 +65,11 @@ void CaseReader::resolve_auto_subdomains(const TableReader& root) {
     columns[s] += rows;
     if (m != s) columns[m] += rows;
   }
+  for (auto& body : p_.bodies)  // E(θ), ν(θ): A_u refactorised, which FETI's factors are not
+    if (body.subdomains == 0 && body.material.nonlinear_moduli()) {
+      body.subdomains = 1;
+      body.subdomains_reason = "E(θ) or ν(θ): a direct factor, refactorised when θ moves them";
+    }
   if (std::none_of(p_.bodies.begin(), p_.bodies.end(),
                    [](const physics::Body& b) { return b.subdomains == 0; }))
     return;  // every count set by the case: nothing to estimate

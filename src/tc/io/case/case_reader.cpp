@@ -194,9 +194,9 @@ void CaseReader::read_materials(const TableReader& root) {
       continue;
     }
     const TableReader m(*t, path, issues_, schema::section("materials.*"));
-    const auto rho = mechanical_constant(m, "density");
-    const auto e = mechanical_constant(m, "young_modulus");
-    const auto nu = mechanical_constant(m, "poisson_ratio");
+    const auto rho = reference_density(m, "density");
+    const auto e = material_law(m, "young_modulus");
+    const auto nu = material_law(m, "poisson_ratio");
     const auto alpha = material_law(m, "thermal_expansion");
     const auto cp = material_law(m, "specific_heat");
     const auto kappa = material_law(m, "thermal_conductivity");
@@ -206,9 +206,9 @@ void CaseReader::read_materials(const TableReader& root) {
     }
     fem::Material mat;
     mat.density = *rho;
-    mat.young_modulus = *e;
-    mat.poisson_ratio = *nu;
-    mat.laws = {*kappa, *cp, *alpha};
+    mat.laws = {*kappa, *cp, *alpha, *e, *nu};
+    mat.young_modulus = e->values().front();
+    mat.poisson_ratio = nu->values().front();
     // A constant law is its number; a table's number is set at each body's initial
     // temperature (read_body), here at θ₀ for the checks that read materials alone.
     mat.thermal_expansion = alpha->values().front();
@@ -227,15 +227,16 @@ std::optional<core::TemperatureTable> CaseReader::material_law(const TableReader
            : std::nullopt;
 }
 
-std::optional<double> CaseReader::mechanical_constant(const TableReader& m, std::string_view k) {
-  // E, ν and ρ are constants: they form A_u = 4/τ²M_u + K_u, factorised once per run
-  // (docs/choices.md, "Temperature-dependent materials"). A table is refused by name, not as
-  // a mistyped number.
+std::optional<double> CaseReader::reference_density(const TableReader& m, std::string_view k) {
+  // ρ is a number: in the reference (Lagrangian) configuration of the thesis the mass is
+  // ρ₀ dV₀, which the temperature does not change; the expansion a ρ(θ) table would describe
+  // is α(θ)'s (docs/choices.md, "ρ stays a number"). A table is refused by name, not as a
+  // mistyped number.
   if (const auto* n = m.get(k, Need::optional, ""); n && n->is_table()) {
-    m.issue(k, fmt::format("found a table, expected a number: {} cannot depend on the "
-                           "temperature (the mechanical operator is factorised once per run; "
-                           "only thermal_conductivity, specific_heat and thermal_expansion "
-                           "take a table in θ)",
+    m.issue(k, fmt::format("found a table, expected a number: {} is the reference density ρ₀ "
+                           "(the mass ρ₀ dV₀ of the undeformed body does not change with θ; "
+                           "the thermal expansion a ρ(θ) table would describe is given by "
+                           "thermal_expansion, a number or a table in θ)",
                            k));
     return std::nullopt;
   }
@@ -297,6 +298,7 @@ void CaseReader::read_solver(const TableReader& root) {
   if (const auto v = s->number("feti_tolerance")) settings.feti_tolerance = *v;
   if (const auto v = s->integer("max_feti_iterations")) settings.max_feti_iterations = *v;
   if (const auto v = s->number("newton_tolerance")) settings.newton_tolerance = *v;
+  if (const auto v = s->number("modulus_tolerance")) settings.modulus_tolerance = *v;
   if (const auto v = s->integer("max_newton_iterations")) settings.max_newton_iterations = *v;
   if (const auto v = s->choice("feti_preconditioner"))
     settings.feti_preconditioner = *v == "dirichlet" ? feti::Preconditioner::dirichlet

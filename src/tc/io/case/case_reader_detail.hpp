@@ -35,9 +35,9 @@ class CaseReader {
   void read_time(const TableReader& root);
   void read_physics(const TableReader& root);
   void read_materials(const TableReader& root);
-  // A material's κ, c_p or α: a number or a table in θ; its E, ν or ρ: a number.
+  // A material's κ, c_p, α, E or ν: a number or a table in θ; its ρ: a number (ρ₀).
   std::optional<core::TemperatureTable> material_law(const TableReader& m, std::string_view k);
-  std::optional<double> mechanical_constant(const TableReader& m, std::string_view k);
+  std::optional<double> reference_density(const TableReader& m, std::string_view k);
   void read_bodies(const TableReader& root);
   void read_body(const toml::table& t, size_t index);
   void read_body_loads(const TableReader& b, physics::Body& body);

@@ -455,11 +455,45 @@ void check_quasistatic_bodies_held(const Problem& p, const toml::table& root, Is
   }
 }
 
+/// E(θ), ν(θ) refactorise A_u when θ moves them (Simulation::refresh_moduli): a direct factor
+/// only. FETI's subdomain factors and a face under load control (Φ = A_u⁻¹ formed once) are
+/// built once per run, so such a body is refused rather than run with stale moduli.
+void check_modulus_tables(const Problem& p, const toml::table& root, Issues& issues) {
+  const auto& bodies = *root.get("bodies")->as_array();
+  for (size_t b = 0; b < p.bodies.size(); ++b) {
+    const auto& body = p.bodies[b];
+    if (!body.material.nonlinear_moduli() || body.subdomains <= 1) continue;
+    const auto* t = bodies.get(b)->as_table();
+    const auto* n = t ? t->get("subdomains") : nullptr;
+    issues.add(line_of(n ? *n : *bodies.get(b)), join(at("bodies", b), "subdomains"),
+               fmt::format("found {} subdomains for body \"{}\", whose material \"{}\" has "
+                           "young_modulus or poisson_ratio as a table in θ; expected "
+                           "subdomains = 1 (A_u is refactorised when θ moves E, ν; FETI's "
+                           "subdomain factors are built once per run)",
+                           body.subdomains, body.name, body.material_name));
+  }
+  const auto* node = root.get("boundary");
+  const auto* a = node ? node->as_array() : nullptr;
+  if (!a) return;
+  for (size_t j = 0; j < p.boundaries.size(); ++j) {
+    const auto& bc = p.boundaries[j];
+    const auto& body = p.bodies[static_cast<size_t>(bc.body)];
+    if (!any_of(bc.force) || !body.material.nonlinear_moduli()) continue;
+    issues.add(line_of(*a->get(j)), join(at("boundary", j), "force"),
+               fmt::format("found a force on body \"{}\", whose material \"{}\" has "
+                           "young_modulus or poisson_ratio as a table in θ; expected a "
+                           "displacement or a traction (load control forms A_u⁻¹ of the face "
+                           "once per run, A_u is refactorised when θ moves E, ν)",
+                           body.name, body.material_name));
+  }
+}
+
 }  // namespace
 
 void check_across_sections(const Problem& p, const toml::table& root, Issues& issues) {
   if (issues.empty()) check_boundary_conflicts(p, root, issues);
   if (issues.empty()) check_load_control(p, root, issues);
+  if (issues.empty()) check_modulus_tables(p, root, issues);
   if (issues.empty()) check_reaction_columns(p, root, issues);
   if (issues.empty()) check_quasistatic_bodies_held(p, root, issues);
   if (issues.empty()) check_massless_cells(p, root, issues);

@@ -547,6 +547,7 @@ std::string OutputWriter::summary_text(const physics::Simulation& sim, const std
   out.print("  \"contact_laws\": {{\"penetration\": {}, \"cone\": {}}},\n", law(laws.gap),
             law(laws.cone));
   out.print("  \"cut_back_steps\": {},\n", sim.cut_back_steps());
+  out.print("  \"mechanical_refactorisations\": {},\n", sim.mechanical_refactorisations());
   out.print("  \"smallest_step\": {},\n", json_number(sim.smallest_step()));
   out.print("  \"last\": {{\n{}  }}\n", last);
   out.print("}}\n");

@@ -94,7 +94,7 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
 
   const auto u = st.u.to_std();
   const auto& theta = point_data.back().values;
-  const double beta = sim.problem().physics.thermal_expansion ? mat.thermal_stress_modulus() : 0.0;
+  const bool expansion = sim.problem().physics.thermal_expansion;
   Field vm{"von_mises_stress", 1, {}}, flux{"heat_flux", 3, {}}, sub{"subdomain", 1, {}};
   // The tensors as cell data at the cell centre, as von Mises: σ and ε of linear cells are
   // one value per cell on a regular mesh and discontinuous between cells, so nodal values
@@ -115,7 +115,11 @@ void body_fields(const physics::Simulation& sim, int body, std::vector<Field>& p
       dte[a] = mat.expansion_deviation(te[a], theta0);
     }
     const auto type = m.cell_type(c);
-    const auto sigma = fem::cell_stress(type, x, ue, dte, mat.lame_lambda(), mat.lame_mu(), beta);
+    // C of the cell as K_u holds it: E(θ), ν(θ) at the last re-assembly (BodySystem).
+    const auto [young, poisson] = sys.cell_moduli(c);
+    const double lambda = fem::lame_lambda(young, poisson), mu = fem::lame_mu(young, poisson);
+    const double beta = expansion ? (3 * lambda + 2 * mu) * mat.thermal_expansion : 0.0;
+    const auto sigma = fem::cell_stress(type, x, ue, dte, lambda, mu, beta);
     const auto eps = fem::cell_strain(type, x, ue);
     vm.values.push_back(fem::von_mises(sigma));
     for (int i = 0; i < 3; ++i)  // row-major, as VTK's 9-component tensors

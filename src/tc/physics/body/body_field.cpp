@@ -173,6 +173,14 @@ BodyField::BodyField(const Problem& p, const BodySystem& sys) {
   }
 }
 
+void BodyField::refactorise_mechanics(const Problem& p, const BodySystem& sys) {
+  // The faces under load control form Φ = A_u⁻¹ once (RigidCoupling): `check` refuses them
+  // with E(θ), ν(θ), as it refuses FETI.
+  TC_VERIFY(!coupling && !mech->feti(), "refactorise_mechanics: a direct A_u without load control");
+  const auto& m = sys.matrices();
+  mech->refactorise(mechanics_operator(p, m.mass_u, m.stiffness_u));
+}
+
 bool deviation_applies(const BodyField& s) {
   return !s.heat->feti();
 }

@@ -41,6 +41,9 @@ struct BodyState {
 struct BodyField {
   /// Forms and factorises A_u and A_θ of body `sys`, allocates the vectors.
   BodyField(const Problem& p, const BodySystem& sys);
+  /// Refactorises A_u from the system's K_u, re-assembled by BodySystem::update_moduli (the
+  /// contact's compliances of `mech` are then stale: ContactCoupling::refactorised).
+  void refactorise_mechanics(const Problem& p, const BodySystem& sys);
 
   core::SparseMatrix a_theta;  // M_θ/τ + K_θ (5.6)
   std::unique_ptr<ConstrainedSolver> mech, heat;

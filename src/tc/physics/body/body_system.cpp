@@ -96,8 +96,56 @@ BodySystem::BodySystem(const Problem& problem, int index)
   if (body_->material.nonlinear_heat())
     nonlinear_heat_ = std::make_unique<fem::NonlinearHeat>(
         body_->mesh, body_->material, problem.physics.reference_temperature, lumped_);
+  if (body_->material.nonlinear_moduli()) {  // assembled above with E, ν at θ_initial
+    cell_young_.assign(static_cast<size_t>(body_->mesh.n_cells()), body_->material.young_modulus);
+    cell_poisson_.assign(cell_young_.size(), body_->material.poisson_ratio);
+  }
   cell_part_ = mesh::partition_cells(body_->mesh, std::max(1, body_->subdomains));
   if (body_->subdomains > 1) subdomains_ = mesh::split(body_->mesh, cell_part_, body_->subdomains);
+}
+
+double BodySystem::modulus_change(const core::Vector& theta) const {
+  if (cell_young_.empty()) return 0.0;
+  const auto& mesh = body_->mesh;
+  const auto& mat = body_->material;
+  const auto th = theta.read();
+  young_at_.resize(cell_young_.size());
+  poisson_at_.resize(cell_young_.size());
+  const auto relative = [](double now, double then) {
+    return now == then ? 0.0 : std::abs(now - then) / std::abs(then);
+  };
+  double change = 0;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    // The cell's temperature: the mean of its nodal θ, the value at the centroid for a
+    // linear field (second order, as θ_h is); one C per cell keeps the element kernels'.
+    const auto nodes = mesh.cell(c);
+    double sum = 0;
+    for (const int a : nodes) sum += th[a];
+    const double tc = sum / static_cast<double>(nodes.size());
+    const auto i = static_cast<size_t>(c);
+    young_at_[i] = mat.young_modulus_at(tc);
+    poisson_at_[i] = mat.poisson_ratio_at(tc);
+    change = std::max({change, relative(young_at_[i], cell_young_[i]),
+                       relative(poisson_at_[i], cell_poisson_[i])});
+  }
+  return change;
+}
+
+bool BodySystem::update_moduli(const core::Vector& theta, double tolerance) {
+  if (cell_young_.empty() || !(modulus_change(theta) > tolerance)) return false;
+  cell_young_ = young_at_;
+  cell_poisson_ = poisson_at_;
+  fem::CellModuli cells;
+  const double alpha = body_->material.thermal_expansion;
+  for (size_t c = 0; c < cell_young_.size(); ++c) {
+    const double l = fem::lame_lambda(cell_young_[c], cell_poisson_[c]);
+    const double m = fem::lame_mu(cell_young_[c], cell_poisson_[c]);
+    cells.lambda.push_back(l);
+    cells.mu.push_back(m);
+    cells.beta.push_back((3 * l + 2 * m) * alpha);
+  }
+  fem::reassemble_mechanics(body_->mesh, cells, m_, spread(u_rows_), spread(theta_rows_));
+  return true;
 }
 
 fem::BodyMatrices BodySystem::subdomain_matrices(int s) const {

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tc/fem/assembler.hpp"
@@ -115,6 +116,23 @@ class BodySystem {
   /// with the heat capacity lumped as M_θ is); null for constant properties.
   [[nodiscard]] const fem::NonlinearHeat* nonlinear_heat() const { return nonlinear_heat_.get(); }
 
+  /// E or ν is a table in θ (fem::Material::nonlinear_moduli): K_u and K_uθ follow θ.
+  [[nodiscard]] bool moduli_follow_temperature() const { return !cell_young_.empty(); }
+  /// E and ν of cell c as K_u and K_uθ hold them (the material's numbers when constant): the
+  /// stress output's (io::body_fields).
+  [[nodiscard]] std::pair<double, double> cell_moduli(int c) const {
+    if (cell_young_.empty()) return {body_->material.young_modulus, body_->material.poisson_ratio};
+    return {cell_young_[static_cast<size_t>(c)], cell_poisson_[static_cast<size_t>(c)]};
+  }
+  /// The largest relative change max_c max(|E(θ_c) − E_c|/E_c, |ν(θ_c) − ν_c|/ν_c) of the
+  /// cells' moduli at θ against those K_u and K_uθ hold, θ_c the mean of the cell's nodal θ
+  /// (0 for constant moduli, or ν = 0 on both sides for the ν part).
+  [[nodiscard]] double modulus_change(const core::Vector& theta) const;
+  /// When modulus_change(θ) > tolerance (strictly: tolerance 0 re-assembles at every change),
+  /// re-assembles K_u and K_uθ in place with the moduli of every cell at θ and returns true:
+  /// the caller refactorises A_u (BodyField::refactorise_mechanics). Not collective.
+  bool update_moduli(const core::Vector& theta, double tolerance);
+
  private:
   // y += h(t) H x over the films whose h changes in time (H = ∫N_aN_b dS of each)
   void add_varying_films(double t, const core::Vector& x, core::Vector& y) const;
@@ -166,6 +184,10 @@ class BodySystem {
   std::vector<fem::WeightedFacet> constant_film_facets_;  // body numbering, weight h
   core::SparseMatrix constant_film_;
   std::unique_ptr<fem::NonlinearHeat> nonlinear_heat_;
+  // E(θ), ν(θ): the moduli per cell K_u and K_uθ are assembled with (empty when constant),
+  // and the cells' moduli at the θ of the last modulus_change
+  std::vector<double> cell_young_, cell_poisson_;
+  mutable std::vector<double> young_at_, poisson_at_;
 };
 
 }  // namespace tc::physics

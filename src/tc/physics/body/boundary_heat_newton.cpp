@@ -102,9 +102,11 @@ int gmres(const HeatOperator& a, double t, const std::vector<core::Vector*>& the
           const Blocks& rhs, Blocks& delta) {
   const auto& systems = a.systems;
   const size_t n = systems.size();
+  // The Krylov vectors made as the iteration reaches them, not kRestart of each up front: a
+  // correction takes a few iterations (docs/choices.md), and the 61 blocks of vectors made per
+  // correction were a visible part of the tabulated heat step.
   std::vector<Blocks> v, z;
-  for (int j = 0; j <= kRestart; ++j) v.emplace_back(systems);
-  for (int j = 0; j < kRestart; ++j) z.emplace_back(systems);
+  v.emplace_back(systems);
   Blocks w(systems);
   for (auto& d : delta.v) d.zero();
   for (size_t i = 0; i < n; ++i) v[0].v[i].copy_from(rhs.v[i]);
@@ -119,6 +121,8 @@ int gmres(const HeatOperator& a, double t, const std::vector<core::Vector*>& the
     int k = 0;
     while (k < kRestart && iterations < kMaxInnerIterations) {
       ++iterations;
+      if (static_cast<int>(z.size()) <= k) z.emplace_back(systems);
+      if (static_cast<int>(v.size()) <= k + 1) v.emplace_back(systems);
       for (auto& x : z[k].v) x.zero();
       a.solve(v[k].in(), z[k].out());
       for (size_t i = 0; i < n; ++i) zero_constrained(*systems[i], z[k].v[i]);

@@ -378,6 +378,13 @@ void ContactCoupling::set_rows(BodyGroup& g) {
   }
 }
 
+void ContactCoupling::refactorised(int body) {
+  const auto& m = group_.members;
+  const auto it = std::find(m.begin(), m.end(), body);
+  if (it == m.end() || !enabled()) return;
+  method_.enforcement->dual().refactorised(static_cast<int>(it - m.begin()));
+}
+
 int ContactCoupling::couple(int step) {
   step_of_last_couple_ = step;
   auto g = group();

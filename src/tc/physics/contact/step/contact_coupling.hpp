@@ -67,6 +67,9 @@ class ContactCoupling {
   /// iterations.
   int couple(int step);
 
+  /// Body `body` (Problem::bodies index) had A_u refactorised (E(θ), ν(θ)): the dual solver's
+  /// compliance of it is formed anew. Nothing when the body is in no pair.
+  void refactorised(int body);
   /// The bodies of the pairs (Problem::bodies indices).
   [[nodiscard]] const std::vector<int>& members() const { return group_.members; }
   [[nodiscard]] int n_pairs() const { return static_cast<int>(pairs_.size()); }
