@@ -202,7 +202,7 @@ std::string settings_text(const Problem& p) {
                      c.heat_conduction, c.frictional_heating);
   const auto& v = p.solver;
   s += fmt::format(
-      "solver {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} | ",
+      "solver {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} | ",
       v.coupling_tolerance, v.max_coupling_iterations, static_cast<int>(v.friction_loop),
       static_cast<int>(v.coupling_order), v.friction.acceleration, v.friction.qp_forcing,
       v.friction.qp_forcing_cap, v.friction.loop_forcing, v.friction.max_updates,
@@ -212,7 +212,7 @@ std::string settings_text(const Problem& p) {
       v.explicit_dual_limit.value_or(tc::physics::DualContactSettings{}.explicit_limit),
       v.factorization, v.feti_tolerance, v.max_feti_iterations,
       static_cast<int>(v.feti_preconditioner), v.newton_tolerance, v.max_newton_iterations,
-      v.max_cutbacks);
+      v.max_cutbacks, v.modulus_tolerance);
   const auto& o = p.output;
   s += fmt::format("output {} {} {} {} {} {}", o.directory.string(), o.every, o.checkpoint_every,
                    o.checkpoint_seconds, static_cast<int>(o.encoding), o.contact_csv);
@@ -252,8 +252,8 @@ TEST(CaseSchema, DefaultsAreWhatTheReaderGivesAnAbsentKey) {
       ++compared;
     }
   // Every optional key with a value of its own: 1 root, 2 time, 5 physics, 5 bodies,
-  // 4 contact, 21 solver, 7 output.
-  EXPECT_EQ(compared, 45);
+  // 4 contact, 22 solver, 7 output.
+  EXPECT_EQ(compared, 46);
   fs::remove_all(dir);
 }
 
@@ -295,6 +295,7 @@ TEST(CaseSchema, SettingsTextSeesEveryDefaultedKey) {
                                                  {"solver.contact_dual", "\"auto\""},
                                                  {"solver.newton_tolerance", "1e-9"},
                                                  {"solver.max_newton_iterations", "51"},
+                                                 {"solver.modulus_tolerance", "1e-2"},
                                                  {"solver.coupling_acceleration", "false"},
                                                  {"solver.conductance_treatment", "\"lagged\""},
                                                  {"solver.qp_forcing", "2e-2"},
@@ -324,7 +325,7 @@ TEST(CaseSchema, SettingsTextSeesEveryDefaultedKey) {
       EXPECT_NE(settings_text(tc::io::read_case(file, overrides)), without) << key;
       ++changed;
     }
-  EXPECT_EQ(changed, 45);
+  EXPECT_EQ(changed, 46);
   fs::remove_all(dir);
 }
 

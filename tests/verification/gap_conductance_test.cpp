@@ -51,6 +51,26 @@ double mean_flux(const physics::Simulation& sim) {
   return f.empty() ? 0.0 : s / static_cast<double>(f.size());
 }
 
+/// The steady series state of the two blocks at a fixed open gap: the flux −q at each of the
+/// 4×4 nodes of the slave's top and the linear profiles of both blocks (low at the lower
+/// block's bottom z = −0.5, high at the upper block's top z = 1.5 + gap), to 1e-8.
+void expect_series_state(const physics::Simulation& sim, const physics::Problem& p,
+                         const std::vector<double>& flux, double q, double gap, double low,
+                         double high) {
+  ASSERT_EQ(flux.size(), 16u);
+  for (const double f : flux) EXPECT_NEAR(f, -q, 1e-8 * q);
+  for (int b = 0; b < 2; ++b) {
+    const auto theta = sim.state(b).theta.to_std();
+    const auto& m = p.bodies[b].mesh;
+    for (int a = 0; a < m.n_nodes(); ++a) {
+      const double z = m.point(a)[2];
+      const double expected =
+          b == 0 ? low + q * (z + 0.5) / kKappa : high - q * (1.5 + gap - z) / kKappa;
+      EXPECT_NEAR(theta[a], expected, 1e-8 * (high - low)) << "body " << b << " node " << a;
+    }
+  }
+}
+
 TEST(GapConductance, TwoBlocksAtAFixedOpenGapReachTheSeriesResistance) {
   // h(g) = 30 (1 − g/0.01) + 0.05/(g + 1e-3) at g = 2 mm: 24 + 16.67 = 40.67 W/(m²K), close
   // to κ/L = 52, so that all three resistances count.
@@ -75,18 +95,7 @@ TEST(GapConductance, TwoBlocksAtAFixedOpenGapReachTheSeriesResistance) {
   // exact (D diagonal, Σ_j M_kj = D_kk), h uniform: the solves' round-off is what is left, far
   // below the 1e-8 asked.
   const auto flux = sim.contact_heat_flux();
-  ASSERT_EQ(flux.size(), 16u);  // the 4×4 nodes of the slave's top
-  for (const double f : flux) EXPECT_NEAR(f, -q, 1e-8 * q);
-  for (int b = 0; b < 2; ++b) {
-    const auto theta = sim.state(b).theta.to_std();
-    const auto& m = p.bodies[b].mesh;
-    for (int a = 0; a < m.n_nodes(); ++a) {
-      const double z = m.point(a)[2];
-      const double expected =
-          b == 0 ? kLow + q * (z + 0.5) / kKappa : kHigh - q * (1.5 + gap - z) / kKappa;
-      EXPECT_NEAR(theta[a], expected, 1e-8 * (kHigh - kLow)) << "body " << b << " node " << a;
-    }
-  }
+  expect_series_state(sim, p, flux, q, gap, kLow, kHigh);
   // The ledger: all of the conducted heat went through the gap (area 1, slave → master: −q).
   const double step_gap = (sim.history("heat_gap_conducted") - before) / p.time.step;
   EXPECT_NEAR(step_gap, -q, 1e-8 * q);
@@ -195,18 +204,7 @@ TEST(GapConductance, RadiationAndGasAcrossAFixedOpenGapReachTheNonlinearSeriesSt
   // θ_s and θ_m uniform over the faces; left are the solves' round-off and the fixed point's
   // 1e-12, far below the 1e-8 asked.
   const auto flux = sim.contact_heat_flux();
-  ASSERT_EQ(flux.size(), 16u);
-  for (const double f : flux) EXPECT_NEAR(f, -q, 1e-8 * q);
-  for (int b = 0; b < 2; ++b) {
-    const auto theta = sim.state(b).theta.to_std();
-    const auto& m = p.bodies[b].mesh;
-    for (int a = 0; a < m.n_nodes(); ++a) {
-      const double z = m.point(a)[2];
-      const double expected =
-          b == 0 ? low + q * (z + 0.5) / kKappa : high - q * (1.5 + gap - z) / kKappa;
-      EXPECT_NEAR(theta[a], expected, 1e-8 * (high - low)) << "body " << b << " node " << a;
-    }
-  }
+  expect_series_state(sim, p, flux, q, gap, low, high);
   const double step_gap = (sim.history("heat_gap_conducted") - before) / p.time.step;
   EXPECT_NEAR(step_gap, -q, 1e-8 * q);
   std::cout << "[ measure  ] radiation + gas across a fixed gap: faces " << ts << " K / " << tm

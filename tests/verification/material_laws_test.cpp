@@ -48,7 +48,7 @@ TEST(MaterialLaws, SteadySlabWithLinearConductivityIsTheKirchhoffClosedForm) {
                                      {kappa0 * (1 + b * 250.0), kappa0 * (1 + b * 550.0)});
   auto mat = steel();
   mat.thermal_expansion = 0;
-  mat = with_laws(mat, {kappa, {}, {}}, theta1);
+  mat = with_laws(mat, {kappa, {}, {}, {}, {}}, theta1);
   // τ = 1e6 s against the slab's diffusion time ρc_pL²/κ ≈ 1e3 s: each backward-Euler step
   // damps the transient by 1 + τκπ²/(ρc_pL²) ≈ 1e4, so four steps leave ~1e-14 of it.
   auto p = box_problem(2, {length, 0.01, 0}, {10, 1, 1}, mat, physics::Scheme::quasistatic, 1e6, 4);
@@ -99,7 +99,7 @@ TEST(MaterialLaws, EnergyLedgerClosesWithTheEnthalpy) {
   for (const bool lumped : {false, true}) {
     auto mat = steel();
     mat.thermal_expansion = 0;
-    mat = with_laws(mat, {kappa, cp, {}}, 293.15);
+    mat = with_laws(mat, {kappa, cp, {}, {}, {}}, 293.15);
     auto p =
         box_problem(3, {0.02, 0.01, 0.01}, {4, 2, 2}, mat, physics::Scheme::quasistatic, 0.1, 40);
     p.physics.thermal_expansion = false;
@@ -160,7 +160,7 @@ TEST(MaterialLaws, FreeBarHeatedUniformlyStrainsByTheIntegralOfAlpha) {
       const double a1 = 1.4e-5 + (theta1 - 500.0) / 300.0 * 0.1e-5;
       strain = 0.5 * (1.2e-5 + 1.4e-5) * (500.0 - theta0) + 0.5 * (1.4e-5 + a1) * (theta1 - 500.0);
     }
-    auto mat = with_laws(steel(), {{}, {}, alpha}, theta1);
+    auto mat = with_laws(steel(), {{}, {}, alpha, {}, {}}, theta1);
     auto p =
         box_problem(3, {length, 0.02, 0.03}, {5, 2, 2}, mat, physics::Scheme::quasistatic, 1.0, 1);
     p.physics.reference_temperature = theta0;

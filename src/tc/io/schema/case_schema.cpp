@@ -108,7 +108,7 @@ constexpr Key kPhysics[] = {
      .type = T::choice,
      .choices = kHeatCapacities,
      .default_value = "\"consistent\"",
-     .doc = "M_θ as assembled, or lumped to its row sums"},
+     .doc = "M_θ as assembled, or lumped (row sums; HRZ on Tri6, Quad8, Tet10, Hex20)"},
 };
 
 constexpr Key kMaterial[] = {
