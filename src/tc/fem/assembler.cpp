@@ -303,16 +303,16 @@ bool row_sums_positive(CellType t) {
          t != CellType::Hex20;
 }
 
-bool all_row_sums_positive(const mesh::Mesh& m) {
+}  // namespace
+
+bool lumps_by_row_sums(const mesh::Mesh& m) {
   for (int c = 0; c < m.n_cells(); ++c)
     if (!row_sums_positive(m.cell_type(c))) return false;
   return true;
 }
 
-}  // namespace
-
 std::vector<double> lumped_volumes(const mesh::Mesh& m) {
-  if (all_row_sums_positive(m)) return volume_integrals(m);
+  if (lumps_by_row_sums(m)) return volume_integrals(m);
   std::vector<double> out(m.n_nodes(), 0.0);
   for (int c = 0; c < m.n_cells(); ++c) {
     const auto t = m.cell_type(c);
@@ -335,7 +335,7 @@ std::vector<double> lumped_volumes(const mesh::Mesh& m) {
 }
 
 void lump_heat_capacity(core::SparseMatrix& mass_theta, const mesh::Mesh& m, double heat_capacity) {
-  if (all_row_sums_positive(m)) return lump_rows(mass_theta);
+  if (lumps_by_row_sums(m)) return lump_rows(mass_theta);
   const auto v = lumped_volumes(m);
   core::Handle<::Vec, VecDestroy> diagonal;
   TC_PETSC(MatCreateVecs(mass_theta.get(), nullptr, diagonal.out()));

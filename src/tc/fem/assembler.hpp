@@ -94,6 +94,8 @@ void lump_rows(core::SparseMatrix& m);
 /// second-order cells"). Both keep each cell's volume; a mesh without HRZ cells gets
 /// volume_integrals to the bit.
 [[nodiscard]] std::vector<double> lumped_volumes(const mesh::Mesh& m);
+/// Every cell of `m` lumps by row sums (no HRZ cell): lumped_volumes is volume_integrals.
+[[nodiscard]] bool lumps_by_row_sums(const mesh::Mesh& m);
 /// M_θ (of heat capacity ρc) lumped in place to ρc·lumped_volumes: lump_rows itself, to the bit,
 /// on a mesh whose cells all have positive row sums; whole or spread over the ranks.
 void lump_heat_capacity(core::SparseMatrix& mass_theta, const mesh::Mesh& m, double heat_capacity);

@@ -64,7 +64,7 @@ BodySystem::BodySystem(const Problem& problem, int index)
   lumped_ = problem.physics.lumped_heat_capacity;
   if (lumped_) {
     fem::lump_heat_capacity(m_.mass_theta, body_->mesh, body_->material.heat_capacity());
-    if (auto w = fem::lumped_volumes(body_->mesh); w != volumes_) capacity_volumes_ = std::move(w);
+    if (!fem::lumps_by_row_sums(body_->mesh)) capacity_volumes_ = fem::lumped_volumes(body_->mesh);
   }
   if (body_time_scheme(problem).massless_contact_faces(problem))
     for (const auto& c : problem.contacts)  // every contact surface of the body, of any pair

@@ -167,7 +167,7 @@ class BodySystem {
   core::RowBlocks theta_rows_;
   fem::BodyMatrices m_;
   std::vector<double> volumes_;
-  std::vector<double> capacity_volumes_;  // lumped_volumes where they differ from volumes_
+  std::vector<double> capacity_volumes_;  // lumped_volumes on a mesh with HRZ cells
   std::map<PetscInt, TimeTable> u_prescribed_, th_prescribed_;  // a later [[boundary]] wins
   std::vector<PetscInt> u_dofs_, th_dofs_;
   std::vector<NodalLoad> u_loads_, th_loads_;
