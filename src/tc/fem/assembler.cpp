@@ -144,19 +144,10 @@ core::SparseMatrix assemble(const mesh::Mesh& m, const NodeGraph& g, int row_blo
     }
     out = core::SparseMatrix::over_ranks(*spread, *spread_cols, diagonal, off_diagonal);
   } else {
-    // The pattern of node a's rows: col_block columns of every node of its graph (sorted).
-    std::vector<PetscInt> offsets{0}, columns;
-    offsets.reserve(static_cast<size_t>(row_block) * m.n_nodes() + 1);
-    columns.reserve(static_cast<size_t>(row_block) * col_block * g.columns.size());
+    std::vector<PetscInt> nnz(static_cast<size_t>(row_block) * m.n_nodes());
     for (int a = 0; a < m.n_nodes(); ++a)
-      for (int k = 0; k < row_block; ++k) {
-        for (int e = g.offsets[a]; e < g.offsets[a + 1]; ++e)
-          for (int j = 0; j < col_block; ++j)
-            columns.push_back(static_cast<PetscInt>(col_block) * g.columns[e] + j);
-        offsets.push_back(static_cast<PetscInt>(columns.size()));
-      }
-    out = core::SparseMatrix::with_pattern(row_block * m.n_nodes(), col_block * m.n_nodes(),
-                                           offsets, columns);
+      for (int k = 0; k < row_block; ++k) nnz[row_block * a + k] = col_block * g.degree(a);
+    out = core::SparseMatrix(row_block * m.n_nodes(), col_block * m.n_nodes(), nnz);
   }
   add_cell_values(m, row_block, col_block, kernel, spread, out);
   return out;

@@ -303,25 +303,6 @@ SparseMatrix::SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscIn
   TC_PETSC(MatSetOption(get(), MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
 }
 
-SparseMatrix SparseMatrix::with_pattern(PetscInt rows, PetscInt cols,
-                                        std::span<const PetscInt> row_offsets,
-                                        std::span<const PetscInt> columns) {
-  TC_VERIFY(row_offsets.size() == static_cast<size_t>(rows) + 1 &&
-                static_cast<size_t>(row_offsets.back()) == columns.size(),
-            "a CSR pattern has rows + 1 offsets, the last one the number of entries");
-  SparseMatrix a;
-  TC_PETSC(MatCreate(PETSC_COMM_SELF, a.m_.out()));
-  TC_PETSC(MatSetSizes(a.get(), rows, cols, rows, cols));
-  TC_PETSC(MatSetType(a.get(), MATSEQAIJ));
-  // Without values PETSc puts zeros in the pattern and assembles the matrix: a later insertion
-  // then bisects its row for the column, where into a preallocated but empty row each new
-  // column shifts the row's tail (quadratic in the row's length: second-order cells have
-  // 3× the entries per row of first-order ones).
-  TC_PETSC(MatSeqAIJSetPreallocationCSR(a.get(), row_offsets.data(), columns.data(), nullptr));
-  TC_PETSC(MatSetOption(a.get(), MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-  return a;
-}
-
 SparseMatrix SparseMatrix::over_ranks(const RowBlocks& rows, const RowBlocks& cols,
                                       std::span<const PetscInt> diagonal,
                                       std::span<const PetscInt> off_diagonal) {

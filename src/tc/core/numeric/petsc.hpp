@@ -166,12 +166,6 @@ class SparseMatrix {
  public:
   SparseMatrix() = default;
   SparseMatrix(PetscInt rows, PetscInt cols, std::span<const PetscInt> nnz_per_row);
-  /// A whole matrix with its pattern given in CSR form (`row_offsets`, rows + 1 entries, and
-  /// each row's `columns`, sorted), every entry 0: adding a cell's block then finds each of
-  /// its entries in place instead of inserting it into the row.
-  [[nodiscard]] static SparseMatrix with_pattern(PetscInt rows, PetscInt cols,
-                                                 std::span<const PetscInt> row_offsets,
-                                                 std::span<const PetscInt> columns);
   /// A matrix whose rows are spread over the ranks in `rows` and whose columns are dealt in
   /// `cols` (the blocks of the vectors it multiplies: the rows' own for a square matrix),
   /// preallocated exactly: `diagonal` and `off_diagonal` give, for each of this rank's rows,
