@@ -390,9 +390,9 @@ namespace {
 
 /// stiffness_u of a second-order cell as one product: S = Gᵀ W G over the cell's points, with
 /// G(p, i·n + a) = ∂_i N_a(x_p) and W the weights J·w, holds every ∫ ∂_i N_a ∂_j N_b at once,
-/// and K's entries are sums of three of S's. For 20 or 27 nodes the product (a BLAS-3 kernel)
-/// is ~3× faster than the point loop; first-order cells keep the loop, whose summation order
-/// their histories were recorded with.
+/// and K's entries are sums of three of S's. On Hex20, Hex27 and Tet10 the product (Eigen's
+/// blocked kernel) halves the whole assembly of K_u against the point loop (bench/RESULTS.md);
+/// first-order cells keep the loop, whose summation order their histories were recorded with.
 Eigen::MatrixXd stiffness_u_by_product(CellType t, const Coords& x, double lambda, double mu) {
   const auto nn = x.rows(), d = x.cols();
   const auto points = static_cast<Eigen::Index>(table(t).size());
