@@ -103,6 +103,7 @@ int main(int argc, char** argv) {
   }
   if (sizes.empty()) sizes = {10, 32, 100, 316};
   int pargc = static_cast<int>(petsc_args.size());
+  petsc_args.push_back(nullptr);  // argv[argc] = NULL, as MPI_Init expects
   char** pargv = petsc_args.data();
   tc::core::PetscSession session(&pargc, &pargv);
 
