@@ -15,16 +15,17 @@
 //
 // F entire and real in z. The Chebfun example "Stability of a thermoelastic rod" (Driscoll
 // 2011, after Barber) is this problem at Bi = 1 with G = 4δ: Θ'(1) + Θ(1) = 4δ∫Θ.
-// The power series of F, Σ z^n [(2n+2)(2n+1) + Bi(2n+2) − G]/(2n+2)!, changes sign once
-// (its coefficients grow with n) when G > 2(1 + Bi) and not at all below: exactly one positive
-// root above the threshold, none below (Descartes' rule of signs).
+// The coefficients of F's power series, Σ z^n [(2n+2)(2n+1) + Bi(2n+2) − G]/(2n+2)!, change
+// sign once (the bracket grows with n) when G > 2(1 + Bi) and never below: exactly one
+// positive root above the threshold, none below (Descartes' rule of signs).
 //
 // The run: a 2D strip [0, L]×[0, H] of N × 1 Quad4 cells (or a 3D bar [0, L]×[0, H]² of N × 1 × 1
 // Hex8), ν = 0 and the long sides held normal to themselves, so that σ_xx = E(u' − α(θ − θ₀))
 // exactly (uniaxial, no bending of the end face by a lateral expansion that varies along x);
 // quasistatic (the rod's wave transit time L/√(E/ρ) ≈ 2e-5 s is eight orders below its diffusion
-// time L²ρc_p/κ ≈ 700 s); no thermoelastic heating (not in Barber's model). It starts from the
-// steady state plus ε times the leading mode.
+// time L²ρc_p/κ ≈ 700 s); no thermoelastic heating (not in Barber's model). With ν > 0 the held
+// sides make it uniaxial strain, E and α replaced by E′ and α′ (modulus(), expansion()). It
+// starts from the steady state plus ε times the mode of the root it measures.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -109,6 +110,7 @@ struct Rod {
   double delta = 1;   // G/(2(1 + Bi)): 1 at the threshold
   int cells = 20;     // along x (one across)
   int dim = 2;        // a strip of Quad4 or (3) a bar of Hex8 cells
+  double nu = 0;      // ν; > 0: the held sides make it uniaxial strain (modulus(), expansion())
   double tau = 0.01;  // the step in units of the diffusion time L²ρc_p/κ
   int steps = 60;     // the run; the rate is measured over its second half
   // The perturbation of θ at the tool, relative to θ_w − θ̄_L. Its square is what the linear
@@ -122,12 +124,22 @@ struct Rod {
   [[nodiscard]] double g() const { return 2 * (1 + bi) * delta; }
 };
 
-// Steel-like constants; ν = 0 (the header). L = 0.1 m, H = 0.01 m.
+// Steel-like constants (ν: Rod::nu). L = 0.1 m, H = 0.01 m.
 constexpr double kL = 0.1, kH = 0.01, kTheta0 = 293.15;
 constexpr double kRho = 7850, kCp = 450, kKappa = 50, kE = 2.0e11, kAlpha = 1.2e-5;
 /// The tool's excess θ_w − θ₀ at the threshold: β_C is set from it (below), so that every case
 /// has temperatures of ~100 K, far above the fixed point's and the QP's tolerances.
 constexpr double kExcessAtThreshold = 150;
+
+/// The rod's modulus and expansion along x: E and α at ν = 0; with ν > 0 and the sides held
+/// (uniaxial strain, also ε_zz = 0 in plane strain) σ_xx = (λ + 2μ)u′ − (3λ + 2μ)α(θ − θ₀),
+/// so E′ = λ + 2μ = E(1 − ν)/((1 + ν)(1 − 2ν)) and α′ = α(3λ + 2μ)/(λ + 2μ) = α(1 + ν)/(1 − ν).
+inline double modulus(const Rod& r) {
+  return kE * (1 - r.nu) / ((1 + r.nu) * (1 - 2 * r.nu));
+}
+inline double expansion(const Rod& r) {
+  return kAlpha * (1 + r.nu) / (1 - r.nu);
+}
 
 /// The diffusion time L²ρc_p/κ [s].
 inline double diffusion_time() {
@@ -136,18 +148,19 @@ inline double diffusion_time() {
 
 /// The steady state of a case: θ̄_L − θ₀ = φ = Bi·w, w = θ_w − θ̄_L = Gκ/(β_C E α L) (the flux
 /// κφ/L = β_C p̄ w), p̄ = Bi κ/(β_C L), and the gap g₀ = L(αφ/2 − p̄/E) that makes that p̄ the
-/// pressure of the expansion α∫(θ̄ − θ₀) = αφL/2.
+/// pressure of the expansion α∫(θ̄ − θ₀) = αφL/2 (E′, α′ for ν > 0).
 struct Steady {
   double beta = 0, w = 0, phi = 0, pressure = 0, gap = 0;
 };
 inline Steady steady_state(const Rod& r) {
   Steady s;
   // θ_w − θ₀ = φ + w = (1 + Bi) G κ/(β_C E α L); at δ = 1 that is kExcessAtThreshold.
-  s.beta = 2 * (1 + r.bi) * (1 + r.bi) * kKappa / (kE * kAlpha * kL * kExcessAtThreshold);
-  s.w = r.g() * kKappa / (s.beta * kE * kAlpha * kL);
+  const double e = modulus(r), alpha = expansion(r);
+  s.beta = 2 * (1 + r.bi) * (1 + r.bi) * kKappa / (e * alpha * kL * kExcessAtThreshold);
+  s.w = r.g() * kKappa / (s.beta * e * alpha * kL);
   s.phi = r.bi * s.w;
   s.pressure = r.bi * kKappa / (s.beta * kL);
-  s.gap = kL * (kAlpha * s.phi / 2 - s.pressure / kE);
+  s.gap = kL * (alpha * s.phi / 2 - s.pressure / e);
   return s;
 }
 
@@ -156,7 +169,7 @@ inline physics::Problem rod_problem(const Rod& r) {
   fem::Material m;
   m.density = kRho;
   m.young_modulus = kE;
-  m.poisson_ratio = 0;
+  m.poisson_ratio = r.nu;
   m.thermal_expansion = kAlpha;
   m.specific_heat = kCp;
   m.thermal_conductivity = kKappa;

@@ -6,7 +6,8 @@
 //  - Transient FE runs from the steady state plus a small multiple of the leading mode, at
 //    Bi = 1 and δ = 0.5, 0.96, 1.02, 1.5: the measured rate of the perturbation (backward Euler's
 //    map inverted) against the leading root within 1 %, decay below δ = 1 and growth above,
-//    the staggered fixed point converged in every step; the same in 3D.
+//    the staggered fixed point converged in every step; the same in 3D, and with ν = 0.3 in a
+//    sleeve (uniaxial strain).
 //  - The error of the rate under mesh refinement (second order) and its independence of τ.
 //  - The threshold of the FE runs, bisected on the sign of the rate, at Bi = 0.25, 1, 4: within
 //    0.1 % of δ = 1.
@@ -14,6 +15,9 @@
 //    run seeded with its mode, against the published values.
 //  - A sweep of δ from 0.25 to 1.75 at Bi = 0.25, 1 and 4 on a finer mesh and step: the
 //    leading rate against the leading root within 0.1 %.
+//  - The case file tests/cases/verification/barber-rod-2d.toml (ν = 0.3 in a sleeve, a rigid
+//    plane at a temperature, from a uniform rod): its steady state and groups from its own
+//    numbers, the late decay of the approach to it against the leading root.
 // All of it takes ~3 s (one cell across, ≤ 160 steps a run): no _slow part is needed.
 #include "barber_rod.hpp"
 
@@ -22,6 +26,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+
+#include "tc/io/case/case_reader.hpp"
 
 namespace tc::test {
 namespace {
@@ -85,6 +92,16 @@ TEST(BarberRod, StableBelowAndUnstableAboveTheThreshold) {
       // lagged by a step moves the rate by ~zτ, a wrong sign or factor in the flux by far more.
       EXPECT_NEAR(m.rate, m.root, 1e-2 * std::abs(m.root)) << "δ " << delta;
     }
+  }
+  // ν = 0.3 in a sleeve (3D, the sides held): uniaxial strain, the groups with E′ and α′
+  // (barber::modulus, expansion), the same rates within the same 1 %.
+  for (const double delta : {0.96, 1.02}) {
+    Rod r;
+    r.dim = 3;
+    r.nu = 0.3;
+    r.delta = delta;
+    const auto m = checked_run(r);
+    EXPECT_NEAR(m.rate, m.root, 1e-2 * std::abs(m.root)) << "ν 0.3, δ " << delta;
   }
 }
 
@@ -195,6 +212,70 @@ TEST(BarberRod, SweepOfTheFeedbackAtThreeBiotNumbers) {
       EXPECT_NEAR(m.rate, m.root, 1e-3 * std::abs(m.root)) << "Bi " << bi << " δ " << delta;
     }
   }
+}
+
+TEST(BarberRod, CaseFileDecaysToItsSteadyStateAtTheLeadingRate) {
+  const auto p = io::read_case(std::filesystem::path(TC_SOURCE_DIR) /
+                               "tests/cases/verification/barber-rod-2d.toml");
+  ASSERT_EQ(p.bodies.size(), 2u);  // the rod and its tool
+  const auto& m = p.bodies[0].material;
+  const auto& mesh = p.bodies[0].mesh;
+  const auto& c = p.contacts.at(0);
+  ASSERT_TRUE(c.rigid_master.has_value());
+  // The case's own numbers: the sides held make it uniaxial strain (E′, α′ as in barber_rod.hpp's
+  // modulus(), expansion()), the gap g₀ = x_plane − L (normal −x) after the tool's approach in
+  // the first step, β_C of (2.13).
+  const double nu = m.poisson_ratio, theta0 = p.physics.reference_temperature;
+  const double e = m.young_modulus * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
+  const double alpha = m.thermal_expansion * (1 + nu) / (1 - nu);
+  double length = 0;
+  int tip = -1;
+  for (int a = 0; a < mesh.n_nodes(); ++a) length = std::max(length, mesh.point(a)[0]);
+  for (int a = 0; a < mesh.n_nodes(); ++a)
+    if (mesh.point(a)[0] == length && mesh.point(a)[1] == 0) tip = a;
+  ASSERT_GE(tip, 0);
+  const double gap = c.rigid_master->point[0] + c.rigid_master->motion[0](p.time.end) - length;
+  const double excess = (*c.rigid_master->temperature)(0.0) - theta0;
+  const double gs = c.conductance_slave(theta0), gm = c.conductance_master(theta0);
+  const double beta = gs * gm / (gs + gm), kappa = m.thermal_conductivity;
+  // Steady: κφ/L = β_C p (Δ − φ), p = E′(α′φ/2 − g₀/L): βaφ² + (κ/L − βaΔ − βb)φ + βbΔ = 0 with
+  // a = E′α′/2, b = E′g₀/L; b < 0 (an interference) leaves one positive root.
+  const double qa = e * alpha / 2, qb = e * gap / length;
+  const double a2 = beta * qa, a1 = kappa / length - beta * qa * excess - beta * qb;
+  const double a0 = beta * qb * excess;
+  const double phi = (-a1 + std::sqrt(a1 * a1 - 4 * a2 * a0)) / (2 * a2);
+  const double pressure = e * (alpha * phi / 2 - gap / length), w = excess - phi;
+  const double bi = beta * pressure * length / kappa, g = beta * e * alpha * w * length / kappa;
+  // The case's comments say Bi = 1, G = 1 (δ = 0.25): its 15-digit numbers give them to 1e-6.
+  EXPECT_NEAR(bi, 1.0, 1e-6);
+  EXPECT_NEAR(g, 1.0, 1e-6);
+  const double z = leading_root(bi, g);
+  physics::Simulation sim(p);
+  sim.enable_mortar_contact();
+  const int n = p.time.n_steps();
+  std::vector<double> d;
+  int max_coupling = 0;
+  for (int k = 0; k < n; ++k) {
+    sim.advance();
+    max_coupling = std::max(max_coupling, static_cast<int>(sim.history("coupling_iterations")));
+    d.push_back(sim.state(0).theta.to_std()[tip] - theta0 - phi);
+  }
+  const double diffusion = length * length * m.density * m.specific_heat / kappa;
+  const double tau = p.time.step / diffusion;
+  // From a uniform rod the start is far from the steady state (d = −φ): over the last 3/8 of
+  // the run (t from 2.5 to 4 diffusion times) |d|/w ≤ 5e-4 and the higher modes (z ≤ −24) are
+  // gone by e^{−60}: the deviation's square moves the rate by ~1e-3, the mesh (N = 20) by 8e-4.
+  const int j = 5 * n / 8;
+  const double zeta = std::pow(d[n - 1] / d[j - 1], 1.0 / (n - j));
+  const double rate = (1 - 1 / zeta) / tau;
+  std::printf(
+      "[ measure  ] case file: Bi = %.6f, G = %.6f, φ = %.4f K; late decay z_h = %.6f "
+      "against z = %.6f (%.2e); |d|/w at the end %.1e; coupling ≤ %d\n",
+      bi, g, phi, rate, z, rate / z - 1, std::abs(d[n - 1]) / w, max_coupling);
+  EXPECT_NEAR(rate, z, 1e-2 * std::abs(z));
+  EXPECT_LT(std::abs(d[n - 1]), 1e-4 * w);  // it reached the steady state of the closed form
+  EXPECT_LT(max_coupling, p.solver.max_coupling_iterations);
+  EXPECT_EQ(sim.cut_back_steps(), 0);
 }
 
 }  // namespace
