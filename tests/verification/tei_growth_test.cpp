@@ -57,6 +57,7 @@ void expect_linear_regime(const Result& r) {
   EXPECT_GT(r.min_pressure, 0.5) << "V/V_cr " << r.s.r;
   EXPECT_GT(r.min_slip, 0.999) << "V/V_cr " << r.s.r;
   EXPECT_LT(r.max_slip, 1.001) << "V/V_cr " << r.s.r;
+  EXPECT_EQ(r.cut_backs, 0) << "V/V_cr " << r.s.r;  // every step whole: b_τ is of τ
 }
 
 TEST(TeiGrowth, RatesAtHalfTwiceAndFourTimesTheCriticalSpeed) {
