@@ -77,6 +77,7 @@ struct Settings {
   double pressure = 1e7;        // p₀ [Pa]
   double seed_fraction = 0.05;  // the seed's pressure P/p₀ at the start
   physics::Scheme scheme = physics::Scheme::quasistatic;
+  bool tight_qps = true;  // qp_tolerance 1e-13 without forcing; false: the solver's defaults
 };
 
 struct Layout {
@@ -153,13 +154,15 @@ inline physics::Problem problem(const Settings& s, const Layout& g) {
   c.rigid_master = tool;
   c.friction = g.c.friction;
   p.contacts = {c};
-  // The QP stops on ‖g^P‖ ≤ ε‖d‖, and ‖d‖ is the tangential rows' slip V τ D (~0.5 mm per
-  // node) against the normal rows' p₀/E-sized gaps (~1 µm): ε = 1e-13 with no looser forcing
-  // in the friction loop keeps λ_n to ~1e-8 of p₀ (at 1e-10 and the default forcing the
-  // pressure stays frozen at its warm start from step to step: docs/choices.md, "TEI run").
-  // The coupling to 1e-10 of ‖λ‖ leaves ≤ 1e-7 of the mode, whose pressure is 5 % of p₀.
-  p.solver.qp_tolerance = 1e-13;
-  p.solver.friction.qp_forcing_cap = 1e-13;
+  // The normal rows stop on their own ‖d_n‖ (qp::QpOptions::row_groups), not only on the
+  // slip's V τ D that dominates ‖d‖; ε = 1e-13 with no looser forcing in the friction loop still
+  // keeps λ_n to ~1e-8 of p₀ for a clean rate (the defaults: −0.15 % at 2 V_cr, the test
+  // TheSolversDefaultQpsSolveTheNormalRowsOfASlide). The coupling to 1e-10 of ‖λ‖ leaves
+  // ≤ 1e-7 of the mode, whose pressure is 5 % of p₀.
+  if (s.tight_qps) {
+    p.solver.qp_tolerance = 1e-13;
+    p.solver.friction.qp_forcing_cap = 1e-13;
+  }
   p.solver.coupling_tolerance = 1e-10;
   p.solver.max_coupling_iterations = 100;
   physics::place_rigid_tools(p);

@@ -215,6 +215,10 @@ qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double
   // The rank-one term moves λ_max(F): estimated afresh, and not kept for the next QPs.
   opt.max_eigenvalue = rank_one ? 0.0 : lambda_max_;
   if (rtol > 0) opt.rtol = rtol;
+  // The normal rows are also held to their own size (QpOptions::row_groups, group 1): in a
+  // slide d_τ is the slip of the step, orders above d_n, the indentation.
+  opt.row_groups.resize(static_cast<size_t>(m));
+  for (PetscInt i = 0; i < m; ++i) opt.row_groups[static_cast<size_t>(i)] = i % dim == 0 ? 1 : 0;
   qp::QpResult r;
   std::vector<double> g_scaled;  // Σg: the rank-one term of Σ F Σ
   if (rank_one)

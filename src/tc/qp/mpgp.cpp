@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
 
+#include "tc/core/numeric/petsc_blocks.hpp"
 #include "tc/core/verify.hpp"
 
 namespace tc::qp {
@@ -494,14 +496,50 @@ class DiagonalSandwich final : public LinearOperator {
 
 }  // namespace
 
+namespace {
+
+/// The stopping test's weights (QpOptions::row_groups): 1 on group 0, ‖d‖/max(‖d_G‖,
+/// 1e-6‖d‖) but at least 1 on each other group G; none when every weight is 1.
+std::optional<Vector> group_weights(const Vector& d, const std::vector<int>& groups) {
+  if (groups.empty()) return std::nullopt;
+  const auto rd = d.read();
+  const auto dv = rd.span();
+  TC_VERIFY(groups.size() == dv.size(), "a group for each of this rank's rows");
+  int n = 0;
+  for (const int g : groups) n = std::max(n, g + 1);
+  TC_MPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_INT, MPI_MAX, d.comm()));
+  std::vector<double> squares(static_cast<size_t>(n), 0.0);
+  for (size_t i = 0; i < dv.size(); ++i) squares[static_cast<size_t>(groups[i])] += dv[i] * dv[i];
+  TC_MPI(MPI_Allreduce(MPI_IN_PLACE, squares.data(), n, MPI_DOUBLE, MPI_SUM, d.comm()));
+  double all = 0;
+  for (const double q : squares) all += q;
+  const double norm = std::sqrt(all);
+  std::vector<double> weight(static_cast<size_t>(n), 1.0);
+  for (size_t g = 1; g < weight.size(); ++g)
+    if (squares[g] > 0)
+      weight[g] = std::max(1.0, norm / std::max(std::sqrt(squares[g]), 1e-6 * norm));
+  if (std::all_of(weight.begin(), weight.end(), [](double w) { return w == 1.0; }))
+    return std::nullopt;
+  Vector w = d.duplicate();
+  auto wv = w.view();
+  for (size_t i = 0; i < dv.size(); ++i) wv[i] = weight[static_cast<size_t>(groups[i])];
+  return w;
+}
+
+}  // namespace
+
 QpResult Mpgp::solve(const Vector& d, Vector& x) const {
   const double tolerance = std::max(options_.rtol * d.norm(), options_.atol);
-  if (!options_.scaling) return run(f_, set_, options_, d, x, tolerance, nullptr);
+  const std::optional<Vector> weights = group_weights(d, options_.row_groups);
+  if (!options_.scaling)
+    return run(f_, set_, options_, d, x, tolerance, weights ? &*weights : nullptr);
   // The change of variables x = S x̂: F̂ = SFS, d̂ = Sd, Ω̂ = S⁻¹Ω; the tolerance stays the
   // one of the original problem and is tested on S⁻¹ĝ^P (State::stop_norm).
   const Vector& s = *options_.scaling;
   Vector inverse_s = s.clone();
   TC_PETSC(VecReciprocal(inverse_s.get()));
+  Vector unscale = inverse_s.clone();  // S⁻¹, weighted by the groups
+  if (weights) TC_PETSC(VecPointwiseMult(unscale.get(), unscale.get(), weights->get()));
   const DiagonalSandwich f_hat(f_, s);
   const FeasibleSet set_hat = set_.scaled(s);
   Vector d_hat = d.duplicate();
@@ -511,7 +549,7 @@ QpResult Mpgp::solve(const Vector& d, Vector& x) const {
   o.scaling = nullptr;
   std::optional<DiagonalSandwich> pc;
   if (options_.preconditioner) o.preconditioner = &pc.emplace(*options_.preconditioner, inverse_s);
-  QpResult r = run(f_hat, set_hat, o, d_hat, x, tolerance, &inverse_s);
+  QpResult r = run(f_hat, set_hat, o, d_hat, x, tolerance, &unscale);
   TC_PETSC(VecPointwiseMult(x.get(), s.get(), x.get()));
   return r;
 }

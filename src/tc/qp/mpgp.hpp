@@ -7,6 +7,7 @@
 // them. The rate of convergence is bounded in terms of the spectrum of F only, which is what
 // makes the FETI solver numerically scalable.
 #include <string>
+#include <vector>
 
 #include "tc/qp/operator.hpp"
 #include "tc/qp/sets.hpp"
@@ -68,7 +69,15 @@ enum class EigenvalueEstimate {
 };
 
 struct QpOptions {
-  double rtol = 1e-8;         // stop when ‖g^P‖ ≤ max(rtol ‖d‖, atol)
+  double rtol = 1e-8;  // stop when ‖g^P‖ ≤ max(rtol ‖d‖, atol)
+  /// The rows' groups for the stopping test (empty: one group). Group 0 is tested against
+  /// the whole ‖d‖ as usual; each other group G is weighted by ‖d‖/‖d_G‖ (≥ 1), so that it is
+  /// solved to rtol of its own size even where another group's d dwarfs it: the contact QP's
+  /// normal rows (group 1) in a slide, where ‖d‖ is the tangential rows' slip V τ D (mm) and
+  /// d_n the indentation (µm). ‖d_G‖ is floored at 1e-6 ‖d‖. Weighted, the test is
+  /// ‖w ∘ g^P‖ ≤ max(rtol ‖d‖, atol); with group 0 dominant, Σ_{G≥1} (‖g^P_G‖/‖d_G‖)² +
+  /// ‖g^P_0‖²/‖d‖² ≤ rtol².
+  std::vector<int> row_groups;
   double atol = 1e-30;        // absolute floor (d = 0 has the solution of the set alone)
   int max_iterations = 2000;  // iterations (CG, expansion and proportioning steps)
   double gamma = 1.0;         // proportioning parameter Γ
