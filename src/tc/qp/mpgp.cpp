@@ -529,8 +529,13 @@ std::optional<Vector> group_weights(const Vector& d, const std::vector<int>& gro
 }  // namespace
 
 QpResult Mpgp::solve(const Vector& d, Vector& x) const {
-  const double tolerance = std::max(options_.rtol * d.norm(), options_.atol);
-  const std::optional<Vector> weights = group_weights(d, options_.row_groups);
+  // The tolerance's scale is d on the components that are free to move: a fixed one (a
+  // frictionless node's tangential rows, a held node) has its solution from the set alone and
+  // its d may be of any size (in a frictionless slide, the slip: 10¹⁴ × d_n once scaled).
+  Vector d_free = d.clone();
+  set_.zero_fixed(d_free);
+  const double tolerance = std::max(options_.rtol * d_free.norm(), options_.atol);
+  const std::optional<Vector> weights = group_weights(d_free, options_.row_groups);
   if (!options_.scaling)
     return run(f_, set_, options_, d, x, tolerance, weights ? &*weights : nullptr);
   // The change of variables x = S x̂: F̂ = SFS, d̂ = Sd, Ω̂ = S⁻¹Ω; the tolerance stays the

@@ -78,6 +78,14 @@ double FeasibleSet::violation(const Vector& x) const {
   return all_max(worst, x.comm());
 }
 
+void FeasibleSet::zero_fixed(Vector& v) const {
+  auto vv = v.view();
+  for (size_t i = 0; i < intervals_.size(); ++i)
+    if (!in_disc_[i] && intervals_[i].lo == intervals_[i].hi) vv[i] = 0.0;
+  for (const auto& b : discs_)
+    if (b.disc.r == 0) vv[b.first] = vv[b.second] = 0.0;
+}
+
 void FeasibleSet::split_gradient(const Vector& x, const Vector& g, Vector& free, Vector& chopped,
                                  Vector& projected, bool slide) const {
   const auto rx = x.read();

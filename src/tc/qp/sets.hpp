@@ -141,6 +141,10 @@ class FeasibleSet {
   /// Zeros the active components of v (the masked preconditioner works in the free face);
   /// with `slide`, keeps the tangential part of v at nodes on their circle (r > 0).
   void restrict_to_free(const Vector& x, Vector& v, bool slide = false) const;
+  /// Zeros the components whose set is one point (an interval lo = hi, a disc of radius 0):
+  /// their solution is the set's alone, so their part of a vector (of d) says nothing of how
+  /// far a solver is from the rest's.
+  void zero_fixed(Vector& v) const;
   /// Number of active components (a disc counts as two). Collective.
   [[nodiscard]] PetscInt count_active(const Vector& x) const;
 
