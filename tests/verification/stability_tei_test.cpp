@@ -1,0 +1,175 @@
+// The linear stability analysis (src/tc/stability) on configuration T of docs/theory.md,
+// "Linear stability": a steel layer [0, W] × [−H, 0], W = π/m (half a wavelength), its sides
+// symmetry planes (u_x = 0, adiabatic), its base held at u = 0, θ = θ₀, under a rigid adiabatic
+// flat pressed into it and sliding at V with 𝔉 = 0.1. The half-period box holds the modes
+// cos(n m x), n = 0, 1, 2, …; the half-plane's closed form (Burton, Nerlikar & Kilaparti 1973
+// for a rigid non-conducting flat; derived again in docs/theory.md) gives for mode n
+//   ℓ(ℓ + 1) = 2 V/(n V_cr),   b = κ (n m)² (ℓ² − 1),   V_cr = 2 k (1 − ν) m/(𝔉 E α),
+// with the shear of friction left out (its correction to Re b is O((c𝔉)²) ≈ 8e-4). Each
+// eigenvalue's mode is told by the cosine its surface temperature projects on.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+
+#include "tc/io/case/case_reader.hpp"
+#include "tc/stability/analysis.hpp"
+
+namespace tc::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kE = 2e11, kNu = 0.3, kAlpha = 1.2e-5, kK = 50, kRho = 7850, kCp = 460;
+constexpr double kFriction = 0.1, kWidth = 0.01, kDepth = 0.03;
+constexpr double kM = std::numbers::pi / kWidth;
+constexpr double kKappa = kK / (kRho * kCp);
+const double kVcr = 2 * kK * (1 - kNu) * kM / (kFriction * kE * kAlpha);
+
+/// The closed-form growth rate of mode n at speed v.
+double closed_form(int n, double v) {
+  const double r = v / (n * kVcr);
+  const double l = (std::sqrt(1 + 8 * r) - 1) / 2;
+  return kKappa * (n * kM) * (n * kM) * (l * l - 1);
+}
+
+std::string case_text(int nx, int ny, const std::string& normal_control) {
+  return fmt::format(R"(dimension = 2
+[time]
+scheme = "quasistatic"
+step = 0.01
+end = 1.0
+[physics]
+thermoelastic_heating = false
+[materials.steel]
+density = {}
+young_modulus = {}
+poisson_ratio = {}
+thermal_expansion = {}
+specific_heat = {}
+thermal_conductivity = {}
+[[bodies]]
+name = "layer"
+material = "steel"
+mesh = {{ box = {{ min = [0.0, {}], max = [{}, 0.0], cells = [{}, {}] }} }}
+[[boundary]]
+body = "layer"
+where = "xmin"
+displacement = [0.0, "free"]
+[[boundary]]
+body = "layer"
+where = "xmax"
+displacement = [0.0, "free"]
+[[boundary]]
+body = "layer"
+where = "ymin"
+displacement = [0.0, 0.0]
+temperature = 293.15
+[contact]
+slave = {{ body = "layer", where = "ymax" }}
+master = {{ rigid = "plane", point = [0.0, 0.0], normal = [0.0, -1.0], displacement = [{{ t = [0.0, 0.01, 1.0], value = [0.0, 0.0, 0.0907] }}, -1.0e-6] }}
+friction = {}
+[stability]
+normal_control = "{}"
+)",
+                     kRho, kE, kNu, kAlpha, kCp, kK, -kDepth, kWidth, nx, ny, kFriction,
+                     normal_control);
+}
+
+physics::Problem configuration_t(int nx, int ny, const std::vector<double>& speeds, int count,
+                                 const std::string& normal_control = "force") {
+  const auto dir = fs::temp_directory_path() / fmt::format("tc_stability_{}", getpid());
+  fs::create_directories(dir);
+  const auto file = dir / "case.toml";
+  std::ofstream(file) << case_text(nx, ny, normal_control);
+  auto p = io::read_case(file);
+  fs::remove_all(dir);
+  p.stability->speeds = speeds;
+  p.stability->eigenvalues = count;
+  return p;
+}
+
+/// The cosine cos(n m x) (n ≤ 4) that the mode's surface temperature projects on most.
+int wavenumber(const physics::Problem& p, const stability::Linearisation& lin,
+               const stability::Eigenpair& e) {
+  const auto& mesh = p.bodies.at(0).mesh;
+  const auto f = stability::mode_fields(lin, e, 2, mesh.n_nodes());
+  std::array<double, 5> c{};
+  for (int a = 0; a < mesh.n_nodes(); ++a) {
+    if (std::abs(mesh.point(a)[1]) > 1e-12) continue;
+    for (int n = 0; n < 5; ++n)
+      c[n] += f.theta_re[a] * std::cos(n * kM * mesh.point(a)[0]) * (n ? 2.0 : 1.0);
+  }
+  int best = 0;
+  for (int n = 1; n < 5; ++n)
+    if (std::abs(c[n]) > std::abs(c[best])) best = n;
+  return best;
+}
+
+/// The largest growth rate among the eigenvalues whose mode is cos(n m x); NaN when none.
+double leading_of_mode(const physics::Problem& p, const stability::Linearisation& lin,
+                       const stability::EigenResult& r, int n) {
+  for (const auto& e : r.pairs)  // by decreasing real part
+    if (wavenumber(p, lin, e) == n) return e.re;
+  return std::nan("");
+}
+
+// Relative error of the n = 1 growth rate at V/V_cr = 0.5, 2, 4 and of the n = 2 rate at
+// 4 V_cr (r = 2 for it), 5 % as the issue asks; the Q1 mesh (h_y = H/ny) resolves the thermal
+// decay length 1/(ℓ n m) (5 mm at r = 0.5, 1.3 mm at 4 V_cr, 1.0 mm for n = 2) with
+// 3 to 15 cells.
+TEST(StabilityTei, GrowthRatesAgreeWithTheClosedForm) {
+  const std::vector<double> r{0.5, 2.0, 4.0};
+  std::vector<double> speeds;
+  for (const double x : r) speeds.push_back(x * kVcr);
+  auto p = configuration_t(20, 90, speeds, 12);
+  stability::Linearisation lin;
+  const auto out = stability::analyse(p, {}, &lin);
+  ASSERT_EQ(out.speeds.size(), 3u);
+  EXPECT_EQ(out.open_nodes, 0);
+  for (size_t i = 0; i < r.size(); ++i) {
+    const double b = leading_of_mode(p, lin, out.speeds[i].rates, 1);
+    const double exact = closed_form(1, speeds[i]);
+    std::cout << fmt::format("V/V_cr = {}: n = 1: b = {:.6g} 1/s, closed form {:.6g} ({:+.2f} %)\n",
+                             r[i], b, exact, 100 * (b / exact - 1));
+    EXPECT_NEAR(b, exact, 0.05 * std::abs(exact)) << "V/V_cr = " << r[i];
+  }
+  const double b2 = leading_of_mode(p, lin, out.speeds[2].rates, 2);
+  const double exact2 = closed_form(2, speeds[2]);
+  std::cout << fmt::format("V/V_cr = 4: n = 2: b = {:.6g} 1/s, closed form {:.6g} ({:+.2f} %)\n",
+                           b2, exact2, 100 * (b2 / exact2 - 1));
+  EXPECT_NEAR(b2, exact2, 0.05 * exact2);
+  // At 4 V_cr the n = 2 mode grows fastest (5.75 κm² against 4.63 κm² for n = 1).
+  EXPECT_EQ(wavenumber(p, lin, out.speeds[2].rates.pairs.front()), 2);
+}
+
+// The critical speed by the b = 0 pencil (A₀ x = −V A₁ x) against V_cr, 5 % as the issue
+// asks, and against an independent route: the sign change of the n = 1 growth rate between
+// 0.95 V_cr and 1.05 V_cr, interpolated linearly (b is smooth in V there: the error of the
+// interpolation is O(0.05²) of V_cr).
+TEST(StabilityTei, CriticalSpeedAgreesWithTheClosedForm) {
+  auto p = configuration_t(20, 90, {0.95 * kVcr, 1.05 * kVcr}, 12);
+  stability::Linearisation lin;
+  const auto out = stability::analyse(p, {}, &lin);
+  ASSERT_TRUE(out.critical.has_value());
+  std::cout << fmt::format("V_c = {:.6g} m/s, closed form {:.6g} ({:+.2f} %)\n", out.critical->re,
+                           kVcr, 100 * (out.critical->re / kVcr - 1));
+  EXPECT_NEAR(out.critical->re, kVcr, 0.05 * kVcr);
+  ASSERT_TRUE(out.growth_at_critical.has_value());
+  // Leading rate at V_c: 0 up to SLEPc's tolerance against the scale κm² of the rates.
+  EXPECT_LT(std::abs(*out.growth_at_critical), 1e-6 * kKappa * kM * kM);
+  const double b0 = leading_of_mode(p, lin, out.speeds[0].rates, 1);
+  const double b1 = leading_of_mode(p, lin, out.speeds[1].rates, 1);
+  ASSERT_LT(b0, 0);
+  ASSERT_GT(b1, 0);
+  const double crossing = 0.95 * kVcr + (1.05 - 0.95) * kVcr * (-b0) / (b1 - b0);
+  EXPECT_NEAR(out.critical->re, crossing, 1e-2 * kVcr);
+}
+
+}  // namespace
+}  // namespace tc::test
