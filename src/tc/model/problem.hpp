@@ -282,6 +282,7 @@ struct StabilitySettings {
   bool critical_speed = true;  // the speed at which the leading growth rate crosses 0
   bool modes = true;           // the leading mode of each speed as .vtu
   NormalControl normal_control = NormalControl::displacement;
+  bool friction_shear = true;    // λ_τ = 𝔉 λ_n s in the mechanics (false: left out)
   std::optional<double> target;  // the shift σ [1/s]; none: κΛ² (stability/eigen.hpp)
   int state_step = 1;            // the step of the case whose state is linearised
 };

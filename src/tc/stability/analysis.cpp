@@ -56,7 +56,7 @@ StabilityResult analyse(const physics::Problem& p,
                   out.state_seconds));
 
   clock = std::chrono::steady_clock::now();
-  Linearisation lin = linearise(sim, settings.normal_control);
+  Linearisation lin = linearise(sim, settings.normal_control, settings.friction_shear);
   out.linearise_seconds = seconds_since(clock);
   out.body = lin.body;
   out.state_speed = lin.speed;

@@ -65,7 +65,7 @@ std::vector<PetscInt> free_index(PetscInt n, const std::vector<PetscInt>& prescr
 }  // namespace
 
 Linearisation linearise(const physics::Simulation& sim,
-                        physics::StabilitySettings::NormalControl normal) {
+                        physics::StabilitySettings::NormalControl normal, bool friction_shear) {
   const auto& p = sim.problem();
   const auto& pair = p.contacts.at(0);
   const int dim = p.dimension;
@@ -185,7 +185,7 @@ Linearisation linearise(const physics::Simulation& sim,
       a0.add(u_index[c], col, val);
       a0.add(col, u_index[c], val);
     });
-    for (int l = 1; l < dim; ++l)
+    for (int l = 1; l < dim && friction_shear; ++l)
       if (s[l] != 0)
         for_row(rows.slave, dim * k + l, [&](PetscInt c, double val) {
           if (u_index[c] >= 0) a0.add(u_index[c], col, f * s[l] * val);

@@ -53,8 +53,11 @@ struct Linearisation {
 };
 
 /// The linearisation of `sim`'s first contact pair about its current state (after the steps
-/// it has taken). Throws InputError when there is no sliding or no node in contact.
+/// it has taken); without `friction_shear` G = B_n (the shear 𝔉 λ_n s left out of the
+/// mechanics, as the classical closed form does). Throws Error when there is no sliding or no
+/// node in contact.
 [[nodiscard]] Linearisation linearise(const physics::Simulation& sim,
-                                      physics::StabilitySettings::NormalControl normal);
+                                      physics::StabilitySettings::NormalControl normal,
+                                      bool friction_shear = true);
 
 }  // namespace tc::stability

@@ -33,6 +33,7 @@ void CaseReader::read_stability(const TableReader& root) {
   if (const auto c = t->choice("normal_control"))
     s.normal_control = *c == "force" ? physics::StabilitySettings::NormalControl::force
                                      : physics::StabilitySettings::NormalControl::displacement;
+  if (const auto f = t->boolean("friction_shear")) s.friction_shear = *f;
   if (const auto x = t->number("target")) s.target = *x;
   if (const auto k = t->integer("state_step")) s.state_step = *k;
   p_.stability = s;

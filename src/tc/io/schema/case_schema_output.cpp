@@ -91,6 +91,11 @@ constexpr Key kStability[] = {
      .default_value = "\"displacement\"",
      .doc = "the tool's normal motion in the perturbation: held as the case moves it, or free "
             "under its normal force (the mean pressure held)"},
+    {.name = "friction_shear",
+     .type = T::boolean,
+     .default_value = "true",
+     .doc = "the shear 𝔉λ_n of sliding in the perturbed mechanics (false: left out, as the "
+            "classical closed form does)"},
     {.name = "target",
      .type = T::number,
      .default_value = "none",
