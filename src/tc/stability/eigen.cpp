@@ -82,7 +82,7 @@ EigenResult solve_pencil(Mat a, Mat b, double sigma, int count, PetscInt theta_b
     e.re = kr;
     e.im = ki;
     PetscReal err = 0;
-    TC_PETSC(EPSComputeError(h.eps, i, EPS_ERROR_RELATIVE, &err));
+    TC_PETSC(EPSComputeError(h.eps, i, EPS_ERROR_BACKWARD, &err));
     e.residual = err;
     PetscInt n = 0;
     TC_PETSC(VecGetSize(x.re, &n));

@@ -6,8 +6,8 @@
 // (no rate in the mechanics and the constraints) gives infinite eigenvalues, which
 // shift-and-invert maps to 0 and the target ordering leaves out; SLEPc purifies the vectors
 // (EPSSetPurify) and any left with |b − σ| beyond 1e8 (|σ| + 1) are dropped.
-// Options may be given with the prefix -stability_ (-stability_eps_ncv 40, …). Not collective:
-// everything on PETSC_COMM_SELF.
+// SLEPc's options may be given with the prefix -stability_ (PETSC_OPTIONS="-stability_eps_ncv
+// 40"). Not collective: everything on PETSC_COMM_SELF.
 #include <optional>
 #include <vector>
 
@@ -28,7 +28,7 @@ class SlepcSession {
 /// into its real and imaginary parts, scaled so that its θ entry of largest modulus is 1.
 struct Eigenpair {
   double re = 0, im = 0;
-  double residual = 0;  // ‖A x − b M x‖ / (‖A‖ + |b| ‖M‖) / ‖x‖ (SLEPc's relative error)
+  double residual = 0;  // ‖A x − b M x‖ / ((‖A‖ + |b| ‖M‖) ‖x‖): SLEPc's backward error
   std::vector<double> x_re, x_im;
 };
 
