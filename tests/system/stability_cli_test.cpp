@@ -59,7 +59,7 @@ TEST(StabilityCli, NoSlidingIsRefusedWithItsLine) {
   const auto r = thermocontact("stability " + file.string() + " --output " +
                                fresh_dir("stability-no-sliding").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find(file.string() + ":28: stability: found no sliding"), std::string::npos)
+  EXPECT_NE(r.output.find(file.string() + ":30: stability: found no sliding"), std::string::npos)
       << r.output;
 }
 

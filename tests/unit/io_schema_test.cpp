@@ -336,6 +336,8 @@ constexpr const char* kStabilityCase = R"(dimension = 2
 scheme = "quasistatic"
 step = 0.1
 end = 1.0
+[physics]
+thermoelastic_heating = false
 [materials.steel]
 density = 7850.0
 young_modulus = 2.0e11

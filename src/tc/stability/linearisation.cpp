@@ -139,12 +139,13 @@ Linearisation linearise(const physics::Simulation& sim,
     for_row(mats.stiffness_u, x.u[i], [&](PetscInt c, double val) {
       if (u_index[c] >= 0) a0.add(r, u_index[c], val);
     });
-    for_row(mats.coupling_u_theta, x.u[i], [&](PetscInt c, double val) {
-      if (t_index[c] >= 0) a0.add(r, ot + t_index[c], val);
-    });
+    if (p.physics.thermal_expansion)
+      for_row(mats.coupling_u_theta, x.u[i], [&](PetscInt c, double val) {
+        if (t_index[c] >= 0) a0.add(r, ot + t_index[c], val);
+      });
   }
   // Heat rows: −K_θ θ (with a constant film's h), and M: M_θ, −θ₀ K_uθᵀ.
-  const bool heating = p.physics.thermoelastic_heating;
+  const bool heating = p.physics.thermoelastic_heating && p.physics.thermal_expansion;
   const double theta0 = p.physics.reference_temperature;
   for (size_t i = 0; i < x.theta.size(); ++i) {
     const auto r = ot + static_cast<PetscInt>(i);
