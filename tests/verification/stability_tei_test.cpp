@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -236,6 +237,41 @@ TEST(StabilityTei, HeldToolHasTheUniformModeOfTheConstrainedLayer) {
   std::cout << fmt::format("held tool: V_c = {:.6g} m/s, closed form V_0 = {:.6g} ({:+.2f} %)\n",
                            out.critical->re, v0, 100 * (out.critical->re / v0 - 1));
   EXPECT_NEAR(out.critical->re, v0, 0.03 * v0);
+}
+
+// The Gough–Joule term (thermoelastic_heating): in the perturbation it adds θ₀K_uθᵀCK_uθ ≥ 0 to
+// the heat capacity (C the constrained compliance). In the slowest diffusion mode of the box
+// under force control (n = 0: θ(y) only, the tool free along y, so uniaxial strain with
+// div u = βθ/(λ + 2μ)) the capacity is exactly ρc_p(1 + δ), δ = β²θ₀/(ρc_p(λ + 2μ)): its rate
+// falls by 1/(1 + δ) (1e-3: the FE mode is the same with and without the term up to the
+// discrete coupling's consistency); the TEI mode's rate falls by about δ (0.5–2 %), and V_c
+// (b = 0: no rate, M does not enter) stays.
+TEST(StabilityTei, ThermoelasticHeatingRaisesTheCapacityByTheCouplingNumber) {
+  const double theta0 = 293.15;
+  const double lame = kE * kNu / ((1 + kNu) * (1 - 2 * kNu)), mu = kE / (2 * (1 + kNu));
+  const double beta = (3 * lame + 2 * mu) * kAlpha;
+  const double delta = beta * beta * theta0 / (kRho * kCp * (lame + 2 * mu));
+  std::array<stability::StabilityResult, 2> out;
+  std::array<double, 2> tei{};
+  for (const int heating : {0, 1}) {
+    auto p = configuration_t(20, 90, {1e-9, 2 * kVcr}, 12);
+    p.physics.thermoelastic_heating = heating == 1;
+    stability::Linearisation lin;
+    out[heating] = stability::analyse(p, {}, &lin);
+    tei[heating] = leading_of_mode(p, lin, out[heating].speeds[1].rates, 1);
+  }
+  const double slow0 = out[0].speeds[0].rates.pairs.front().re;
+  const double slow1 = out[1].speeds[0].rates.pairs.front().re;
+  std::cout << fmt::format(
+      "δ = {:.6f}: slowest mode {:.6g} → {:.6g} (ratio {:.5f}, 1/(1 + δ) = "
+      "{:.5f}); n = 1 at 2 V_cr {:.6g} → {:.6g} ({:+.2f} %)\n",
+      delta, slow0, slow1, slow1 / slow0, 1 / (1 + delta), tei[0], tei[1],
+      100 * (tei[1] / tei[0] - 1));
+  ASSERT_LT(slow0, 0);
+  EXPECT_NEAR(slow1 / slow0, 1 / (1 + delta), 1e-3);
+  EXPECT_LT(tei[1], tei[0] * (1 - 0.5 * delta));
+  EXPECT_GT(tei[1], tei[0] * (1 - 2 * delta));
+  EXPECT_NEAR(out[1].critical->re, out[0].critical->re, 1e-6 * out[0].critical->re);
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ struct VecPair {
 /// The eigenpairs of A x = λ B x nearest σ by shift-and-invert, normalised on the θ entries
 /// [theta_begin, theta_end) (the whole vector when that range is empty).
 EigenResult solve_pencil(Mat a, Mat b, double sigma, int count, PetscInt theta_begin,
-                         PetscInt theta_end) {
+                         PetscInt theta_end, const std::vector<double>& scale) {
   EpsHandle h;
   TC_PETSC(EPSCreate(PETSC_COMM_SELF, &h.eps));
   TC_PETSC(EPSSetOperators(h.eps, a, b));
@@ -90,7 +90,8 @@ EigenResult solve_pencil(Mat a, Mat b, double sigma, int count, PetscInt theta_b
     TC_PETSC(VecGetArrayRead(x.re, &xr));
     TC_PETSC(VecGetArrayRead(x.im, &xi));
     std::vector<std::complex<double>> z(static_cast<size_t>(n));
-    for (PetscInt j = 0; j < n; ++j) z[j] = {xr[j], ki != 0 ? xi[j] : 0.0};
+    for (PetscInt j = 0; j < n; ++j)
+      z[j] = std::complex<double>(xr[j], ki != 0 ? xi[j] : 0.0) * scale[static_cast<size_t>(j)];
     TC_PETSC(VecRestoreArrayRead(x.re, &xr));
     TC_PETSC(VecRestoreArrayRead(x.im, &xi));
     // Scaled so that the θ entry of largest modulus is 1 (its phase 0).
@@ -130,14 +131,15 @@ EigenResult growth_rates(const Linearisation& lin, double speed, int count, doub
   TC_PETSC(MatDuplicate(lin.a0.get(), MAT_COPY_VALUES, &a.m));
   TC_PETSC(MatAXPY(a.m, speed, lin.a1.get(), DIFFERENT_NONZERO_PATTERN));
   return solve_pencil(a.m, lin.mass.get(), target, count, lin.x.theta_offset(),
-                      lin.x.lambda_offset());
+                      lin.x.lambda_offset(), lin.scale);
 }
 
 std::optional<Eigenpair> critical_speed(const Linearisation& lin, int count, int* iterations) {
   MatHandle b;
   TC_PETSC(MatDuplicate(lin.a1.get(), MAT_COPY_VALUES, &b.m));
   TC_PETSC(MatScale(b.m, -1.0));
-  auto r = solve_pencil(lin.a0.get(), b.m, 0.0, count, lin.x.theta_offset(), lin.x.lambda_offset());
+  auto r = solve_pencil(lin.a0.get(), b.m, 0.0, count, lin.x.theta_offset(), lin.x.lambda_offset(),
+                        lin.scale);
   if (iterations) *iterations = r.iterations;
   std::optional<Eigenpair> best;
   for (auto& e : r.pairs)

@@ -62,6 +62,42 @@ std::vector<PetscInt> free_index(PetscInt n, const std::vector<PetscInt>& prescr
   return index;
 }
 
+/// The mean |entry| of the rows [begin, end) of a in the columns [cbegin, cend).
+double mean_entry(const core::SparseMatrix& a, PetscInt begin, PetscInt end, PetscInt cbegin,
+                  PetscInt cend, bool diagonal) {
+  double sum = 0;
+  long count = 0;
+  for (PetscInt r = begin; r < end; ++r)
+    for_row(a, r, [&](PetscInt c, double v) {
+      if (c < cbegin || c >= cend || (diagonal && c != r) || v == 0) return;
+      sum += std::abs(v);
+      ++count;
+    });
+  return count > 0 ? sum / static_cast<double>(count) : 1.0;
+}
+
+/// Scales the unknowns and the rows alike, S A S x̂ = b S M S x̂ with x = S x̂ (the eigenvalues
+/// unchanged): each block to entries of order 1 — u by 1/√⟨K_u,ii⟩, θ by 1/√⟨K_θ,ii⟩, λ_n so
+/// that S_u B_n S_λ is of order 1, w so that S_λ g_w S_w is. Unscaled, the mechanics rows (~E h)
+/// and the heat rows (~k) differ by 10⁹ and more, and with the thermoelastic block of M
+/// shift-and-invert returned spurious eigenpairs whose backward error, measured against ‖A‖,
+/// looked small (docs/choices.md).
+void scale(Linearisation& lin) {
+  const auto& x = lin.x;
+  const PetscInt ot = x.theta_offset(), ol = x.lambda_offset();
+  const PetscInt nl = static_cast<PetscInt>(x.contact.size()), n = x.size();
+  const double su = 1 / std::sqrt(mean_entry(lin.a0, 0, ot, 0, ot, true));
+  const double st = 1 / std::sqrt(mean_entry(lin.a0, ot, ol, ot, ol, true));
+  const double sl = 1 / (su * mean_entry(lin.a0, ol, ol + nl, 0, ot, false));
+  const double sw = x.tool_free ? 1 / (sl * mean_entry(lin.a0, n - 1, n, ol, ol + nl, false)) : 1;
+  lin.scale.assign(static_cast<size_t>(n), su);
+  for (PetscInt i = ot; i < n; ++i)
+    lin.scale[static_cast<size_t>(i)] = i < ol ? st : i < ol + nl ? sl : sw;
+  auto d = core::Vector::from(lin.scale);
+  for (auto* m : {&lin.a0, &lin.a1, &lin.mass})
+    TC_PETSC(MatDiagonalScale(m->get(), d.get(), d.get()));
+}
+
 }  // namespace
 
 Linearisation linearise(const physics::Simulation& sim,
@@ -208,6 +244,7 @@ Linearisation linearise(const physics::Simulation& sim,
   lin.a0 = a0.matrix();
   lin.a1 = a1.matrix();
   lin.mass = mass.matrix();
+  scale(lin);
   lin.diffusivity = mat.thermal_conductivity / mat.heat_capacity();
   lin.heating_wavenumber = lin.friction * mat.young_modulus * mat.thermal_expansion /
                            (mat.thermal_conductivity * (1 - mat.poisson_ratio));

@@ -40,8 +40,11 @@ struct Unknowns {
 
 struct Linearisation {
   Unknowns x;
-  int body = 0;                       // the slave body
-  core::SparseMatrix a0, a1, mass;    // A₀, A₁ (per m/s), M: size() × size()
+  int body = 0;  // the slave body
+  /// A₀, A₁ (per m/s), M: size() × size(), scaled: S A S with S = diag(scale), so that an
+  /// eigenvector x̂ of the scaled pencil is x = S x̂ (eigen.cpp unscales it).
+  core::SparseMatrix a0, a1, mass;
+  std::vector<double> scale;
   double speed = 0;                   // the tool's sliding speed after the state [m/s]
   std::array<double, 3> direction{};  // its unit direction of sliding
   double friction = 0;                // the mean 𝔉 over the active nodes

@@ -1,7 +1,7 @@
 // [stability]: the settings of `thermocontact stability` and what the analysis needs of the
 // case (src/tc/stability/analysis.hpp): the quasistatic scheme, one contact pair whose master
 // is a rigid tool that slides after the state's step, an adiabatic tool (a conducting tool's
-// terms are not linearised), no thermoelastic heating (its linearisation is not verified). Each
+// terms are not linearised). Each
 // refusal names the [stability] table's line.
 #include <fmt/format.h>
 
@@ -57,12 +57,6 @@ void CaseReader::read_stability(const TableReader& root) {
     refuse("state_step", fmt::format("found {}, expected a step of the case, at most its {} "
                                      "steps",
                                      s.state_step, steps));
-  if (p_.physics.thermoelastic_heating && p_.physics.thermal_expansion)
-    refuse("",
-           "found physics.thermoelastic_heating = true, expected false: the linearised "
-           "Gough–Joule term gave growth rates > 0 at V → 0, which thermoelasticity alone "
-           "cannot have, so it is not offered (the classical TEI theory leaves it out; "
-           "docs/choices.md)");
   if (p_.contacts.size() != 1) {
     refuse("", fmt::format("found {} contact pairs, expected one [contact] pair whose master is a "
                            "rigid tool",
