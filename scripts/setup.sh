@@ -8,6 +8,7 @@ packages=(
   build-essential cmake pkg-config git
   ninja-build                             # the build's generator: compiles while the layers link (make waits)
   petsc-dev libopenmpi-dev openmpi-bin    # PETSc 3.18 with MPI and MUMPS
+  slepc-dev                               # SLEPc on that PETSc: the eigenproblems of `thermocontact stability`
   libsuitesparse-dev                      # CHOLMOD, called through its own API (any PETSc version)
   libopenblas0-pthread                    # optimised BLAS: CHOLMOD factorises 5x faster than with reference BLAS
   libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libmetis-dev

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "stability_command.hpp"
 #include "tc/core/error.hpp"
 #include "tc/core/numeric/collective.hpp"
 #include "tc/core/numeric/petsc.hpp"
@@ -645,6 +646,15 @@ int main(int argc, char** argv) {
   auto* check_cmd = app.add_subcommand("check", "validate a case file only");
   check_cmd->add_option("case", case_file, "case file (TOML)")->required();
   check_cmd->add_option("--set", overrides, set_help)->allow_extra_args(false);
+  auto* stability_cmd =
+      app.add_subcommand("stability",
+                         "linear stability of the case's steady sliding: growth rates, modes, the "
+                         "critical speed ([stability])");
+  stability_cmd->add_option("case", case_file, "case file (TOML)")->required();
+  std::string stability_output;
+  auto* stability_output_opt = stability_cmd->add_option(
+      "--output", stability_output, "output directory (overrides [output].directory)");
+  stability_cmd->add_option("--set", overrides, set_help)->allow_extra_args(false);
   app.add_subcommand("info", "version, PETSc/MPI configuration, factorizations");
   // PETSc's -help (one dash) after `run` goes to PETSc, not to CLI11's -h: CLI11 took it for
   // its own help, so PETSc's list of options was unreachable.
@@ -670,6 +680,8 @@ int main(int argc, char** argv) {
     return app.exit(e, reporter ? std::cout : none, reporter ? std::cerr : none) == 0 ? 0 : 2;
   }
   if (empty_path(output_opt, output, "an output directory (or no --output: [output].directory)") ||
+      empty_path(stability_output_opt, stability_output,
+                 "an output directory (or no --output: [output].directory)") ||
       empty_path(restart_opt, restart, "the output directory of the run to continue"))
     return 2;
   if (const auto why =
@@ -693,6 +705,8 @@ int main(int argc, char** argv) {
       return run(case_file, overrides, output, restart, force, stop_after, extra, argv[0]);
     }
     if (check_cmd->parsed()) return check(case_file, overrides, argv[0]);
+    if (stability_cmd->parsed())
+      return stability_command(case_file, overrides, stability_output, argv[0]);
     return info(argv[0]);
   } catch (const std::bad_alloc&) {
     rlimit limit{};

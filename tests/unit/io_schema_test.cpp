@@ -329,4 +329,69 @@ TEST(CaseSchema, SettingsTextSeesEveryDefaultedKey) {
   fs::remove_all(dir);
 }
 
+// [stability] needs a case it can analyse (quasistatic, a rigid tool that slides): its keys'
+// defaults are checked on one, as the two tests above check the other sections'.
+constexpr const char* kStabilityCase = R"(dimension = 2
+[time]
+scheme = "quasistatic"
+step = 0.1
+end = 1.0
+[physics]
+thermoelastic_heating = false
+[materials.steel]
+density = 7850.0
+young_modulus = 2.0e11
+poisson_ratio = 0.3
+thermal_expansion = 1.2e-5
+specific_heat = 450.0
+thermal_conductivity = 50.0
+[[bodies]]
+name = "block"
+material = "steel"
+mesh = { box = { min = [0.0, -0.5], max = [1.0, 0.0], cells = [2, 2] } }
+[[boundary]]
+body = "block"
+where = "ymin"
+displacement = [0.0, 0.0]
+[contact]
+slave = { body = "block", where = "ymax" }
+master = { rigid = "plane", point = [0.0, 0.0], normal = [0.0, -1.0], velocity = [0.1, -1.0e-6] }
+friction = 0.1
+[stability]
+speeds = [0.1]
+)";
+
+std::string stability_text(const Problem& p) {
+  const auto& s = p.stability.value();
+  return fmt::format("{} {} {} {} {} {} {} {}", s.speeds, s.eigenvalues, s.critical_speed, s.modes,
+                     static_cast<int>(s.normal_control), s.friction_shear, s.target.value_or(-1.0),
+                     s.state_step);
+}
+
+TEST(CaseSchema, StabilityDefaultsAreWhatTheReaderGivesAnAbsentKey) {
+  const auto dir = fs::temp_directory_path() / fmt::format("tc_schema_stability_{}", getpid());
+  fs::create_directories(dir);
+  const auto file = dir / "case.toml";
+  std::ofstream(file) << kStabilityCase;
+  const auto without = stability_text(tc::io::read_case(file));
+  const std::map<std::string, std::string> other{
+      {"eigenvalues", "5"},        {"critical_speed", "false"},
+      {"modes", "false"},          {"normal_control", "\"force\""},
+      {"friction_shear", "false"}, {"state_step", "2"}};
+  int compared = 0;
+  for (const auto& k : schema::section("stability").keys) {
+    if (k.default_value == "none") continue;
+    const auto key = "stability." + std::string(k.name);
+    const std::vector<std::string> same{fmt::format("{}={}", key, k.default_value)};
+    EXPECT_EQ(stability_text(tc::io::read_case(file, same)), without) << key;
+    const auto it = other.find(std::string(k.name));
+    ASSERT_NE(it, other.end()) << key << ": no other value to set in this test";
+    const std::vector<std::string> changed{key + "=" + it->second};
+    EXPECT_NE(stability_text(tc::io::read_case(file, changed)), without) << key;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 6);
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -271,6 +271,22 @@ struct OutputSettings {
   double checkpoint_seconds = 10.0;
 };
 
+/// `[stability]`: the linear stability analysis of the case's steady sliding
+/// (`thermocontact stability`, src/tc/stability; docs/theory.md, "Linear stability").
+struct StabilitySettings {
+  /// How the rigid tool's normal motion enters the perturbation: held where the case moves it,
+  /// or free under its constant normal force (the mean pressure held).
+  enum class NormalControl { displacement, force };
+  std::vector<double> speeds;  // the tool's sliding speeds [m/s]; empty: the case's own
+  int eigenvalues = 4;         // the leading eigenvalues reported per speed
+  bool critical_speed = true;  // the speed at which the leading growth rate crosses 0
+  bool modes = true;           // the leading mode of each speed as .vtu
+  NormalControl normal_control = NormalControl::displacement;
+  bool friction_shear = true;    // λ_τ = 𝔉 λ_n s in the mechanics (false: left out)
+  std::optional<double> target;  // the shift σ [1/s]; none: κΛ² (stability/eigen.hpp)
+  int state_step = 1;            // the step of the case whose state is linearised
+};
+
 struct Problem;
 /// Why the combined contact dual cannot run this problem ("" when it can): it needs one pair,
 /// the quasistatic scheme and both contact bodies decomposed (subdomains > 1: their mechanics
@@ -288,6 +304,7 @@ struct Problem {
   std::vector<ContactSettings> contacts;  // the contact pairs, in the order of the case file
   SolverSettings solver;
   OutputSettings output;
+  std::optional<StabilitySettings> stability;  // [stability]; none: not given
   /// The command line's `--set KEY=VALUE`, as given (applied before validation).
   std::vector<std::string> overrides;
   /// What a restart must find unchanged: every key and value of the case (after the

@@ -147,4 +147,26 @@ void place_rigid_tools(Problem& p) {
   }
 }
 
+namespace {
+
+double slope_after(const core::TimeTable& table, double t) {
+  const auto& x = table.times();
+  const auto& v = table.values();
+  for (size_t i = 0; i + 1 < x.size(); ++i)
+    if (x[i] <= t && t < x[i + 1]) return (v[i + 1] - v[i]) / (x[i + 1] - x[i]);
+  return 0.0;
+}
+
+}  // namespace
+
+std::array<double, 3> sliding_velocity(const RigidTool& tool, int dim, double t) {
+  const auto n = unit_normal(tool.normal, dim);
+  std::array<double, 3> v{};
+  for (int c = 0; c < dim; ++c) v[c] = slope_after(tool.motion[c], t);
+  double vn = 0;
+  for (int c = 0; c < dim; ++c) vn += v[c] * n[c];
+  for (int c = 0; c < dim; ++c) v[c] -= vn * n[c];  // the motion along the plane only
+  return v;
+}
+
 }  // namespace tc::physics

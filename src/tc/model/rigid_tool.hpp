@@ -23,6 +23,11 @@ inline constexpr const char* kRigidToolHeld = "held";
 /// The unit normal of a tool's plane, from the case's `normal` (≠ 0; z ignored in 2D).
 [[nodiscard]] std::array<double, 3> unit_normal(const std::array<double, 3>& normal, int dim);
 
+/// The tool's sliding velocity at time t, its motion along its plane [m/s]: the slope of its
+/// motion's tables on the segment that begins at or before t (the motion from t on), zero
+/// beyond their ends (a `velocity` runs to time.end).
+[[nodiscard]] std::array<double, 3> sliding_velocity(const RigidTool& tool, int dim, double t);
+
 /// For every pair with a rigid master not placed yet (master_body < 0): appends its body and
 /// its boundary condition to `p`, and points the pair's master at the body's face. The face is
 /// a square (a segment in 2D) in the plane around the slave surface's shadow, its half-width

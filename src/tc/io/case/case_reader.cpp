@@ -56,6 +56,7 @@ Problem CaseReader::read() {
   read_solver(root);
   read_output(root);
   read_probes(root);
+  read_stability(root);
   check_across_sections(p_, root_, issues_);
   if (!issues_.empty()) issues_.raise();
   warn_unit_habits();

@@ -74,6 +74,8 @@ class CaseReader {
   void check_adiabatic_tool(const TableReader& contact);
   void read_solver(const TableReader& root);
   void read_output(const TableReader& root);
+  /// [stability] (case_stability.cpp), with what the analysis needs of the rest of the case.
+  void read_stability(const TableReader& root);
   /// [[probe]] tables (after the bodies: a point is located in its body's mesh).
   void read_probes(const TableReader& root);
   /// Warnings for values that are valid but implausible in SI (unit habits: MPa, °C, g/cm³).

@@ -51,6 +51,9 @@ constexpr Key kRoot[] = {
     {.name = "solver", .type = T::table, .doc = "tolerances, limits and methods"},
     {.name = "output", .type = T::table, .doc = "where and how often results are written"},
     {.name = "probe", .type = T::tables, .doc = "[[probe]], points recorded every step"},
+    {.name = "stability",
+     .type = T::table,
+     .doc = "the linear stability analysis (`thermocontact stability`)"},
 };
 
 constexpr std::string_view kSchemes[] = {"dynamic", "quasistatic"};
@@ -530,7 +533,7 @@ constexpr Key kSolver[] = {
 }  // namespace
 
 std::span<const Section> sections() {
-  // [output] and [[probe]]: case_schema_output.cpp.
+  // [output], [[probe]] and [stability]: case_schema_output.cpp.
   static const Section kSections[] = {
       {"", kRoot},
       {"time", kTime},
@@ -550,6 +553,7 @@ std::span<const Section> sections() {
       {"solver", kSolver},
       {"output", output_keys()},
       {"probe", probe_keys()},
+      {"stability", stability_keys()},
   };
   return kSections;
 }

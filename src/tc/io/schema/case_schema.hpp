@@ -23,6 +23,7 @@ enum class Type {
   temperature_table,  // a number or { temperature = [...], value = [...] } within `range`
   gap_table,          // a number or { gap = [...], value = [...] } within `range`
   vector,             // `dimension` numbers
+  numbers,            // a non-empty array of numbers, each within `range`
   counts,             // `dimension` integers ≥ 1
   components,         // `dimension` entries, each a number, a time table or "free"
   subdomains,         // an integer ≥ 1 or "auto"

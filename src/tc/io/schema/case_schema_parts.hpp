@@ -22,5 +22,7 @@ constexpr Range from_zero(std::string_view words) {
 /// The keys of [output] and of each [[probe]] (case_schema_output.cpp).
 [[nodiscard]] std::span<const Key> output_keys();
 [[nodiscard]] std::span<const Key> probe_keys();
+/// The keys of [stability] (case_schema_output.cpp).
+[[nodiscard]] std::span<const Key> stability_keys();
 
 }  // namespace tc::io::schema

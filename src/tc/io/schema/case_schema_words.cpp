@@ -41,6 +41,9 @@ std::string type_words(const Key& k) {
       return range("number or table in g");
     case T::vector:
       return "array of numbers";
+    case T::numbers:
+      return k.range.words.empty() ? std::string("array of numbers")
+                                   : fmt::format("array of numbers, each {}", k.range.words);
     case T::counts:
       return "array of integers ≥ 1";
     case T::components:
