@@ -44,6 +44,9 @@ struct ContactPairState {
   /// The resultant force of the contact on its slave body after the last step, per axis
   /// (ContactCoupling::slave_force).
   std::array<double, 3> slave_force{0, 0, 0};
+  /// The step's shift of the weighted gaps, per contact node: the gap linearised about the
+  /// predicted configuration is g − B(u − u^k) + gap_shift (ContactCoupling::set_rows).
+  std::vector<double> gap_shift;
 };
 
 class ContactCoupling {
