@@ -225,6 +225,7 @@ Local to_local(const double (&a)[kFacetNodes][kFacetNodes], int n) {
 void MortarPair::integrate() {
   Triplets dt(slave_->n_nodes()), mt(slave_->n_nodes());
   overlap_area_ = 0;
+  face_cover_.assign(slave_facets_.size(), 0.0);
   std::vector<int> mnodes;                            // master nodes seen by the current slave face
   std::vector<std::array<double, kFacetNodes>> mstd;  // ∫ φ_a^s φ_c^m per local master node c
   for (size_t e = 0; e + 1 < face_segments_.size(); ++e) {
@@ -264,6 +265,7 @@ void MortarPair::integrate() {
     // A face covered on less than 1e-12 of its area is a round-off sliver (edges of matching
     // meshes): dropped, since its dual basis would be ill-conditioned and its weight is nil.
     if (!(covered > 1e-12 * face_area_[e])) continue;
+    face_cover_[e] = covered / face_area_[e];
     overlap_area_ += covered;
     const auto& nodes = slave_facets_[e].nodes;
     Eigen::MatrixXd mcov(ns, static_cast<Eigen::Index>(mnodes.size()));
@@ -314,17 +316,23 @@ void MortarPair::assemble() {
   std::vector<double> weight(n_s, 0.0), scale(n_s, 0.0);
   for (int j = 0; j < n_s; ++j)
     for (int i = d_rows_.offsets[j]; i < d_rows_.offsets[j + 1]; ++i) weight[j] += d_rows_.vals[i];
+  std::vector<double> cover(n_s, 1.0);
   for (size_t e = 0; e < slave_facets_.size(); ++e)
-    for (const int a : slave_facets_[e].node_span()) scale[a] += face_area_[e];
+    for (const int a : slave_facets_[e].node_span()) {
+      scale[a] += face_area_[e];
+      cover[a] = std::min(cover[a], face_cover_[e]);
+    }
   contact_nodes_.clear();
   contact_index_.assign(n_s, -1);
   normals_.clear();
   tangents_[0].clear();
   tangents_[1].clear();
   weights_.clear();
+  coverage_.clear();
   gap_.clear();
   for (int j = 0; j < n_s; ++j) {
     if (!(weight[j] > options_.weight_threshold * scale[j])) continue;
+    coverage_.push_back(cover[j]);
     contact_index_[j] = static_cast<int>(contact_nodes_.size());
     contact_nodes_.push_back(j);
     const Vec3 n = node_normals_[j];

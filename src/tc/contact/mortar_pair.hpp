@@ -111,6 +111,11 @@ class MortarPair {
   [[nodiscard]] const std::vector<std::array<double, 3>>& tangents(int l) const;
   [[nodiscard]] const std::vector<double>& gap() const { return gap_; }
   [[nodiscard]] const std::vector<double>& weights() const { return weights_; }
+  /// Per contact node: the least covered fraction of its slave faces (the integral over the
+  /// overlap against the face's projected area): ≥ 1 where the master covers every face of the
+  /// node (a warped or curved face's integral exceeds its projection), < 1 at the edge of the
+  /// overlap, where ψ_k lives on the covered part alone and changes as the bodies slide.
+  [[nodiscard]] const std::vector<double>& coverage() const { return coverage_; }
 
   /// D (contact nodes × slave nodes; diagonal, D_kk = ∫ψ_k, with the dual basis, except the
   /// mid-edge rows of Tri6 and Quad8 faces, whose row sum is ∫ψ_k) and M (contact nodes ×
@@ -165,7 +170,8 @@ class MortarPair {
   double overlap_area_ = 0;
   std::vector<int> contact_nodes_, contact_index_;
   std::vector<std::array<double, 3>> normals_, tangents_[2];
-  std::vector<double> gap_, weights_;
+  std::vector<double> gap_, weights_, coverage_;
+  std::vector<double> face_cover_;  // per slave face: covered integral / projected area (0: none)
   core::SparseMatrix d_, m_, b_slave_, b_master_;
   MortarTimings timings_;
   // L_θγ is linear in γ and the geometry is fixed between updates, while the fixed point

@@ -163,6 +163,11 @@ std::vector<double> DualContactSolver::targets(BodyVectors ref, BodyVectors slip
   return c;
 }
 
+void DualContactSolver::shift_gaps(std::span<const double> shift) {
+  TC_VERIFY(shift.size() == gap_.size(), "one gap shift per contact node");
+  for (size_t k = 0; k < gap_.size(); ++k) gap_[k] += shift[k];
+}
+
 qp::QpResult DualContactSolver::solve(BodyVectors u_free, std::span<const double> c,
                                       std::span<const double> friction_bound, core::Vector& lambda,
                                       BodyVectorsOut u, bool recover, double rtol) {

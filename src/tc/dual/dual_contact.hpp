@@ -111,6 +111,10 @@ class DualContactSolver {
   /// configuration of B) and c_τ = (B u_slip)_τ (the slip is measured from u_slip: u^k, or
   /// u^k + τ/2 u̇^k with Newmark, which makes B_τ u − c_τ = τ/2 B_τ u̇^{k+1}).
   [[nodiscard]] std::vector<double> targets(BodyVectors ref, BodyVectors slip) const;
+  /// Adds `shift` (one per node, stacked like the rows) to the weighted gaps g_k of the last
+  /// set_rows, i.e. to the normal targets c_n: the correction of the gap's linearisation along
+  /// the step's predicted motion (ContactCoupling::set_rows). Until the next set_rows.
+  void shift_gaps(std::span<const double> shift);
   [[nodiscard]] std::vector<double> targets(const core::Vector& ref_slave,
                                             const core::Vector& ref_master,
                                             const core::Vector& slip_slave,

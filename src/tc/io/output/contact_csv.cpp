@@ -30,7 +30,8 @@ std::vector<double> m_times(const core::SparseMatrix& m, const std::vector<doubl
 std::string contact_csv(const physics::Simulation& sim) {
   // Per contact node k of pair q (the slave's node): its current position x = X + u; the gap
   // of the current positions with the mortar of the step, g_k = n_k·((Σ_j M_kj x_j^m)/(D1)_k
-  // − x_k) (the weighted gap of (2.6) per unit weight: ≥ 0 open, < 0 penetrating); the
+  // − x_k) + s_k/(D1)_k, s the step's gap shift (the weighted gap of (2.6) linearised about the
+  // predicted configuration, per unit weight: ≥ 0 open, < 0 penetrating); the
   // slave's fields (pair_node_fields); the slave's temperature and the master's at the node
   // as the conduction uses it, (Mθ_m)_k/(D1)_k (physics::master_at_nodes: the mortar
   // projection, which with the dual basis may leave the master's nodal range near the edge of
@@ -72,6 +73,7 @@ std::string contact_csv(const physics::Simulation& sim) {
       double gap = 0;
       for (size_t i = 0; i < 3; ++i)
         gap += pair.normals()[k][i] * (w > 0 ? mx[i][k] / w - x[i] : 0.0);
+      if (w > 0 && k < pr.gap_shift.size()) gap += pr.gap_shift[k] / w;
       out.print("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", q, a, x[0], x[1], x[2], gap,
                 f->pressure[k], f->traction[3 * k], f->traction[3 * k + 1], f->traction[3 * k + 2],
                 f->slip_velocity[3 * k], f->slip_velocity[3 * k + 1], f->slip_velocity[3 * k + 2],

@@ -12,6 +12,11 @@
 
 namespace tc::physics {
 
+namespace {
+// A face counts as covered whole when its covered integral is within round-off of its area.
+constexpr double kFullCover = 1e-9;
+}  // namespace
+
 void ContactCoupling::add_pairs() {
   group_ = ContactGroup(problem_);
   pairs_.clear();
@@ -310,17 +315,87 @@ double ContactCoupling::mech_step(TrescaIteration& t, std::span<const double> ta
   return residual;
 }
 
+std::vector<std::vector<double>> ContactCoupling::predicted_gaps(const BodyGroup& g) {
+  // The gap length g_k/w_k of each slave node in the configuration u^k + τu̇^k the step is
+  // heading for, where the master covers every face of the node there (NaN elsewhere); empty
+  // for a pair at rest or with a test's rows. Leaves the mortar pair at u_p: pr.rows must come
+  // after.
+  const double tau = problem_.time.step;
+  std::vector<std::vector<double>> gaps(pairs_.size());
+  for (size_t q = 0; q < pairs_.size(); ++q) {
+    auto& pr = pairs_[q];
+    const auto* s = g.states[pr.bodies.slave];
+    const auto* m = g.states[pr.bodies.master];
+    if (!pr.mortar || (s->v.max_abs() == 0 && m->v.max_abs() == 0)) continue;
+    auto us = s->u.clone(), um = m->u.clone();
+    us.axpy(tau, s->v);
+    um.axpy(tau, m->v);
+    pr.mortar->update(us.to_std(), um.to_std());
+    const auto& nodes = pr.mortar->contact_nodes();
+    gaps[q].assign(static_cast<size_t>(problem_.bodies[pr.settings->slave_body].mesh.n_nodes()),
+                   std::numeric_limits<double>::quiet_NaN());
+    for (size_t k = 0; k < nodes.size(); ++k)
+      if (pr.mortar->coverage()[k] >= 1 - kFullCover)
+        gaps[q][static_cast<size_t>(nodes[k])] = pr.mortar->gap()[k] / pr.mortar->weights()[k];
+  }
+  return gaps;
+}
+
+void ContactCoupling::shift_to_prediction(const BodyGroup& g,
+                                          const std::vector<std::vector<double>>& predicted) {
+  // (2.6) linearised about u^k with the rows B(u^k), g(u) ≈ g(u^k) − B(u − u^k), keeps the
+  // master points each slave node projects to at t^k: a slide s of the step along the master
+  // reads as the gap change −w n_k·s wherever the slave's nodal normal n_k is not the master's.
+  // Landing a node off the master by Vτ n_k·t turns the slave's surface there, which tilts the
+  // normals of the next step: an explicit advection of the surface's shape with a Courant
+  // number V τ/h_s of the slave's cell h_s, which grows once the slide of a step exceeds a slave
+  // cell (docs/theory.md, "Sliding: the gap's linearisation"). Linearised instead about the
+  // predicted u_p = u^k + τu̇^k with the gap measured there, g(u) ≈ w ĝ(u_p) − B(u − u_p):
+  // c_n gains w_k ĝ_k(u_p) − g_k(u^k) + τ(B u̇^k)_n,k, and what is left is the slide's change
+  // from the last step, n_k·(s − τ t·u̇^k).
+  auto& dual = method_.enforcement->dual();
+  const int dim = dual.dim();
+  const double tau = problem_.time.step;
+  std::vector<double> shift(static_cast<size_t>(dual.n_nodes()), 0.0);
+  bool any = false;
+  for (int q = 0; q < n_pairs(); ++q) {
+    auto& pr = pairs_[q];
+    const auto& rows = dual.pair_rows(q);
+    pr.gap_shift.assign(rows.nodes.size(), 0.0);
+    if (predicted[q].empty()) continue;
+    core::Vector bv(rows.n_rows());
+    rows.slave.mult(g.states[pr.bodies.slave]->v, bv);
+    rows.master.mult_add(g.states[pr.bodies.master]->v, bv);
+    const auto b = bv.to_std();
+    for (size_t k = 0; k < rows.nodes.size(); ++k) {
+      const double gp = predicted[q][static_cast<size_t>(rows.nodes[k])];
+      // At the edge of the overlap (at u^k or u_p) ψ_k is built on the covered part and moves
+      // with it: w_k ĝ_k(u_p) would weigh another part of the surface than the rows do (measured
+      // on tests/cases/restart/sliding-2d.toml: 2.5 times the end-of-step gap of the rows' own
+      // linearisation at the node the master slides off). There the rows' linearisation stays.
+      if (!std::isfinite(gp) || pr.mortar->coverage()[k] < 1 - kFullCover) continue;
+      pr.gap_shift[k] = rows.weights[k] * gp - rows.gap[k] + tau * b[dim * k];
+      shift[static_cast<size_t>(dual.pair_offset(q)) + k] = pr.gap_shift[k];
+      any = true;
+    }
+  }
+  if (any) dual.shift_gaps(shift);
+}
+
 void ContactCoupling::set_rows(BodyGroup& g) {
   auto& enforcement = *method_.enforcement;
   {
     std::vector<ContactRows> rows;
+    std::vector<std::vector<double>> predicted;
     {
       auto scope = timers_.scope("mortar");
+      predicted = predicted_gaps(g);
       for (const auto& pr : pairs_)
         rows.push_back(pr.rows(g.states[pr.bodies.slave]->u, g.states[pr.bodies.master]->u));
     }
     auto scope = timers_.scope("dual_setup");  // F formed explicitly here when it is small
     enforcement.set_rows(std::move(rows), group_.pairs);
+    shift_to_prediction(g, predicted);
   }
   auto& dual = enforcement.dual();
   const int dim = dual.dim();

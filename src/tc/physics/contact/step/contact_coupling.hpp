@@ -44,6 +44,9 @@ struct ContactPairState {
   /// The resultant force of the contact on its slave body after the last step, per axis
   /// (ContactCoupling::slave_force).
   std::array<double, 3> slave_force{0, 0, 0};
+  /// The step's shift of the weighted gaps, per contact node: the gap linearised about the
+  /// predicted configuration is g − B(u − u^k) + gap_shift (ContactCoupling::set_rows).
+  std::vector<double> gap_shift;
 };
 
 class ContactCoupling {
@@ -149,6 +152,10 @@ class ContactCoupling {
   // λ_τ,k scaled into the cone of 𝔉_k max(λ_n,k, 0) where outside it; with `u_formed`, u_new
   // moved to the scaled multipliers (a solve per body), else recover() forms it from them.
   void scale_into_cones(const BodyGroup& g, bool u_formed);
+  // The gap lengths of each mortar pair's slave nodes at u^k + τu̇^k, and the normal targets'
+  // shift that linearises the gap about that configuration (set_rows).
+  std::vector<std::vector<double>> predicted_gaps(const BodyGroup& g);
+  void shift_to_prediction(const BodyGroup& g, const std::vector<std::vector<double>>& predicted);
   // Non-penetration and the friction cone at every contact node of u_new and λ (ContactLaws):
   // throws NumericalError beyond the solvers' bounds.
   void check_laws(const BodyGroup& g, std::span<const double> targets, int step);
