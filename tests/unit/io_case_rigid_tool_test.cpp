@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "support/case_text.hpp"
 #include "tc/io/case/case_reader.hpp"
 #include "tc/model/rigid_tool.hpp"
 
@@ -18,19 +19,13 @@ namespace fs = std::filesystem;
 using tc::io::read_case;
 using tc::physics::Problem;
 
-constexpr const char* kCase = R"(dimension = 3
+const std::string kCase = std::string(R"(dimension = 3
 [time]
 scheme = "quasistatic"
 step = 0.1
 end = 2.0
-[materials.steel]
-density = 7850.0
-young_modulus = 2.0e11
-poisson_ratio = 0.3
-thermal_expansion = 1.2e-5
-specific_heat = 450.0
-thermal_conductivity = 50.0
-[[bodies]]
+)") + tc::test::kSteelToml +
+                          R"([[bodies]]
 name = "block"
 material = "steel"
 mesh = { box = { min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 0.5], cells = [2, 2, 1] } }

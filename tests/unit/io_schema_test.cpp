@@ -14,6 +14,7 @@
 #include <map>
 #include <sstream>
 
+#include "support/case_text.hpp"
 #include "tc/dual/dual_contact.hpp"
 #include "tc/io/case/case_reader.hpp"
 #include "tc/io/schema/case_schema.hpp"
@@ -331,21 +332,14 @@ TEST(CaseSchema, SettingsTextSeesEveryDefaultedKey) {
 
 // [stability] needs a case it can analyse (quasistatic, a rigid tool that slides): its keys'
 // defaults are checked on one, as the two tests above check the other sections'.
-constexpr const char* kStabilityCase = R"(dimension = 2
+const std::string kStabilityCase = std::string(R"(dimension = 2
 [time]
 scheme = "quasistatic"
 step = 0.1
 end = 1.0
 [physics]
 thermoelastic_heating = false
-[materials.steel]
-density = 7850.0
-young_modulus = 2.0e11
-poisson_ratio = 0.3
-thermal_expansion = 1.2e-5
-specific_heat = 450.0
-thermal_conductivity = 50.0
-[[bodies]]
+)") + tc::test::kSteelToml + R"([[bodies]]
 name = "block"
 material = "steel"
 mesh = { box = { min = [0.0, -0.5], max = [1.0, 0.0], cells = [2, 2] } }
