@@ -216,7 +216,8 @@ TEST(Issue20, ACaseFileThatIsADirectoryIsSaidToBeSo) {
 TEST(Issue20, AnUnknownSubcommandIsNamed) {
   const auto r = limited("frobnicate");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("unknown subcommand 'frobnicate', expected one of: run, check, stability, info"),
+  EXPECT_NE(r.output.find(
+                "unknown subcommand 'frobnicate', expected one of: run, check, stability, info"),
             std::string::npos)
       << r.output;
 }

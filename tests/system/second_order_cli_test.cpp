@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "support/case_text.hpp"
 #include "support/cli.hpp"
 #include "support/history.hpp"
 
@@ -16,15 +17,7 @@ using tc::test::thermocontact;
 
 namespace {
 
-const std::string kMaterial = R"(
-[materials.steel]
-density = 7850.0
-young_modulus = 2.0e11
-poisson_ratio = 0.3
-thermal_expansion = 1.2e-5
-specific_heat = 450.0
-thermal_conductivity = 50.0
-)";
+const std::string kMaterial = std::string("\n") + tc::test::kSteelToml;
 
 /// A 3D bar of `element` cells, clamped at xmin, pushed at xmax, heated at zmax, cooled by a
 /// film at zmin, dynamic, 4 steps.

@@ -166,11 +166,13 @@ void check_steps(Settings s, const char* what) {
     const size_t n = r.spread.size(), half = n / 2;
     const double all = worst(r.spread, 1, n), first = worst(r.spread, 1, half),
                  second = worst(r.spread, half, n);
-    std::printf("[ measure  ] %s V τ = %.1f h: pressure spread worst %.2e (first half %.2e, second "
-                "%.2e), end-of-step gap %.2e m (δ = %.1e m)\n",
-                what, 1 / spc, all, first, second, r.worst_gap, kPressure * kHeight / kSoft);
+    std::printf(
+        "[ measure  ] %s V τ = %.1f h: pressure spread worst %.2e (first half %.2e, second "
+        "%.2e), end-of-step gap %.2e m (δ = %.1e m)\n",
+        what, 1 / spc, all, first, second, r.worst_gap, kPressure * kHeight / kSoft);
     // What the step's linearisation leaves is second order in the slide's change between steps,
-    // a fraction of the dent p l/E_b that moves with the slider (before the fix: 0.3 δ at V τ = h, 3 δ at 2h).
+    // a fraction of the dent p l/E_b that moves with the slider (before the fix: 0.3 δ at V τ = h,
+    // 3 δ at 2h).
     EXPECT_LT(r.worst_gap, kPressure * kL / kStiff) << what << " V τ = " << 1 / spc << " h";
     if (spc == 2) {
       reference = all;

@@ -322,6 +322,38 @@ void mirror_blocks(Eigen::MatrixXd& m, Eigen::Index nn, Eigen::Index d) {
       m.block(d * b, d * a, d, d) = m.block(d * a, d * b, d, d).transpose();
 }
 
+/// stiffness_u of a second-order cell as one product: S = Gᵀ W G over the cell's points, with
+/// G(p, i·n + a) = ∂_i N_a(x_p) and W the weights J·w, holds every ∫ ∂_i N_a ∂_j N_b at once,
+/// and K's entries are sums of three of S's. On Hex20, Hex27 and Tet10 the product (Eigen's
+/// blocked kernel) halves the whole assembly of K_u against the point loop (bench/RESULTS.md);
+/// first-order cells keep the loop, whose summation order their histories were recorded with.
+Eigen::MatrixXd stiffness_u_by_product(CellType t, const Coords& x, double lambda, double mu) {
+  const auto nn = x.rows(), d = x.cols();
+  const auto points = static_cast<Eigen::Index>(table(t).size());
+  Eigen::MatrixXd g(points, d * nn), gw(points, d * nn);
+  Eigen::Index row = 0;
+  for_each_point(t, x, [&](const PointData& p) {
+    for (Eigen::Index i = 0; i < d; ++i)
+      for (Eigen::Index a = 0; a < nn; ++a) {
+        g(row, i * nn + a) = p.grad(a, i);
+        gw(row, i * nn + a) = p.grad(a, i) * p.jxw;
+      }
+    ++row;
+  });
+  const Eigen::MatrixXd s = g.transpose() * gw;
+  Eigen::MatrixXd k(d * nn, d * nn);
+  for (Eigen::Index a = 0; a < nn; ++a)
+    for (Eigen::Index b = 0; b < nn; ++b) {
+      double trace = 0;
+      for (Eigen::Index m = 0; m < d; ++m) trace += s(m * nn + a, m * nn + b);
+      for (Eigen::Index i = 0; i < d; ++i)
+        for (Eigen::Index j = 0; j < d; ++j)
+          k(d * a + i, d * b + j) = lambda * s(i * nn + a, j * nn + b) +
+                                    mu * (s(j * nn + a, i * nn + b) + (i == j ? trace : 0.0));
+    }
+  return k;
+}
+
 }  // namespace
 
 // ---- Public reference-element API -----------------------------------------------------------
@@ -385,42 +417,6 @@ Eigen::MatrixXd mass_u(CellType t, const Coords& x, double rho) {
   });
   return m;
 }
-
-namespace {
-
-/// stiffness_u of a second-order cell as one product: S = Gᵀ W G over the cell's points, with
-/// G(p, i·n + a) = ∂_i N_a(x_p) and W the weights J·w, holds every ∫ ∂_i N_a ∂_j N_b at once,
-/// and K's entries are sums of three of S's. On Hex20, Hex27 and Tet10 the product (Eigen's
-/// blocked kernel) halves the whole assembly of K_u against the point loop (bench/RESULTS.md);
-/// first-order cells keep the loop, whose summation order their histories were recorded with.
-Eigen::MatrixXd stiffness_u_by_product(CellType t, const Coords& x, double lambda, double mu) {
-  const auto nn = x.rows(), d = x.cols();
-  const auto points = static_cast<Eigen::Index>(table(t).size());
-  Eigen::MatrixXd g(points, d * nn), gw(points, d * nn);
-  Eigen::Index row = 0;
-  for_each_point(t, x, [&](const PointData& p) {
-    for (Eigen::Index i = 0; i < d; ++i)
-      for (Eigen::Index a = 0; a < nn; ++a) {
-        g(row, i * nn + a) = p.grad(a, i);
-        gw(row, i * nn + a) = p.grad(a, i) * p.jxw;
-      }
-    ++row;
-  });
-  const Eigen::MatrixXd s = g.transpose() * gw;
-  Eigen::MatrixXd k(d * nn, d * nn);
-  for (Eigen::Index a = 0; a < nn; ++a)
-    for (Eigen::Index b = 0; b < nn; ++b) {
-      double trace = 0;
-      for (Eigen::Index m = 0; m < d; ++m) trace += s(m * nn + a, m * nn + b);
-      for (Eigen::Index i = 0; i < d; ++i)
-        for (Eigen::Index j = 0; j < d; ++j)
-          k(d * a + i, d * b + j) = lambda * s(i * nn + a, j * nn + b) +
-                                    mu * (s(j * nn + a, i * nn + b) + (i == j ? trace : 0.0));
-    }
-  return k;
-}
-
-}  // namespace
 
 Eigen::MatrixXd stiffness_u(CellType t, const Coords& x, double lambda, double mu) {
   // a_u(φ_b^j, φ_a^i) = ∫ ε(φ_a^i) : C : ε(φ_b^j) with Hooke's law (2.5):

@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include "tc/core/numeric/petsc_blocks.hpp"
 #include "tc/core/verify.hpp"
+#include "tc/qp/stopping.hpp"
 
 namespace tc::qp {
 
@@ -496,44 +496,11 @@ class DiagonalSandwich final : public LinearOperator {
 
 }  // namespace
 
-namespace {
-
-/// The stopping test's weights (QpOptions::row_groups): 1 on group 0, ‖d‖/max(‖d_G‖,
-/// 1e-6‖d‖) but at least 1 on each other group G; none when every weight is 1.
-std::optional<Vector> group_weights(const Vector& d, const std::vector<int>& groups) {
-  if (groups.empty()) return std::nullopt;
-  const auto rd = d.read();
-  const auto dv = rd.span();
-  TC_VERIFY(groups.size() == dv.size(), "a group for each of this rank's rows");
-  int n = 0;
-  for (const int g : groups) n = std::max(n, g + 1);
-  TC_MPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_INT, MPI_MAX, d.comm()));
-  std::vector<double> squares(static_cast<size_t>(n), 0.0);
-  for (size_t i = 0; i < dv.size(); ++i) squares[static_cast<size_t>(groups[i])] += dv[i] * dv[i];
-  TC_MPI(MPI_Allreduce(MPI_IN_PLACE, squares.data(), n, MPI_DOUBLE, MPI_SUM, d.comm()));
-  double all = 0;
-  for (const double q : squares) all += q;
-  const double norm = std::sqrt(all);
-  std::vector<double> weight(static_cast<size_t>(n), 1.0);
-  for (size_t g = 1; g < weight.size(); ++g)
-    if (squares[g] > 0)
-      weight[g] = std::max(1.0, norm / std::max(std::sqrt(squares[g]), 1e-6 * norm));
-  if (std::all_of(weight.begin(), weight.end(), [](double w) { return w == 1.0; }))
-    return std::nullopt;
-  Vector w = d.duplicate();
-  auto wv = w.view();
-  for (size_t i = 0; i < dv.size(); ++i) wv[i] = weight[static_cast<size_t>(groups[i])];
-  return w;
-}
-
-}  // namespace
-
 QpResult Mpgp::solve(const Vector& d, Vector& x) const {
   // The tolerance's scale is d on the components that are free to move: a fixed one (a
   // frictionless node's tangential rows, a held node) has its solution from the set alone and
   // its d may be of any size (in a frictionless slide, the slip: 10¹⁴ × d_n once scaled).
-  Vector d_free = d.clone();
-  set_.zero_fixed(d_free);
+  const Vector d_free = free_part(d, set_);
   const double tolerance = std::max(options_.rtol * d_free.norm(), options_.atol);
   const std::optional<Vector> weights = group_weights(d_free, options_.row_groups);
   if (!options_.scaling)
