@@ -73,7 +73,7 @@ struct Settings {
   double r = 2;                 // V/V_cr
   int nx = 20;                  // cells along the half wavelength
   double first = 5e-5;          // the top cell's depth [m]; the cells grow by ≤ 1.15 downwards
-  double cells_per_step = 1;    // V τ / h_x: at most 1 (docs/choices.md, "TEI run")
+  double cells_per_step = 1;    // V τ / h_x
   double pressure = 1e7;        // p₀ [Pa]
   double seed_fraction = 0.05;  // the seed's pressure P/p₀ at the start
   physics::Scheme scheme = physics::Scheme::quasistatic;
