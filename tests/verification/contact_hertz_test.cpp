@@ -21,6 +21,7 @@
 #include "support/problems.hpp"
 #include "tc/mesh/gmsh/gmsh_reader.hpp"
 #include "tc/run/simulation.hpp"
+#include "verification/hertz_gmsh.hpp"
 
 namespace tc::test {
 namespace {
@@ -37,23 +38,7 @@ fs::path temp_dir() {
 
 /// Size h within 1.5 a of the point of first contact (0, 0), growing to `coarse` at 0.8 R.
 void refine_towards_origin(int point, double h, double coarse) {
-  namespace field = gmsh::model::mesh::field;
-  const int d = field::add("Distance");
-  try {
-    field::setNumbers(d, "PointsList", {static_cast<double>(point)});
-  } catch (...) {  // Gmsh before 4.9 names it NodesList
-    field::setNumbers(d, "NodesList", {static_cast<double>(point)});
-  }
-  const int t = field::add("Threshold");
-  field::setNumber(t, "InField", d);
-  field::setNumber(t, "SizeMin", h);
-  field::setNumber(t, "SizeMax", coarse);
-  field::setNumber(t, "DistMin", 1.5 * kHalfWidth);
-  field::setNumber(t, "DistMax", 0.8 * kRadius);
-  field::setAsBackgroundMesh(t);
-  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  hertz::size_towards(point, h, coarse, kHalfWidth, kRadius);
   gmsh::option::setNumber("Mesh.Algorithm", 6);  // 8 crashed in Gmsh 4.8.4 (verification.md)
   gmsh::option::setNumber("Mesh.RecombineAll", 1);
 }

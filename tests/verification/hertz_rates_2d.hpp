@@ -18,6 +18,7 @@
 #include "support/problems.hpp"
 #include "tc/mesh/gmsh/gmsh_reader.hpp"
 #include "tc/run/simulation.hpp"
+#include "verification/hertz_gmsh.hpp"
 #include "verification/hertz_rates.hpp"
 
 namespace tc::test::hertz2d {
@@ -41,23 +42,7 @@ inline fs::path temp_dir() {
 }
 
 inline void refine_towards(int point, double h, double coarse, const Meshing& k) {
-  namespace field = gmsh::model::mesh::field;
-  const int d = field::add("Distance");
-  try {
-    field::setNumbers(d, "PointsList", {static_cast<double>(point)});
-  } catch (...) {  // Gmsh before 4.9 names it NodesList
-    field::setNumbers(d, "NodesList", {static_cast<double>(point)});
-  }
-  const int t = field::add("Threshold");
-  field::setNumber(t, "InField", d);
-  field::setNumber(t, "SizeMin", h);
-  field::setNumber(t, "SizeMax", coarse);
-  field::setNumber(t, "DistMin", 1.5 * kHalfWidth);
-  field::setNumber(t, "DistMax", 0.8 * kRadius);
-  field::setAsBackgroundMesh(t);
-  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  hertz::size_towards(point, h, coarse, kHalfWidth, kRadius);
   gmsh::option::setNumber("Mesh.Algorithm", 6);
   gmsh::option::setNumber("Mesh.RecombineAll", k.quads ? 1 : 0);
   gmsh::option::setNumber("Mesh.ElementOrder", k.order);
