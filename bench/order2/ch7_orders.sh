@@ -5,9 +5,14 @@
 # the heat generated, the thermal energy and the largest θ at t = 1 s, the dofs and the wall
 # time (bench/RESULTS.md, "The ch. 7 example at first and second order").
 #   bench/order2/ch7_orders.sh "Hex8 1" "Hex8 2" "Hex27 1" ...
+# TC_BIN names another binary (a copy, so that a rebuild of build/ cannot change a long run);
+# TC_SET passes one more --set to every run (e.g. "physics.thermal_expansion=false").
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 work=${TC_BENCH_WORK:-$(mktemp -d)}
+bin=${TC_BIN:-$root/build/bin/thermocontact}
+extra=()
+[[ -z ${TC_SET:-} ]] || extra=(--set "$TC_SET")
 [[ -n ${TC_BENCH_WORK:-} ]] || trap 'rm -rf "$work"' EXIT
 for spec in "$@"; do
   read -r el k <<<"$spec"
@@ -17,7 +22,7 @@ print(','.join(str(round(c * k)) for c in (8, 30, 6)), round(6 * k))")
     -e "s/cells = \[6, 6, 6\]/cells = [$slave, $slave, $slave], element = \"$el\"/" \
     -e "s/^every = 25/every = 1000/" \
     "$root/examples/06-thesis-frictional-heating/case.toml" >"$work/case-$el-$k.toml"
-  OPENBLAS_NUM_THREADS=1 "$root/build/bin/thermocontact" run "$work/case-$el-$k.toml" \
+  OPENBLAS_NUM_THREADS=1 "$bin" run "$work/case-$el-$k.toml" "${extra[@]}" \
     --output "$work/out-$el-$k" --force >"$work/log-$el-$k.txt" 2>&1 || echo "FAILED $el $k (log: $work/log-$el-$k.txt)"
 done
 python3 - "$work" <<'PY'
