@@ -312,6 +312,7 @@ std::string bad_forward_compliance() {
 void print_warnings(const tc::physics::Problem& problem) {
   auto more = tc::io::check_geometry(problem);
   for (auto& w : tc::io::check_time_data(problem)) more.push_back(std::move(w));
+  for (auto& w : tc::io::check_lumped_capacity(problem)) more.push_back(std::move(w));
   if (tc::core::PetscSession::rank() != 0) return;
   for (const auto& w : problem.warnings) fmt::print(stderr, "warning: {}\n", w);
   for (const auto& w : more) fmt::print(stderr, "warning: {}\n", w);

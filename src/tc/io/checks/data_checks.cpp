@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tc/fem/assembler.hpp"
+
 namespace tc::io {
 
 RingingData trapezoidal_ringing(const core::TimeTable& d, double v0, double tau, int steps) {
@@ -53,6 +55,76 @@ std::vector<std::string> check_time_data(const physics::Problem& p) {
             body.name, b.where, axis[c], r.at_time - 2 * p.time.step, r.alternation, r.max_speed,
             r.alternation));
     }
+  return warnings;
+}
+
+namespace {
+
+/// Σ(∫N_a)²/m_a over Σ∫N_a for the HRZ shares m_a of one cell: the factor by which a uniform
+/// source's nodal temperatures f_a/m_a = s∫N_a/m_a overstate ∫θ_h (computed from the reference
+/// cells' N_a; 1 where row sums lump).
+double hrz_overstatement(mesh::CellType t) {
+  switch (t) {
+    case mesh::CellType::Hex20:
+      return 9.6;
+    case mesh::CellType::Quad8:
+      return 2.8;
+    case mesh::CellType::Tet10:
+      return 2.0;
+    case mesh::CellType::Tri6:
+      return 1.2;
+    default:
+      return 1.0;
+  }
+}
+
+/// The largest extent along an axis of the cell's nodes: its size h for the conduction time.
+double cell_extent(const mesh::Mesh& m, int c) {
+  double extent = 0;
+  for (int d = 0; d < m.dim(); ++d) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const int a : m.cell(c)) {
+      lo = std::min(lo, m.point(a)[static_cast<size_t>(d)]);
+      hi = std::max(hi, m.point(a)[static_cast<size_t>(d)]);
+    }
+    extent = std::max(extent, hi - lo);
+  }
+  return extent;
+}
+
+}  // namespace
+
+std::vector<std::string> check_lumped_capacity(const physics::Problem& p) {
+  std::vector<std::string> warnings;
+  if (!p.physics.lumped_heat_capacity || p.time.step <= 0) return warnings;
+  for (const auto& body : p.bodies) {
+    if (body.rigid_tool || fem::lumps_by_row_sums(body.mesh)) continue;
+    double h = 0, factor = 1;
+    const char* worst = "";
+    for (int c = 0; c < body.mesh.n_cells(); ++c) {
+      const auto t = body.mesh.cell_type(c);
+      if (hrz_overstatement(t) == 1.0) continue;
+      h = std::max(h, cell_extent(body.mesh, c));
+      if (hrz_overstatement(t) > factor) {
+        factor = hrz_overstatement(t);
+        worst = mesh::name(t);
+      }
+    }
+    const auto& mat = body.material;
+    const double diffusivity = mat.thermal_conductivity / mat.heat_capacity();
+    const double fourier = diffusivity * p.time.step / (h * h);
+    if (!(fourier < 1.0)) continue;
+    warnings.push_back(fmt::format(
+        "body '{}': its {} cells lump the heat capacity by HRZ (heat_capacity = \"lumped\"), "
+        "and the step is short for them: κτ/(ρc h²) = {:.3g} for its largest cell (h = {:.3g} "
+        "m), below 1. Until conduction evens its nodes out (a few ρc h²/κ = {:.3g} s), the heat "
+        "a source puts in (the thermoelastic term, a flux, friction) leaves the corners colder "
+        "than the mid-edge nodes, and the thermal expansion it drives is up to {:.2g} times what "
+        "the heat would give. Hex27 or Quad9 (or first-order) "
+        "cells, heat_capacity = \"consistent\", or a step of at least {:.3g} s avoid it "
+        "(docs/choices.md, \"Mass of second-order cells\")",
+        body.name, worst, fourier, h, h * h / diffusivity, factor, h * h / diffusivity));
+  }
   return warnings;
 }
 
