@@ -12,7 +12,9 @@
 //  - the weighted gap of surfaces offset by δ is δ × weight at every contact node;
 //  - every slave node, vertex and mid-edge, is a contact node.
 // And the contact patch test of mortar_patch_test.cpp on these surfaces through the dual solve
-// (physics::DualContactSolver): a uniform pressure is transmitted at every slave node.
+// (physics::DualContactSolver): a uniform pressure is transmitted at every slave node. The
+// same closed forms at other shares α of the transformation (MortarOptions::vertex_share), and
+// which pressures each multiplier space holds (MultiplierSpace, below).
 // Tolerances: the rules are exact for these integrands (integration.hpp's mortar_rule), so only
 // round-off remains: sums of O(10³–10⁴) terms of a few ulps stay below 1e-13 relative; 1e-12
 // fails on any lost or doubled clip polygon (≥ 1e-4 of the area here).
