@@ -1,9 +1,12 @@
 // The geometry and basis of second-order contact facets (Line3, Tri6, Quad8, Quad9) one by one:
 // shape functions (partition of unity, derivatives against differences), the inverse of the
 // quadratic plane map, curved normals, the area ratio of a curved Line3, and the basis
-// transformation T of Popp et al. (2012) (Σφ̃ = 1, T T⁻¹ = I, the transformed weights).
+// transformation T of Popp et al. (2012) (Σφ̃ = 1, T T⁻¹ = I, the transformed weights), and
+// the dual basis on it for several shares α (MortarOptions::vertex_share).
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -167,6 +170,80 @@ TEST(ContactSecondOrder, TransformationKeepsThePartitionOfUnityAndMakesWeightsPo
       EXPECT_NEAR(w[a] / area, expected, 1e-14) << mesh::name(t) << " node " << a;
       EXPECT_GT(w[a], 0.0);
     }
+  }
+}
+
+// The dual basis ψ = diag(d̃) M̃e⁻¹ φ̃ of one whole reference face for several α: biorthogonal
+// (∫ψ_a φ̃_b = δ_ab d̃_a) and Σψ = 1 for every α of the positive range, checked with a rule
+// one degree richer than needed (n = 5: degree 9 on a line, 8 on the triangle; ψφ̃ has degree
+// 4 on a Tri6, 6 on a Quad8). Measured, for the choice of α (docs/choices.md): the spread of
+// the weights max d̃/min d̃, the extremes of ψ over the face (on a 60 × 60 grid), and
+// |D_ev|/D_ee = α of the physical D's mid-edge rows.
+TEST(ContactSecondOrder, DualBasisOnTheTransformedBasisForEachShare) {
+  struct Case {
+    FacetType t;
+    double alpha;
+  };
+  for (const auto& [t, alpha] :
+       {Case{FacetType::Tri6, 1.0 / 12}, Case{FacetType::Tri6, 0.2}, Case{FacetType::Tri6, 0.25},
+        Case{FacetType::Tri6, 0.4}, Case{FacetType::Quad8, 1.0 / 6}, Case{FacetType::Quad8, 0.2},
+        Case{FacetType::Quad8, 0.25}, Case{FacetType::Quad8, 5.0 / 16},
+        Case{FacetType::Quad8, 0.4}}) {
+    const BasisTransformation tr = basis_transformation(t, alpha);
+    ASSERT_EQ(tr.alpha, alpha);
+    const int n = tr.n;
+    const auto tilde = [&](const Vec2& xi) {
+      const ShapeValues s = facet_shape(t, xi);
+      Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) v(a) += tr.t[a][b] * s.phi[b];
+      return v;
+    };
+    const auto each_point = [&](auto&& f) {  // the reference face, weights summing to its area
+      if (t == FacetType::Tri6)
+        for (const auto& p : gauss_triangle(5)) f(Vec2{p.r, p.s}, 0.5 * p.w);
+      else
+        for (const auto& p : gauss_line(5))
+          for (const auto& r : gauss_line(5)) f(Vec2{2 * p.s - 1, 2 * r.s - 1}, 4 * p.w * r.w);
+    };
+    Eigen::MatrixXd me = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
+    double area = 0;
+    each_point([&](const Vec2& xi, double w) {
+      const Eigen::VectorXd v = tilde(xi);
+      me += w * v * v.transpose();
+      d += w * v;
+      area += w;
+    });
+    const Eigen::MatrixXd a = d.asDiagonal() * me.inverse();
+    Eigen::MatrixXd bi = Eigen::MatrixXd::Zero(n, n);  // ∫ψ_a φ̃_b
+    each_point([&](const Vec2& xi, double w) {
+      const Eigen::VectorXd v = tilde(xi);
+      bi += w * (a * v) * v.transpose();
+    });
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        EXPECT_NEAR(bi(i, j), i == j ? d(i) : 0.0, 1e-13 * area)
+            << mesh::name(t) << " α " << alpha << " (" << i << ", " << j << ")";
+    double lo = 1e300, hi = -1e300;
+    const int grid = 60;
+    for (int i = 0; i <= grid; ++i)
+      for (int j = 0; j <= grid; ++j) {
+        const Vec2 xi = t == FacetType::Tri6 ? Vec2{double(i) / grid, double(j) / grid}
+                                             : Vec2{-1 + 2.0 * i / grid, -1 + 2.0 * j / grid};
+        if (t == FacetType::Tri6 && i + j > grid) continue;
+        const Eigen::VectorXd psi = a * tilde(xi);
+        EXPECT_NEAR(psi.sum(), 1.0, 1e-12) << mesh::name(t) << " α " << alpha;
+        lo = std::min(lo, psi.minCoeff());
+        hi = std::max(hi, psi.maxCoeff());
+      }
+    const double spread = d.maxCoeff() / d.minCoeff();
+    EXPECT_GT(d.minCoeff(), 0.0);
+    std::printf(
+        "[ measure  ] %s α = %.4f: weights/area vertex %.4f, mid-edge %.4f (spread %.2f); ψ in "
+        "[%.2f, %.2f]; D's mid-edge row: −α/(1 − 2α) = %.3f of its weight at each vertex\n",
+        mesh::name(t), alpha, d(0) / area, d(n - 1) / area, spread, lo, hi,
+        -alpha / (1 - 2 * alpha));
   }
 }
 

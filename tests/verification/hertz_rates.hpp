@@ -58,12 +58,14 @@ struct Projection {
   std::map<int, double> weight, pressure;
 };
 
-/// Adds one facet's ∫φ̃_a dA and ∫p φ̃_a dA at the points (ξ, dA) the caller supplies.
+/// Adds one facet's ∫φ̃_a dA and ∫p φ̃_a dA at the points (ξ, dA) the caller supplies; φ̃ with
+/// the share α (MortarOptions::vertex_share; α = 0: the physical φ, whose ∫p φ_a are the
+/// consistent nodal forces of p).
 inline void accumulate(const mesh::Mesh& m, const mesh::Facet& f, const contact::Vec2& xi,
                        double da, const std::function<double(const mesh::Point&)>& p,
-                       Projection& out) {
+                       Projection& out, double alpha = contact::kVertexShare) {
   const auto s = contact::facet_shape(f.type, xi);
-  const auto t = contact::basis_transformation(f.type);
+  const auto t = contact::basis_transformation(f.type, alpha);
   mesh::Point x{0, 0, 0};
   for (int b = 0; b < s.n; ++b)
     for (int c = 0; c < 3; ++c) x[c] += s.phi[b] * m.point(f.nodes[b])[c];
@@ -104,10 +106,37 @@ inline Errors errors(const Projection& proj, const std::map<int, double>& lambda
   return e;
 }
 
+/// The nodal forces' error, a norm that does not depend on the multiplier basis (so that
+/// bases can be compared): f_j = Σ_k D_kj λ_k = ∫λ_h φ_j (the contact force on slave node j)
+/// against the consistent f̂_j = ∫p φ_j (`exact`: accumulate with α = 0), relative ℓ2 over the
+/// slave nodes, all and |x_j| < 0.8a.
+inline Errors force_errors(const Projection& exact, const std::map<int, double>& force,
+                           const std::function<double(int)>& r, double a) {
+  double num = 0, den = 0, num_in = 0, den_in = 0;
+  Errors e;
+  for (const auto& [node, fhat] : exact.pressure) {
+    const auto it = force.find(node);
+    const double f = it == force.end() ? 0.0 : it->second;
+    num += (f - fhat) * (f - fhat);
+    den += fhat * fhat;
+    e.load_exact += fhat;
+    if (r(node) < 0.8 * a) {
+      num_in += (f - fhat) * (f - fhat);
+      den_in += fhat * fhat;
+    }
+  }
+  e.all = std::sqrt(num / den);
+  e.inner = std::sqrt(num_in / den_in);
+  return e;
+}
+
 struct Level {
   double h = 0;
   long dofs = 0;
   Errors e;
+  Errors force;  // force_errors (where the test computes them)
+  Errors point;  // λ_k against p(x_k), relative RMS over the contact nodes (likewise)
+  long qp_iterations = 0, applications = 0;  // of the dual QP over the run
 };
 
 /// Observed rate between levels i − 1 and i in h.

@@ -12,13 +12,16 @@
 //  - the weighted gap of surfaces offset by δ is δ × weight at every contact node;
 //  - every slave node, vertex and mid-edge, is a contact node.
 // And the contact patch test of mortar_patch_test.cpp on these surfaces through the dual solve
-// (physics::DualContactSolver): a uniform pressure is transmitted at every slave node.
+// (physics::DualContactSolver): a uniform pressure is transmitted at every slave node. The
+// same closed forms at other shares α of the transformation (MortarOptions::vertex_share), and
+// which pressures each multiplier space holds (MultiplierSpace, below).
 // Tolerances: the rules are exact for these integrands (integration.hpp's mortar_rule), so only
 // round-off remains: sums of O(10³–10⁴) terms of a few ulps stay below 1e-13 relative; 1e-12
 // fails on any lost or doubled clip polygon (≥ 1e-4 of the area here).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 
 #include "mortar_fixtures.hpp"
@@ -136,6 +139,8 @@ struct OneFace {
   CellType cell;
   std::vector<double> vertex_edge_centre;  // ∫ψ_k / area at a vertex, a mid-edge node, the centre
   bool transformed;
+  double alpha = contact::kVertexShare;  // MortarOptions::vertex_share
+  const char* tag = "";                  // the test name's suffix
 };
 
 class QuadraticWeights : public ::testing::TestWithParam<OneFace> {};
@@ -146,7 +151,9 @@ TEST_P(QuadraticWeights, AreTheClosedFormsOfTheTransformedBasis) {
   const auto slave = as_element(slave_block(c.dim, 0.2, 0.8, 1), c.cell);
   const auto master = master_block(c.dim, 0, 1, 1);
   const double area = c.dim == 2 ? 0.6 : 0.36;
-  const MortarPair pair(slave, bottom(c.dim), master, top(c.dim));
+  MortarOptions options;
+  options.vertex_share = c.alpha;
+  const MortarPair pair(slave, bottom(c.dim), master, top(c.dim), options);
   // Each node's weight is its role's share of every face it is on (a Kuhn-split square gives
   // two triangles of half its area).
   const auto facets = slave.boundary(bottom(c.dim));
@@ -171,8 +178,9 @@ TEST_P(QuadraticWeights, AreTheClosedFormsOfTheTransformedBasis) {
     total += pair.weights()[static_cast<size_t>(k)];
   }
   EXPECT_NEAR(total, area, 1e-14);
-  // D's rows: diagonal but for the mid-edge rows of transformed faces, 5/3 d̃ at the node
-  // and −1/3 d̃ at each of its vertices (T⁻ᵀ with α = 1/5), each row summing to its weight.
+  // D's rows: diagonal but for the mid-edge rows of transformed faces, d̃/(1 − 2α) at the node
+  // and −α d̃/(1 − 2α) at each of its vertices (T⁻ᵀ; 5/3 and −1/3 with α = 1/5), each row
+  // summing to its weight.
   const auto d = entries(pair.d_matrix());
   std::map<PetscInt, std::vector<std::pair<int, double>>> rows;
   for (const auto& [ij, v] : d) rows[ij.first].push_back({static_cast<int>(ij.second), v});
@@ -184,12 +192,12 @@ TEST_P(QuadraticWeights, AreTheClosedFormsOfTheTransformedBasis) {
       sum += v;
       if (j == node) continue;
       EXPECT_TRUE(c.transformed) << "an off-diagonal entry of D in row " << k;
-      EXPECT_NEAR(v, -w / 3, 1e-14) << "row " << k << " column " << j;
+      EXPECT_NEAR(v, -c.alpha * w / (1 - 2 * c.alpha), 1e-14) << "row " << k << " column " << j;
     }
     EXPECT_NEAR(sum, w, 1e-14);
     if (row.size() > 1) {
       EXPECT_EQ(row.size(), 3u);
-      EXPECT_NEAR(d.at({k, node}), 5 * w / 3, 1e-14);
+      EXPECT_NEAR(d.at({k, node}), w / (1 - 2 * c.alpha), 1e-14);
     }
   }
 }
@@ -199,8 +207,214 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(OneFace{2, CellType::Quad8, {1.0 / 6, 2.0 / 3, 0}, false},
                       OneFace{3, CellType::Hex27, {1.0 / 36, 1.0 / 9, 4.0 / 9}, false},
                       OneFace{3, CellType::Hex20, {1.0 / 20, 1.0 / 5, 0}, true},
-                      OneFace{3, CellType::Tet10, {2.0 / 15, 1.0 / 5, 0}, true}),
-    [](const auto& info) { return std::string(mesh::name(info.param.cell)); });
+                      OneFace{3, CellType::Tet10, {2.0 / 15, 1.0 / 5, 0}, true},
+                      // Other shares: Quad8 (2α/3 − 1/12, (1 − 2α)/3), Tri6 (2α/3, (1 − 2α)/3).
+                      OneFace{3, CellType::Hex20, {1.0 / 36, 2.0 / 9, 0}, true, 1.0 / 6, "_1_6"},
+                      OneFace{3, CellType::Hex20, {1.0 / 8, 1.0 / 8, 0}, true, 5.0 / 16, "_5_16"},
+                      OneFace{3, CellType::Tet10, {1.0 / 18, 5.0 / 18, 0}, true, 1.0 / 12, "_1_12"},
+                      OneFace{3, CellType::Tet10, {1.0 / 6, 1.0 / 6, 0}, true, 0.25, "_1_4"}),
+    [](const auto& info) { return std::string(mesh::name(info.param.cell)) + info.param.tag; });
+
+// ---------------------------------------------------------------------------------------------
+// Other shares α of the transformation (MortarOptions::vertex_share) on the non-matching
+// surfaces of QuadraticMortar: the same closed forms hold for every α of the open interval
+// that keeps the weights positive, since Σφ̃ = 1 and span φ̃ = span φ for any α < ½.
+
+struct Share {
+  Surfaces surfaces;
+  double alpha;
+  const char* tag;
+};
+
+class VertexShare : public ::testing::TestWithParam<Share> {
+ protected:
+  MortarOptions options() const {
+    MortarOptions o;
+    o.vertex_share = GetParam().alpha;
+    return o;
+  }
+  std::pair<mesh::Mesh, mesh::Mesh> blocks(double gap = 0) const {
+    const auto [dim, s, m] = GetParam().surfaces;
+    return {as_element(jitter_lines(slave_block(dim, 0, 1, 4, gap), 0.03, 21), s),
+            as_element(jitter_lines(master_block(dim, -0.2, 1.25, 3), 0.05, 22), m)};
+  }
+};
+
+TEST_P(VertexShare, KeepsTheSumsTheTransferAndTheGap) {
+  const auto [slave, master] = blocks();
+  const MortarPair pair(slave, bottom(3), master, top(3), options());
+  expect_sums(pair, surface_area(slave, bottom(3)), 1e-12);
+  EXPECT_EQ(pair.contact_nodes().size(), slave.boundary_nodes(bottom(3)).size());
+  for (const double w : pair.weights()) EXPECT_GT(w, 0.0);
+  const auto t = transfer(pair, slave, master, linear);
+  EXPECT_LT(t.error, t.tolerance()) << "linear, cond(D) = " << t.cond;
+  if (mesh::order(GetParam().surfaces.master) == 2) {
+    const auto q = transfer(pair, slave, master, quadratic);
+    EXPECT_LT(q.error, q.tolerance()) << "quadratic, cond(D) = " << q.cond;
+  }
+  std::printf("[ measure  ] %s α = %.4f: cond(D) = %.3e\n", label(GetParam().surfaces).c_str(),
+              GetParam().alpha, t.cond);
+  const double delta = 0.01;
+  const auto [raised, below] = blocks(delta);
+  const MortarPair offset(raised, bottom(3), below, top(3), options());
+  EXPECT_LT(gap_error(offset, delta), 1e-12);
+}
+
+const Share kShares[] = {{{3, CellType::Tet10, CellType::Tet10}, 1.0 / 12, "1_12"},
+                         {{3, CellType::Tet10, CellType::Tet10}, 0.2, "1_5"},
+                         {{3, CellType::Tet10, CellType::Tet10}, 0.25, "1_4"},
+                         {{3, CellType::Tet10, CellType::Tet10}, 0.4, "2_5"},
+                         {{3, CellType::Tet10, CellType::Hex20}, 0.45, "9_20"},
+                         {{3, CellType::Tet10, CellType::Hex8}, 0.25, "1_4"},
+                         {{3, CellType::Hex20, CellType::Hex20}, 1.0 / 6, "1_6"},
+                         {{3, CellType::Hex20, CellType::Hex20}, 0.2, "1_5"},
+                         {{3, CellType::Hex20, CellType::Hex20}, 5.0 / 16, "5_16"},
+                         {{3, CellType::Hex20, CellType::Hex20}, 0.4, "2_5"},
+                         {{3, CellType::Hex20, CellType::Tet10}, 0.45, "9_20"},
+                         {{3, CellType::Hex20, CellType::Hex8}, 5.0 / 16, "5_16"}};
+
+INSTANTIATE_TEST_SUITE_P(Pairs, VertexShare, ::testing::ValuesIn(kShares), [](const auto& info) {
+  return label(info.param.surfaces) + "_alpha_" + info.param.tag;
+});
+
+// ---------------------------------------------------------------------------------------------
+// Which pressures the multiplier space M_h = span ψ holds (its a priori order: an L2 error
+// O(h^{k+1}) of λ_h needs P_k ⊂ M_h). Slave and master cover the same square (line), so D is
+// square and invertible: λ = D⁻ᵀ f̂_s with f̂_j = ∫p φ_j^s is the one λ_h ∈ M_h with the moments
+// of p, and λ_h = p iff p ∈ M_h; then Mᵀλ = ∫λ_h φ^m equals f̂^m = ∫p φ^m, otherwise not.
+// Constants are held by every space (Σψ = 1). A linear p is held by Line3 (the weighted mean
+// ∫xφ_v/∫φ_v of a vertex function is the vertex on either side) and Quad9 (its tensor
+// product), not by Line2, Quad4, Tri3 (ψ_v's mean is the point ⅓ (2/4 for Tri3) into each cell)
+// and not by Tri6 or Quad8 with any α: the mean of a mid-edge function (2/5, 2/5, 1/5 in a
+// Tri6's barycentrics) depends on the cell.
+
+/// Σ over the facets of ∫ g φ_a dS by facet quadrature (exact here: affine facets, g of
+/// degree ≤ 1), per node.
+std::map<int, double> moments(const mesh::Mesh& m, const std::string& boundary,
+                              const std::function<double(const mesh::Point&)>& g) {
+  std::map<int, double> out;
+  for (const auto& f : m.boundary(boundary)) {
+    const auto at = [&](const contact::Vec2& xi, double w) {
+      const auto s = contact::facet_shape(f.type, xi);
+      mesh::Point x{0, 0, 0};
+      contact::Vec3 d1{0, 0, 0}, d2{0, 0, 0};
+      for (int b = 0; b < s.n; ++b)
+        for (int c = 0; c < 3; ++c) {
+          x[c] += s.phi[b] * m.point(f.nodes[b])[c];
+          d1[c] += s.dphi[b][0] * m.point(f.nodes[b])[c];
+          d2[c] += s.dphi[b][1] * m.point(f.nodes[b])[c];
+        }
+      const double ds = m.dim() == 2 ? contact::norm(d1) : contact::norm(contact::cross(d1, d2));
+      for (int a = 0; a < s.n; ++a) out[f.nodes[a]] += w * ds * g(x) * s.phi[a];
+    };
+    const auto corners = mesh::corner_type(f.type);
+    if (m.dim() == 2)
+      for (const auto& p : contact::gauss_line(5)) at({p.s, 0}, p.w);
+    else if (corners == mesh::FacetType::Tri3)
+      for (const auto& p : contact::gauss_triangle(5)) at({p.r, p.s}, 0.5 * p.w);
+    else
+      for (const auto& p : contact::gauss_line(5))
+        for (const auto& q : contact::gauss_line(5)) at({2 * p.s - 1, 2 * q.s - 1}, 4 * p.w * q.w);
+  }
+  return out;
+}
+
+/// max_c |(Mᵀ D⁻ᵀ f̂_s)_c − f̂_c^m| / max |f̂^m| (the header's comment).
+double reproduction_error(const MortarPair& pair, const mesh::Mesh& slave, const mesh::Mesh& master,
+                          const std::function<double(const mesh::Point&)>& p) {
+  const int dim = slave.dim();
+  const auto fs = moments(slave, bottom(dim), p), fm = moments(master, top(dim), p);
+  const auto& nodes = pair.contact_nodes();
+  const auto n = static_cast<Eigen::Index>(nodes.size());
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n, n);
+  for (const auto& [kj, v] : entries(pair.d_matrix()))
+    d(kj.first, pair.contact_index(static_cast<int>(kj.second))) += v;
+  Eigen::VectorXd rhs(n);
+  for (Eigen::Index k = 0; k < n; ++k) rhs(k) = fs.at(nodes[static_cast<size_t>(k)]);
+  const Eigen::VectorXd lambda = d.transpose().partialPivLu().solve(rhs);
+  std::map<int, double> mt;
+  for (const auto& [kc, v] : entries(pair.m_matrix()))
+    mt[static_cast<int>(kc.second)] += v * lambda(kc.first);
+  double err = 0, scale = 0;
+  for (const auto& [c, f] : fm) {
+    err = std::max(err, std::abs(mt[c] - f));
+    scale = std::max(scale, std::abs(f));
+  }
+  return err / scale;
+}
+
+struct Space {
+  int dim;
+  CellType slave, master;
+  double alpha;
+  bool linear;  // P1 ⊂ M_h
+  const char* tag;
+};
+
+class MultiplierSpace : public ::testing::TestWithParam<Space> {};
+
+TEST_P(MultiplierSpace, HoldsConstantsAndLinearPressuresWhereTheTheorySays) {
+  const auto& c = GetParam();
+  const int ns = c.dim == 2 ? 7 : 4, nm = c.dim == 2 ? 5 : 3;
+  const auto slave = as_element(jitter_lines(slave_block(c.dim, 0, 1, ns), 0.03, 21), c.slave);
+  const auto master = as_element(jitter_lines(master_block(c.dim, 0, 1, nm), 0.05, 22), c.master);
+  MortarOptions options;
+  options.vertex_share = c.alpha;
+  const MortarPair pair(slave, bottom(c.dim), master, top(c.dim), options);
+  ASSERT_EQ(pair.contact_nodes().size(), slave.boundary_nodes(bottom(c.dim)).size());
+  const double constant =
+      reproduction_error(pair, slave, master, [](const mesh::Point&) { return 1.0; });
+  const double lin = reproduction_error(pair, slave, master, linear);
+  std::printf("[ measure  ] multipliers on %s (α = %.4f): constant %.1e, linear %.1e\n",
+              mesh::name(c.slave), c.alpha, constant, lin);
+  // Round-off: a dense solve with cond(D) ≤ 10² of O(10²) moments; a space that misses P1
+  // misses it by O(h²) of the moments here (≥ 1e-4 relative, measured).
+  EXPECT_LT(constant, 1e-12);
+  if (c.linear)
+    EXPECT_LT(lin, 1e-12);
+  else
+    EXPECT_GT(lin, 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Spaces, MultiplierSpace,
+    ::testing::Values(Space{2, CellType::Quad4, CellType::Quad8, 0.2, false, "Line2"},
+                      Space{2, CellType::Quad8, CellType::Quad4, 0.2, true, "Line3"},
+                      Space{3, CellType::Hex8, CellType::Hex27, 0.2, false, "Quad4"},
+                      Space{3, CellType::Tet4, CellType::Hex20, 0.2, false, "Tri3"},
+                      Space{3, CellType::Hex27, CellType::Hex8, 0.2, true, "Quad9"},
+                      Space{3, CellType::Tet10, CellType::Hex8, 1.0 / 12, false, "Tri6_1_12"},
+                      Space{3, CellType::Tet10, CellType::Hex8, 0.2, false, "Tri6_1_5"},
+                      Space{3, CellType::Tet10, CellType::Hex8, 0.25, false, "Tri6_1_4"},
+                      Space{3, CellType::Tet10, CellType::Hex8, 1.0 / 20, false, "Tri6_1_20"},
+                      Space{3, CellType::Tet10, CellType::Hex8, 1.0 / 8, false, "Tri6_1_8"},
+                      Space{3, CellType::Tet10, CellType::Hex8, 0.4, false, "Tri6_2_5"},
+                      Space{3, CellType::Hex20, CellType::Tet4, 1.0 / 6, false, "Quad8_1_6"},
+                      Space{3, CellType::Hex20, CellType::Tet4, 0.25, false, "Quad8_1_4"},
+                      Space{3, CellType::Hex20, CellType::Tet4, 0.4, false, "Quad8_2_5"},
+                      Space{3, CellType::Hex20, CellType::Tet4, 0.2, false, "Quad8_1_5"},
+                      Space{3, CellType::Hex20, CellType::Tet4, 5.0 / 16, false, "Quad8_5_16"}),
+    [](const auto& info) { return std::string(info.param.tag); });
+
+TEST(VertexShareRange, OutsideThePositiveWeightsIsRefused) {
+  // Quad8 needs α > ⅛ (∫φ̃_v = 2α/3 − 1/12), Tri6 α > 0, both α < ½ (∫φ̃_e = (1 − 2α)/3).
+  const auto master = master_block(3, 0, 1, 2);
+  const auto hex20 = as_element(slave_block(3, 0, 1, 2), CellType::Hex20);
+  const auto tet10 = as_element(slave_block(3, 0, 1, 2), CellType::Tet10);
+  const auto hex27 = as_element(slave_block(3, 0, 1, 2), CellType::Hex27);
+  const auto with = [](double alpha) {
+    MortarOptions o;
+    o.vertex_share = alpha;
+    return o;
+  };
+  EXPECT_THROW(MortarPair(hex20, "zmin", master, "zmax", with(0.12)), Error);
+  EXPECT_NO_THROW(MortarPair(hex20, "zmin", master, "zmax", with(0.13)));
+  EXPECT_THROW(MortarPair(tet10, "zmin", master, "zmax", with(0.5)), Error);
+  EXPECT_THROW(MortarPair(tet10, "zmin", master, "zmax", with(0.0)), Error);
+  EXPECT_NO_THROW(MortarPair(tet10, "zmin", master, "zmax", with(0.01)));
+  // Quad9 faces are not transformed: α is not used.
+  EXPECT_NO_THROW(MortarPair(hex27, "zmin", master, "zmax", with(0.01)));
+}
 
 TEST(QuadraticMortarFaces, ASlaveSurfaceMixingQuad9AndQuad8IsRefused) {
   // A test of the refusal only: the first Quad9 face also listed as the Quad8 on its first
@@ -228,12 +442,14 @@ struct PatchCase {
   int dim;
   CellType upper, lower;
   MultiplierBasis basis;
+  double alpha = contact::kVertexShare;  // MortarOptions::vertex_share
+  const char* tag = "";
 };
 
 class QuadraticPatch : public ::testing::TestWithParam<PatchCase> {};
 
 TEST_P(QuadraticPatch, NonMatchingSurfacesCarryTheUniaxialPressureAtEverySlaveNode) {
-  const auto [dim, upper_cell, lower_cell, basis] = GetParam();
+  const auto [dim, upper_cell, lower_cell, basis, alpha, tag] = GetParam();
   const double delta = 1e-4;
   const auto point = [dim](double x, double z) {
     return dim == 3 ? mesh::Point{x, x, z} : mesh::Point{x, z, 0};
@@ -245,7 +461,9 @@ TEST_P(QuadraticPatch, NonMatchingSurfacesCarryTheUniaxialPressureAtEverySlaveNo
       make_block(dim, point(0, 1), point(1, 1.5), upper_cells, top(dim), -delta, "", upper_cell);
   Block lower =
       make_block(dim, point(0, 0), point(1, 1), lower_cells, bottom(dim), 0.0, "", lower_cell);
-  const MortarPair pair(upper.mesh, bottom(dim), lower.mesh, top(dim), {basis, 0.0});
+  MortarOptions options{basis, 0.0};
+  options.vertex_share = alpha;
+  const MortarPair pair(upper.mesh, bottom(dim), lower.mesh, top(dim), options);
   ASSERT_EQ(pair.contact_nodes().size(), upper.mesh.boundary_nodes(bottom(dim)).size());
 
   physics::DualContactSettings settings;
@@ -274,10 +492,10 @@ TEST_P(QuadraticPatch, NonMatchingSurfacesCarryTheUniaxialPressureAtEverySlaveNo
     for (int t = 1; t < dim; ++t) EXPECT_EQ(l[dim * k + t], 0.0);
   }
   std::printf(
-      "[ measure  ] quadratic patch %s on %s (%s): max |λ_k − p|/p = %.2e, %d QP "
+      "[ measure  ] quadratic patch %s on %s (%s, α = %.4f): max |λ_k − p|/p = %.2e, %d QP "
       "iterations, %zu contact nodes\n",
-      mesh::name(upper_cell), mesh::name(lower_cell), contact::name(basis), worst, r.iterations,
-      pair.contact_nodes().size());
+      mesh::name(upper_cell), mesh::name(lower_cell), contact::name(basis), alpha, worst,
+      r.iterations, pair.contact_nodes().size());
   // The bodies touch without penetrating: B_n u = c_n at every node (all active).
   core::Vector bu(solver.rows().n_rows());
   solver.rows().slave.mult(u_s, bu);
@@ -297,10 +515,18 @@ INSTANTIATE_TEST_SUITE_P(
                       PatchCase{3, CellType::Hex27, CellType::Hex8, MultiplierBasis::dual},
                       PatchCase{3, CellType::Tet10, CellType::Hex20, MultiplierBasis::dual},
                       PatchCase{3, CellType::Hex8, CellType::Tet10, MultiplierBasis::dual},
-                      PatchCase{3, CellType::Hex20, CellType::Hex27, MultiplierBasis::standard}),
+                      PatchCase{3, CellType::Hex20, CellType::Hex27, MultiplierBasis::standard},
+                      PatchCase{3, CellType::Tet10, CellType::Hex20, MultiplierBasis::dual,
+                                1.0 / 12, "_alpha_1_12"},
+                      PatchCase{3, CellType::Tet10, CellType::Hex20, MultiplierBasis::dual, 0.25,
+                                "_alpha_1_4"},
+                      PatchCase{3, CellType::Hex20, CellType::Hex20, MultiplierBasis::dual, 1.0 / 6,
+                                "_alpha_1_6"},
+                      PatchCase{3, CellType::Hex20, CellType::Hex20, MultiplierBasis::dual,
+                                5.0 / 16, "_alpha_5_16"}),
     [](const auto& info) {
       return std::to_string(info.param.dim) + "d_" + mesh::name(info.param.upper) + "_on_" +
-             mesh::name(info.param.lower) + "_" + contact::name(info.param.basis);
+             mesh::name(info.param.lower) + "_" + contact::name(info.param.basis) + info.param.tag;
     });
 
 }  // namespace

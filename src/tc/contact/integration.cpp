@@ -135,10 +135,18 @@ int mortar_rule(int dim, mesh::FacetType s, mesh::FacetType m, bool thermal) {
   return dim == 2 ? (degree + 2) / 2 : (degree + 3) / 2;
 }
 
-BasisTransformation basis_transformation(mesh::FacetType type) {
+ShareRange vertex_share_range(mesh::FacetType t) {
+  // ∫φ̃_v = ∫φ_v + 2α∫φ_e > 0 and ∫φ̃_e = (1 − 2α)∫φ_e > 0 with (∫φ_v, ∫φ_e) = (0, ⅓) of the
+  // area on a Tri6 and (−1/12, ⅓) on a Quad8.
+  if (t == mesh::FacetType::Tri6) return {0.0, 0.5};
+  if (t == mesh::FacetType::Quad8) return {0.125, 0.5};
+  return {};
+}
+
+BasisTransformation basis_transformation(mesh::FacetType type, double alpha) {
   BasisTransformation b;
   b.n = mesh::n_nodes(type);
-  b.alpha = type == mesh::FacetType::Tri6 || type == mesh::FacetType::Quad8 ? kVertexShare : 0.0;
+  b.alpha = type == mesh::FacetType::Tri6 || type == mesh::FacetType::Quad8 ? alpha : 0.0;
   for (int a = 0; a < b.n; ++a) b.t[a][a] = b.inv[a][a] = 1;
   if (b.identity()) return b;
   // Mid-edge node corners + i is on the edge from corner i to corner i + 1 (mesh::edges).

@@ -63,7 +63,16 @@ struct MortarSegment {
 /// × area. Identity (α = 0) for the first-order facets, Line3 (weights 1/6, 1/6, 2/3) and
 /// Quad9 (1/36, 1/9, 4/9 × 4). Local to one facet, and globally one change of basis on the
 /// slave surface, since a mid-edge node has the same two vertices in both faces it is on.
+/// Other α (MortarOptions::vertex_share): the weights are 2α/3 and (1 − 2α)/3 of a Tri6's area,
+/// 2α/3 − 1/12 and (1 − 2α)/3 of a Quad8's, positive for 0 < α < ½ and ⅛ < α < ½ (equal at
+/// α = ¼ and 5/16: docs/choices.md, "α by measurement").
 inline constexpr double kVertexShare = 0.2;
+/// The open interval of α that gives positive weights to every node of a facet of type t
+/// ({0, 0} where T = I).
+struct ShareRange {
+  double lo = 0, hi = 0;
+};
+[[nodiscard]] ShareRange vertex_share_range(mesh::FacetType t);
 struct BasisTransformation {
   int n = 0;         // nodes of the facet
   double alpha = 0;  // 0: T = I
@@ -71,7 +80,9 @@ struct BasisTransformation {
   double inv[kFacetNodes][kFacetNodes]{};  // T⁻¹: φ_v = φ̃_v − α/(1 − 2α) Σ φ̃_e, φ_e = φ̃_e/(1 − 2α)
   [[nodiscard]] bool identity() const { return alpha == 0; }
 };
-[[nodiscard]] BasisTransformation basis_transformation(mesh::FacetType t);
+/// T with the share α on Tri6 and Quad8 (the identity on every other facet type).
+[[nodiscard]] BasisTransformation basis_transformation(mesh::FacetType t,
+                                                       double alpha = kVertexShare);
 
 /// A facet with its vertices projected onto a slave face's plane (facet order).
 struct PlacedFacet {

@@ -56,6 +56,17 @@ void check_one_transformation(std::span<const mesh::Facet> facets, const std::st
                     "or Tri6 and Quad8 faces (their multiplier bases differ along common edges)");
 }
 
+/// α must give every node of every transformed slave face a positive weight.
+void check_vertex_share(std::span<const mesh::Facet> facets, double alpha) {
+  for (const auto& f : facets) {
+    const ShareRange r = vertex_share_range(f.type);
+    if (r.hi > 0 && !(alpha > r.lo && alpha < r.hi))
+      throw Error("mortar pair: vertex_share must be in (" + std::to_string(r.lo) + ", " +
+                  std::to_string(r.hi) + ") on " + mesh::name(f.type) +
+                  " slave faces (positive weights), got " + std::to_string(alpha));
+  }
+}
+
 /// Positions X + u of every node (u interleaved; empty = reference configuration).
 void positions(const mesh::Mesh& m, std::span<const double> u, const char* side,
                std::vector<Vec3>& x) {
@@ -104,6 +115,7 @@ MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
   slave_facets_ = checked_boundary(slave, slave_name_, "slave");
   master_facets_ = checked_boundary(master, master_name_, "master");
   check_one_transformation(slave_facets_, slave_name_);
+  check_vertex_share(slave_facets_, options_.vertex_share);
   update();
 }
 
@@ -271,7 +283,8 @@ void MortarPair::integrate() {
     Eigen::MatrixXd mcov(ns, static_cast<Eigen::Index>(mnodes.size()));
     for (size_t c = 0; c < mnodes.size(); ++c)
       for (int a = 0; a < ns; ++a) mcov(a, static_cast<Eigen::Index>(c)) = mstd[c][a];
-    const BasisTransformation tr = basis_transformation(slave_facets_[e].type);
+    const BasisTransformation tr =
+        basis_transformation(slave_facets_[e].type, options_.vertex_share);
     Eigen::MatrixXd mface;
     if (!tr.identity()) {
       // The multipliers on φ̃ = Tφ (docs/theory.md, "Second-order slave faces"): d̃ = T d,
@@ -459,7 +472,7 @@ void MortarPair::build_conductance() const {
     for (auto* v : {&t.ss, &t.sm, &t.mm}) v->assign(static_cast<size_t>(n * n * n), 0.0);
     for (auto* v : {&t.at_ss, &t.at_sm, &t.at_ms, &t.at_mm})
       v->assign(static_cast<size_t>(n * n), 0);
-    const BasisTransformation tr = basis_transformation(s.facet->type);
+    const BasisTransformation tr = basis_transformation(s.facet->type, options_.vertex_share);
     const int n_points = mortar_rule(dim_, s.facet->type, m.facet->type, true);
     for_each_point(dim_, plane, s, warped, m, seg.cell, n_points, [&](const MortarPoint& q) {
       if (first)

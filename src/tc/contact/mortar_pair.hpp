@@ -57,6 +57,11 @@ struct MortarOptions {
   /// the overlapped area to 1e-12); raise it (e.g. 1e-4) to drop nodes touched only by a
   /// sliver of overlap, whose rows are tiny and make the dual QP (6.9) ill-conditioned.
   double weight_threshold = 1e-12;
+  /// α of the basis transformation of Tri6 and Quad8 slave faces (integration.hpp's
+  /// BasisTransformation): each vertex function takes α of its two mid-edge neighbours. In
+  /// (0, ½) with Tri6 faces and (⅛, ½) with Quad8 faces (positive weights); the default is
+  /// 4C's ⅕ (docs/choices.md, "α by measurement").
+  double vertex_share = kVertexShare;
 };
 
 /// Wall-clock seconds of the stages of the last update().
