@@ -171,8 +171,7 @@ void MortarPair::build_segments() {
   face_area_.assign(n_faces, 0.0);
   segments_.clear();
   face_segments_.assign(1, 0);
-  // Curved faces are clipped on their sub-facets ("Clipping curved second-order faces on
-  // sub-facets", docs/choices.md); every other face on its corners' polygon, as before.
+  // Curved faces on their sub-facets when asked (docs/choices.md), others on their corners.
   subfacets_.clear();
   auto subdivide = [&](const std::vector<FacetPoints>& faces, std::vector<int>& index) {
     index.assign(faces.size(), -1);
