@@ -11,6 +11,10 @@
 // the slave is lowered by 0.1 % of a face into the master (a closed contact, every face active).
 // --element Hex20 | Hex27 | Tet10 | Tet4: both boxes of T cells on the jittered corners (issue
 // 37: mortar time per contact node of order 2 against order 1).
+// --curved R: every node of both boxes (second-order ones included) mapped onto the sphere of
+// radius R, (x, y, z) ↦ radius R + z, longitude (x − ½)/R, latitude (y − ½)/R, so the
+// second-order faces' edges are curved (clipped on sub-facets unless --divisions 1).
+// --divisions N: MortarOptions::curved_face_divisions.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -65,6 +69,20 @@ tc::mesh::Mesh as_element(const tc::mesh::Mesh& box, tc::mesh::CellType element)
   return tc::mesh::order(element) == 2 ? tc::mesh::to_second_order(m, element) : m;
 }
 
+/// The mesh with every node mapped onto the sphere of radius r (see --curved above).
+tc::mesh::Mesh on_sphere(const tc::mesh::Mesh& m, double r) {
+  tc::mesh::Mesh out(3);
+  for (const auto& p : m.points()) {
+    const double rho = r + p[2], lon = (p[0] - 0.5) / r, lat = (p[1] - 0.5) / r;
+    out.add_point({rho * std::cos(lat) * std::cos(lon), rho * std::cos(lat) * std::sin(lon),
+                   rho * std::sin(lat)});
+  }
+  for (int c = 0; c < m.n_cells(); ++c) out.add_cell(m.cell_type(c), m.cell(c));
+  for (const auto& name : m.boundary_names())
+    for (const auto& f : m.boundary(name)) out.add_facet(name, f);
+  return out;
+}
+
 struct Row {
   int faces = 0, contact_nodes = 0, segments = 0, repeats = 0;
   double time = 0;  // per update
@@ -87,9 +105,14 @@ int main(int argc, char** argv) {
   tc::contact::MortarOptions options;
   std::vector<char*> petsc_args{argv[0]};
   auto element = tc::mesh::CellType::Hex8;
+  double curved = 0;  // sphere radius, 0 = flat
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--standard") == 0)
       options.basis = tc::contact::MultiplierBasis::standard;
+    else if (std::strcmp(argv[i], "--curved") == 0 && i + 1 < argc)
+      curved = std::stod(argv[++i]);
+    else if (std::strcmp(argv[i], "--divisions") == 0 && i + 1 < argc)
+      options.curved_face_divisions = std::stoi(argv[++i]);
     else if (std::strcmp(argv[i], "--element") == 0 && i + 1 < argc) {
       const std::string name = argv[++i];
       for (const auto t :
@@ -111,14 +134,18 @@ int main(int argc, char** argv) {
   for (const int n : sizes) {
     const int nm = std::max(2, static_cast<int>(std::lround(0.77 * n)));
     const double h = 1.0 / n, hm = 1.024 / nm;
-    const auto slave =
+    auto slave =
         as_element(jittered(tc::mesh::make_box(3, {0, 0, -1e-3 * h}, {1, 1, 0.05}, {n, n, 1}),
                             "zmin", 0.2 * h, 1),
                    element);
-    const auto master = as_element(
+    auto master = as_element(
         jittered(tc::mesh::make_box(3, {-0.013, -0.013, -0.05}, {1.011, 1.011, 0}, {nm, nm, 1}),
                  "zmax", 0.2 * hm, 2),
         element);
+    if (curved > 0) {
+      slave = on_sphere(slave, curved);
+      master = on_sphere(master, curved);
+    }
     MortarPair pair(slave, "zmin", master, "zmax", options);
     const std::vector<double> us(3 * slave.n_nodes(), 0.0), um(3 * master.n_nodes(), 0.0);
     Row r;
@@ -139,8 +166,11 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "{} slave faces: {:.3e} s per update\n", r.faces, r.time);
   }
 
-  fmt::print("basis: {}, element: {}\n\n", tc::contact::name(options.basis),
-             tc::mesh::name(element));
+  fmt::print("basis: {}, element: {}, {}\n\n", tc::contact::name(options.basis),
+             tc::mesh::name(element),
+             curved > 0 ? fmt::format("on a sphere of radius {}, {} division(s) per curved edge",
+                                      curved, options.curved_face_divisions)
+                        : std::string("flat"));
   fmt::print(
       "| slave faces | master faces | segments | contact nodes | update [s] | per slave face [µs] "
       "| per contact node [µs] | search | geometry + clipping | integration | assembly |\n"

@@ -6,8 +6,8 @@
 // a = (3PR/(4E*))^{1/3}, p(r) = p₀√(1 − r²/a²), p₀ = 3P/(2πa²).
 // The error is hertz_rates.hpp's d_k-weighted L2 norm of λ_k − p̄_k over the slave surface
 // (e_all) and over r_k < 0.8a (e_in). Curved Tri6 faces are clipped on their corners' chord
-// polygon (docs/theory.md 4.3–4.4): a geometric error of the mortar segments of O(h²/R) in
-// position, which the rate measured here includes.
+// polygon (docs/theory.md 4.3–4.4): an O(h²/R²) relative error of the weights (~1e-5 at a/8,
+// mortar_curved_test), which the rate measured here includes.
 // Measured (docs/theory.md, "Hertz under refinement"), h = a/2, a/4, a/8: e_in 12.7, 8.6, 4.2 %
 // (Tet4) against 1.44, 1.33, 0.41 % (Tet10); e_all 16.6, 14.3, 8.2 % against 6.8, 4.3, 2.2 %;
 // rates a/4 → a/8 1.05 against 1.69 (e_in) and 0.80 against 0.99 (e_all). Tet10 a/16 would be

@@ -215,6 +215,62 @@ ProjectedFacet project(const FacetPoints& f, const FacePlane& plane) {
   return out;
 }
 
+bool curved_edges(const FacetPoints& f) {
+  if (mesh::order(f.type) != 2 || f.type == FacetType::Line3) return false;
+  const double tol = 1e-12 * facet_size(f);
+  for (int i = 0; i < f.corners; ++i) {
+    // Mid-edge node corners + i is on the edge from corner i to corner i + 1 (mesh::edges).
+    const Vec3& a = f.x[i];
+    const Vec3 chord = f.x[(i + 1) % f.corners] - a;
+    const Vec3 off = cross(chord, f.x[f.corners + i] - a);
+    if (norm(off) > tol * norm(chord)) return true;
+  }
+  return false;
+}
+
+SubFacets sub_facets(const FacetPoints& f, int divisions) {
+  SubFacets s;
+  const int d = std::clamp(divisions, 1, kMaxDivisions);
+  const bool tri = mesh::corner_type(f.type) == FacetType::Tri3;
+  s.corners = tri ? 3 : 4;
+  auto at = [&](int i, int j) {
+    // Reference point (i, j)/d of the triangle, −1 + 2(i, j)/d of the square.
+    const Vec2 xi = tri ? Vec2{static_cast<double>(i) / d, static_cast<double>(j) / d}
+                        : Vec2{-1 + 2.0 * i / d, -1 + 2.0 * j / d};
+    const ShapeValues v = facet_shape(f.type, xi);
+    Vec3 x{0, 0, 0};
+    for (int a = 0; a < f.n; ++a) x = x + v.phi[a] * f.x[a];
+    return x;
+  };
+  for (int j = 0; j < d; ++j)
+    for (int i = 0; i < d; ++i) {
+      if (!tri) {
+        s.x[s.n++] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+        continue;
+      }
+      if (i + j < d) s.x[s.n++] = {at(i, j), at(i + 1, j), at(i, j + 1), Vec3{}};
+      if (i + j < d - 1) s.x[s.n++] = {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), Vec3{}};
+    }
+  return s;
+}
+
+Polygon project(const SubFacets& s, int i, const FacePlane& plane) {
+  Polygon p;
+  for (int a = 0; a < s.corners; ++a) p.push(plane.project(s.x[i][a]));
+  if (signed_area(p) < 0) std::reverse(p.v.begin(), p.v.begin() + p.n);
+  return p;
+}
+
+bool boxes_meet(const Polygon& a, const Polygon& b) {
+  for (int k = 0; k < 2; ++k) {
+    double alo = a.v[0][k], ahi = alo, blo = b.v[0][k], bhi = blo;
+    for (int i = 1; i < a.n; ++i) alo = std::min(alo, a.v[i][k]), ahi = std::max(ahi, a.v[i][k]);
+    for (int i = 1; i < b.n; ++i) blo = std::min(blo, b.v[i][k]), bhi = std::max(bhi, b.v[i][k]);
+    if (ahi < blo || bhi < alo) return false;
+  }
+  return true;
+}
+
 namespace {
 
 /// Twice the signed area of (a, b, p): positive when p is left of a → b.

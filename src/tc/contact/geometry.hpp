@@ -4,7 +4,8 @@
 // the auxiliary plane of a slave face onto which master faces are projected (Puso & Laursen
 // 2004; Popp et al. 2010), 2D segment overlap and 3D polygon clipping (Sutherland–Hodgman),
 // and the inverse of a projected facet map, for first- and second-order facets (Line3, Tri6,
-// Quad8, Quad9: clipped on their corners' polygon, mapped by their quadratic shape functions).
+// Quad8, Quad9: clipped on their corners' polygon when their edges are straight, on their
+// sub-facets when curved; mapped by their quadratic shape functions).
 // Pure functions, no PETSc, no allocation per call.
 #include <array>
 #include <cmath>
@@ -117,6 +118,28 @@ struct ProjectedFacet {
   std::array<int, 4> order{0, 1, 2, 3};
 };
 [[nodiscard]] ProjectedFacet project(const FacetPoints& f, const FacePlane& plane);
+
+/// Whether a second-order 3D facet has a mid-edge node off the chord of its edge's corners
+/// (beyond 1e-12 of the facet's size): its corners' polygon is then not the projection of its
+/// boundary. False for first-order facets, Line3 and straight-edged second-order facets.
+[[nodiscard]] bool curved_edges(const FacetPoints& f);
+
+/// A curved facet's sub-facets: its reference cell cut into `divisions` parts per edge
+/// (divisions² triangles of a Tri6, divisions² quadrilaterals of a Quad8 or Quad9), each given
+/// by the points of the curved facet at its corners, x(ξ) = Σ x_a φ_a(ξ): for divisions = 2 the
+/// facet's nodes (and the centre x(0, 0) of a Quad8). The sub-facets' polygon follows each
+/// curved edge by `divisions` chords, whose sagitta is 1/divisions² of the edge's.
+inline constexpr int kMaxDivisions = 4;
+struct SubFacets {
+  int n = 0, corners = 0;  // sub-facets, and 3 (triangles) or 4 (quadrilaterals)
+  std::array<std::array<Vec3, 4>, kMaxDivisions * kMaxDivisions> x{};
+};
+[[nodiscard]] SubFacets sub_facets(const FacetPoints& f, int divisions);
+/// Sub-facet i projected onto the plane, counter-clockwise (as project()).
+[[nodiscard]] Polygon project(const SubFacets& s, int i, const FacePlane& plane);
+
+/// Whether the bounding boxes of two polygons overlap (touching counts).
+[[nodiscard]] bool boxes_meet(const Polygon& a, const Polygon& b);
 
 /// Sutherland–Hodgman: the part of `subject` inside the convex, counter-clockwise `clip`.
 /// Points on a clip edge (within a round-off band) count as inside, so matching meshes do not

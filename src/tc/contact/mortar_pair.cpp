@@ -109,6 +109,10 @@ MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
   if (!(options_.search_radius >= 0))
     throw Error("mortar pair: search_radius must be ≥ 0 (0 = automatic), got " +
                 std::to_string(options_.search_radius));
+  if (options_.curved_face_divisions < 1 || options_.curved_face_divisions > kMaxDivisions)
+    throw Error("mortar pair: curved_face_divisions must be in [1, " +
+                std::to_string(kMaxDivisions) + "], got " +
+                std::to_string(options_.curved_face_divisions));
   if (!(options_.weight_threshold >= 0 && options_.weight_threshold < 1))
     throw Error("mortar pair: weight_threshold must be in [0, 1), got " +
                 std::to_string(options_.weight_threshold));
@@ -179,6 +183,20 @@ void MortarPair::build_segments() {
   face_area_.assign(n_faces, 0.0);
   segments_.clear();
   face_segments_.assign(1, 0);
+  // Curved faces on their sub-facets when asked (docs/choices.md), others on their corners.
+  subfacets_.clear();
+  auto subdivide = [&](const std::vector<FacetPoints>& faces, std::vector<int>& index) {
+    index.assign(faces.size(), -1);
+    if (dim_ != 3 || options_.curved_face_divisions < 2) return;
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (curved_edges(faces[f])) {
+        index[f] = static_cast<int>(subfacets_.size());
+        subfacets_.push_back(sub_facets(faces[f], options_.curved_face_divisions));
+      }
+  };
+  subdivide(slave_points_, slave_sub_);
+  subdivide(master_points_, master_sub_);
+  std::array<Polygon, kMaxDivisions * kMaxDivisions> slave_parts, master_parts;
   for (size_t e = 0; e < n_faces; ++e) {
     const FacetPoints& s = slave_points_[e];
     const FacePlane plane = face_plane(s, dim_);
@@ -186,6 +204,12 @@ void MortarPair::build_segments() {
     warped_[e] = warped(s, plane, dim_) ? 1 : 0;
     const Polygon own = project(s, plane).polygon;
     face_area_[e] = dim_ == 2 ? norm(s.x[1] - s.x[0]) : signed_area(own);
+    int n_slave_parts = 1;
+    if (slave_sub_[e] >= 0) {
+      const SubFacets& sub = subfacets_[slave_sub_[e]];
+      n_slave_parts = sub.n;
+      for (int i = 0; i < sub.n; ++i) slave_parts[i] = project(sub, i, plane);
+    }
     for (int i = candidates_.offsets[e]; i < candidates_.offsets[e + 1]; ++i) {
       const int f = candidates_.cols[i];
       const FacetPoints& m = master_points_[f];
@@ -198,9 +222,28 @@ void MortarPair::build_segments() {
         if (!(iv.hi - iv.lo > 1e-14 * face_area_[e])) continue;
         seg.cell.push({iv.lo, 0});
         seg.cell.push({iv.hi, 0});
-      } else {
+      } else if (n_slave_parts == 1 && master_sub_[f] < 0) {
         seg.cell = clip(project(m, plane).polygon, own);
         if (seg.cell.n < 3 || !(signed_area(seg.cell) > 1e-14 * face_area_[e])) continue;
+      } else {
+        // One segment per pair of sub-facets (a face with straight edges is its own only part).
+        if (n_slave_parts == 1) slave_parts[0] = own;
+        int n_master_parts = 1;
+        if (master_sub_[f] >= 0) {
+          const SubFacets& sub = subfacets_[master_sub_[f]];
+          n_master_parts = sub.n;
+          for (int i = 0; i < sub.n; ++i) master_parts[i] = project(sub, i, plane);
+        } else {
+          master_parts[0] = project(m, plane).polygon;
+        }
+        for (int i = 0; i < n_master_parts; ++i)
+          for (int j = 0; j < n_slave_parts; ++j) {
+            if (!boxes_meet(master_parts[i], slave_parts[j])) continue;
+            seg.cell = clip(master_parts[i], slave_parts[j]);
+            if (seg.cell.n < 3 || !(signed_area(seg.cell) > 1e-14 * face_area_[e])) continue;
+            segments_.push_back(seg);
+          }
+        continue;
       }
       segments_.push_back(seg);
     }

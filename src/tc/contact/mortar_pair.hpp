@@ -62,6 +62,14 @@ struct MortarOptions {
   /// (0, ½) with Tri6 faces and (⅛, ½) with Quad8 faces (positive weights); the default is
   /// 4C's ⅕ (docs/choices.md, "α by measurement").
   double vertex_share = kVertexShare;
+  /// 3D second-order faces whose edges are curved (a mid-edge node off its corners' chord,
+  /// geometry.hpp's curved_edges) are clipped on their sub-facets, `curved_face_divisions` per
+  /// edge (sub_facets; 1 to kMaxDivisions): 1 clips them on their corners' polygon, the chord of
+  /// each curved edge (the default: sub-facets divide the weights' O(h²/R²) segmentation
+  /// error by divisions² at 2.5–4 times the mortar time and leave the transfer and the gaps
+  /// unchanged; docs/choices.md). Faces with straight edges are always clipped on their
+  /// corners' polygon.
+  int curved_face_divisions = 1;
 };
 
 /// Wall-clock seconds of the stages of the last update().
@@ -136,7 +144,8 @@ class MortarPair {
                                                    double beta_c) const;
 
   [[nodiscard]] const MortarTimings& timings() const { return timings_; }
-  /// The mortar segments of the last update (slave face, master face, clip cell).
+  /// The mortar segments of the last update (slave face, master face, clip cell): one per
+  /// overlapping pair of faces, or per overlapping pair of their sub-facets where one is curved.
   [[nodiscard]] const std::vector<MortarSegment>& segments() const { return segments_; }
   /// Area (length in 2D) of the slave surface covered by the master in the last update.
   [[nodiscard]] double overlap_area() const { return overlap_area_; }
@@ -165,6 +174,9 @@ class MortarPair {
   std::vector<FacetPoints> slave_points_, master_points_;
   std::vector<FacePlane> planes_;
   std::vector<char> warped_;
+  // Sub-facets of the curved faces (curved_face_divisions > 1): index into subfacets_, or −1.
+  std::vector<int> slave_sub_, master_sub_;
+  std::vector<SubFacets> subfacets_;
   std::vector<Vec3> node_normals_;  // averaged normal per slave node
   std::vector<double> face_area_;   // full area of each slave face (projected, for thresholds)
   double radius_ = 0;
