@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "tc/core/error.hpp"
@@ -170,6 +171,25 @@ PlacedFacet place(const FacetPoints& f, const FacePlane& plane) {
   for (int a = 0; a < f.n; ++a) p.q[a] = plane.project(f.x[a]);
   p.map = PlaneMap::of(f.type, p.q);
   return p;
+}
+
+void check_slave_bases(std::span<const mesh::Facet> facets, const std::string& name, double alpha) {
+  // Quad9 faces (T = I) next to Tri6 or Quad8 faces would have no single transformed basis
+  // along their common edges.
+  bool plain = false, transformed = false;
+  for (const auto& f : facets) {
+    plain = plain || f.type == mesh::FacetType::Quad9;
+    transformed = transformed || !basis_transformation(f.type).identity();
+    const ShareRange r = vertex_share_range(f.type);
+    if (r.hi > 0 && !(alpha > r.lo && alpha < r.hi))
+      throw Error("mortar pair: vertex_share must be in (" + std::to_string(r.lo) + ", " +
+                  std::to_string(r.hi) + ") on " + mesh::name(f.type) +
+                  " slave faces (positive weights), got " + std::to_string(alpha));
+  }
+  if (plain && transformed)
+    throw MeshError("mortar pair: slave boundary '" + name +
+                    "' mixes Quad9 faces with Tri6 or Quad8 faces; expected Quad9 faces alone, "
+                    "or Tri6 and Quad8 faces (their multiplier bases differ along common edges)");
 }
 
 }  // namespace tc::contact

@@ -20,6 +20,7 @@
 // max(2p_s, p_s + p_m); L_θγ: max(3p_s, 2p_s + p_m, p_s + 2p_m)), e.g. Quad9 against Quad9
 // n = 5 for D and M, n = 7 for L_θγ.
 #include <span>
+#include <string>
 
 #include "tc/contact/geometry.hpp"
 
@@ -131,5 +132,9 @@ void for_each_point(int dim, const FacePlane& plane, const PlacedFacet& slave, b
     }
   }
 }
+
+/// The slave surface's faces admit the transformed basis at α: every weight positive (MortarPair
+/// throws Error otherwise), and no Quad9 face next to a Tri6 or Quad8 one (MeshError).
+void check_slave_bases(std::span<const mesh::Facet> facets, const std::string& name, double alpha);
 
 }  // namespace tc::contact

@@ -42,31 +42,6 @@ std::vector<mesh::Facet> checked_boundary(const mesh::Mesh& m, const std::string
   return facets;
 }
 
-/// A slave surface whose Quad9 faces (T = I) meet Tri6 or Quad8 faces (α = ⅕) would have no
-/// single transformed basis along their common edges: refused.
-void check_one_transformation(std::span<const mesh::Facet> facets, const std::string& name) {
-  bool plain = false, transformed = false;
-  for (const auto& f : facets) {
-    plain = plain || f.type == mesh::FacetType::Quad9;
-    transformed = transformed || !basis_transformation(f.type).identity();
-  }
-  if (plain && transformed)
-    throw MeshError("mortar pair: slave boundary '" + name +
-                    "' mixes Quad9 faces with Tri6 or Quad8 faces; expected Quad9 faces alone, "
-                    "or Tri6 and Quad8 faces (their multiplier bases differ along common edges)");
-}
-
-/// α must give every node of every transformed slave face a positive weight.
-void check_vertex_share(std::span<const mesh::Facet> facets, double alpha) {
-  for (const auto& f : facets) {
-    const ShareRange r = vertex_share_range(f.type);
-    if (r.hi > 0 && !(alpha > r.lo && alpha < r.hi))
-      throw Error("mortar pair: vertex_share must be in (" + std::to_string(r.lo) + ", " +
-                  std::to_string(r.hi) + ") on " + mesh::name(f.type) +
-                  " slave faces (positive weights), got " + std::to_string(alpha));
-  }
-}
-
 /// Positions X + u of every node (u interleaved; empty = reference configuration).
 void positions(const mesh::Mesh& m, std::span<const double> u, const char* side,
                std::vector<Vec3>& x) {
@@ -118,8 +93,7 @@ MortarPair::MortarPair(const mesh::Mesh& slave, std::string slave_boundary,
                 std::to_string(options_.weight_threshold));
   slave_facets_ = checked_boundary(slave, slave_name_, "slave");
   master_facets_ = checked_boundary(master, master_name_, "master");
-  check_one_transformation(slave_facets_, slave_name_);
-  check_vertex_share(slave_facets_, options_.vertex_share);
+  check_slave_bases(slave_facets_, slave_name_, options_.vertex_share);
   update();
 }
 
