@@ -295,19 +295,16 @@ void lump_rows(core::SparseMatrix& m) {
   TC_PETSC(MatDiagonalSet(m.get(), sums.get(), INSERT_VALUES));
 }
 
-namespace {
+namespace {}  // namespace
 
-/// Row-sum lumping of the cell's mass gives every node a positive share (∫N_a > 0).
-bool row_sums_positive(CellType t) {
+bool lumps_by_row_sums(CellType t) {
   return t != CellType::Tri6 && t != CellType::Quad8 && t != CellType::Tet10 &&
          t != CellType::Hex20;
 }
 
-}  // namespace
-
 bool lumps_by_row_sums(const mesh::Mesh& m) {
   for (int c = 0; c < m.n_cells(); ++c)
-    if (!row_sums_positive(m.cell_type(c))) return false;
+    if (!lumps_by_row_sums(m.cell_type(c))) return false;
   return true;
 }
 
@@ -318,7 +315,7 @@ std::vector<double> lumped_volumes(const mesh::Mesh& m) {
     const auto t = m.cell_type(c);
     const auto x = cell_coords(m, c);
     const auto nodes = m.cell(c);
-    if (row_sums_positive(t)) {
+    if (lumps_by_row_sums(t)) {
       const auto v = cell_load(t, x);
       for (size_t a = 0; a < nodes.size(); ++a) out[nodes[a]] += v[static_cast<Eigen::Index>(a)];
       continue;

@@ -94,6 +94,9 @@ void lump_rows(core::SparseMatrix& m);
 /// second-order cells"). Both keep each cell's volume; a mesh without HRZ cells gets
 /// volume_integrals to the bit.
 [[nodiscard]] std::vector<double> lumped_volumes(const mesh::Mesh& m);
+/// Row-sum lumping of a cell of type t gives every node a positive share (∫N_a > 0): false for
+/// Tri6, Quad8, Tet10 and Hex20, which lumped_volumes lumps by HRZ.
+[[nodiscard]] bool lumps_by_row_sums(mesh::CellType t);
 /// Every cell of `m` lumps by row sums (no HRZ cell): lumped_volumes is volume_integrals.
 [[nodiscard]] bool lumps_by_row_sums(const mesh::Mesh& m);
 /// M_θ (of heat capacity ρc) lumped in place to ρc·lumped_volumes: lump_rows itself, to the bit,

@@ -60,22 +60,16 @@ std::vector<std::string> check_time_data(const physics::Problem& p) {
 
 namespace {
 
-/// Σ(∫N_a)²/m_a over Σ∫N_a for the HRZ shares m_a of one cell: the factor by which a uniform
-/// source's nodal temperatures f_a/m_a = s∫N_a/m_a overstate ∫θ_h (computed from the reference
-/// cells' N_a; 1 where row sums lump).
-double hrz_overstatement(mesh::CellType t) {
-  switch (t) {
-    case mesh::CellType::Hex20:
-      return 9.6;
-    case mesh::CellType::Quad8:
-      return 2.8;
-    case mesh::CellType::Tet10:
-      return 2.0;
-    case mesh::CellType::Tri6:
-      return 1.2;
-    default:
-      return 1.0;
+/// Σ(∫N_a)²/m_a over Σ∫N_a, from the mesh's row sums ∫N_a and lumped shares m_a: the factor by
+/// which a uniform source's nodal temperatures f_a/m_a = s∫N_a/m_a overstate ∫θ_h.
+double uniform_source_overstatement(const mesh::Mesh& m) {
+  const auto w = fem::volume_integrals(m), v = fem::lumped_volumes(m);
+  double driven = 0, heat = 0;
+  for (size_t a = 0; a < w.size(); ++a) {
+    driven += w[a] * w[a] / v[a];
+    heat += w[a];
   }
+  return driven / heat;
 }
 
 /// The largest extent along an axis of the cell's nodes: its size h for the conduction time.
@@ -99,16 +93,13 @@ std::vector<std::string> check_lumped_capacity(const physics::Problem& p) {
   if (!p.physics.lumped_heat_capacity || p.time.step <= 0) return warnings;
   for (const auto& body : p.bodies) {
     if (body.rigid_tool || fem::lumps_by_row_sums(body.mesh)) continue;
-    double h = 0, factor = 1;
-    const char* worst = "";
+    double h = 0;
+    const char* type = "";
     for (int c = 0; c < body.mesh.n_cells(); ++c) {
       const auto t = body.mesh.cell_type(c);
-      if (hrz_overstatement(t) == 1.0) continue;
+      if (fem::lumps_by_row_sums(t)) continue;
       h = std::max(h, cell_extent(body.mesh, c));
-      if (hrz_overstatement(t) > factor) {
-        factor = hrz_overstatement(t);
-        worst = mesh::name(t);
-      }
+      type = mesh::name(t);
     }
     const auto& mat = body.material;
     const double diffusivity = mat.thermal_conductivity / mat.heat_capacity();
@@ -123,7 +114,8 @@ std::vector<std::string> check_lumped_capacity(const physics::Problem& p) {
         "the heat would give. Hex27 or Quad9 (or first-order) "
         "cells, heat_capacity = \"consistent\", or a step of at least {:.3g} s avoid it "
         "(docs/choices.md, \"Mass of second-order cells\")",
-        body.name, worst, fourier, h, h * h / diffusivity, factor, h * h / diffusivity));
+        body.name, type, fourier, h, h * h / diffusivity, uniform_source_overstatement(body.mesh),
+        h * h / diffusivity));
   }
   return warnings;
 }

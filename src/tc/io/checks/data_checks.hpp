@@ -19,9 +19,9 @@ namespace tc::io {
 /// cells) with a step short against its cells' conduction time, κτ/(ρc h²) < 1 for its largest
 /// such cell: a source's heat then sits as f_a/m_a on nodes whose capacities m_a are not the
 /// integrals ∫N_a the mechanics interpolates θ with, so the thermal expansion it drives is up to
-/// Σ(∫N_a)²/m_a / Σ∫N_a times the heat's (Hex20 9.6, Quad8 2.8, Tet10 2.0, Tri6 1.2 for a
-/// uniform source) until conduction evens the nodes out (docs/choices.md, "Mass of second-order
-/// cells"). One warning per body.
+/// Σ(∫N_a)²/m_a / Σ∫N_a times the heat's for a uniform source (on one reference cell: Hex20 9.6,
+/// Quad8 2.8, Tet10 2.0, Tri6 1.2) until conduction evens the nodes out (docs/choices.md, "Mass of
+/// second-order cells"). One warning per body.
 [[nodiscard]] std::vector<std::string> check_lumped_capacity(const physics::Problem& p);
 
 /// The alternation the trapezoidal velocity update leaves in the data d(t) over steps of τ from
